@@ -1,0 +1,33 @@
+//! The CPU backend: the kernel linked natively, over all cores.
+use super::Backend;
+use crate::buffers::SceneBuffers;
+use anyhow::Result;
+use caustic_kernel::integrator::ACCUM_STRIDE;
+use caustic_kernel::scene::FrameParams;
+
+pub struct CpuBackend {
+    buffers: SceneBuffers,
+    accum: Vec<f32>,
+}
+
+impl CpuBackend {
+    pub fn new(buffers: SceneBuffers) -> Self {
+        let pixels = (buffers.params.width * buffers.params.height) as usize;
+        CpuBackend { buffers, accum: vec![0.0; pixels * ACCUM_STRIDE] }
+    }
+}
+
+impl Backend for CpuBackend {
+    fn describe(&self) -> String {
+        format!("cpu ({} threads)", rayon::current_num_threads())
+    }
+
+    fn pass(&mut self, params: &FrameParams) -> Result<()> {
+        caustic_cpu::render_pass(&self.buffers.view(), params, &mut self.accum);
+        Ok(())
+    }
+
+    fn read_accum(&mut self) -> Result<Vec<f32>> {
+        Ok(self.accum.clone())
+    }
+}

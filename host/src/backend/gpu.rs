@@ -1,0 +1,167 @@
+//! The GPU backend: the kernel's SPIR-V run as a wgpu compute pipeline.
+//!
+//! The module is consumed through naga with runtime bounds checks off (`create_shader_module_trusted`
+//! with unchecked runtime checks): measured fastest on the H100 (see ../shared/notes and
+//! BENCHMARKS.md), and safe because the kernel's own indexing is bounds-checked Rust.
+use super::Backend;
+use crate::buffers::SceneBuffers;
+use anyhow::{anyhow, bail, Context, Result};
+use caustic_kernel::integrator::ACCUM_STRIDE;
+use caustic_kernel::scene::FrameParams;
+use wgpu::util::DeviceExt;
+
+/// The kernel compiled by `shaders-build` (committed; CI checks it matches the source).
+static KERNEL_SPV: &[u8] = include_bytes!("../../shaders/caustic-kernel.spv");
+const ENTRY_POINT: &str = "entry::render";
+const TILE: u32 = 8;
+
+pub struct GpuBackend {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    pipeline: wgpu::ComputePipeline,
+    bind_group: wgpu::BindGroup,
+    params_buffer: wgpu::Buffer,
+    accum_buffer: wgpu::Buffer,
+    accum_size: u64,
+    adapter_name: String,
+    width: u32,
+    height: u32,
+}
+
+fn adapter_rank(info: &wgpu::AdapterInfo) -> u32 {
+    match info.device_type {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Other => 3,
+        wgpu::DeviceType::Cpu => 4,
+    }
+}
+
+/// The best Vulkan adapter; with `hardware_only`, none if only software rasterisers exist.
+pub fn pick_adapter(hardware_only: bool) -> Result<wgpu::Adapter> {
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor { backends: wgpu::Backends::VULKAN, ..wgpu::InstanceDescriptor::new_without_display_handle() });
+    let mut adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::VULKAN));
+    adapters.sort_by_key(|a| adapter_rank(&a.get_info()));
+    let adapter = adapters.into_iter().next().ok_or_else(|| anyhow!("no Vulkan adapter found (install a Vulkan driver, e.g. mesa-vulkan-drivers for lavapipe)"))?;
+    if hardware_only && adapter.get_info().device_type == wgpu::DeviceType::Cpu {
+        bail!("only a software Vulkan adapter ({}) is available", adapter.get_info().name);
+    }
+    Ok(adapter)
+}
+
+impl GpuBackend {
+    pub fn new(buffers: &SceneBuffers, hardware_only: bool) -> Result<Self> {
+        let adapter = pick_adapter(hardware_only)?;
+        let info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("caustic"),
+            required_features: wgpu::Features::empty(),
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .context("cannot open the GPU device")?;
+
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(KERNEL_SPV);
+        // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are bounds-checked
+        // in the source; dropping naga's duplicate runtime checks is what makes this path fast.
+        let module = unsafe {
+            device.create_shader_module_trusted(
+                wgpu::ShaderModuleDescriptor { label: Some("caustic-kernel"), source: wgpu::ShaderSource::SpirV(words.into()) },
+                wgpu::ShaderRuntimeChecks::unchecked(),
+            )
+        };
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("render"),
+            layout: None,
+            module: &module,
+            entry_point: Some(ENTRY_POINT),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            bail!("the GPU rejected the kernel on {}: {e}", info.name);
+        }
+
+        let storage = |label: &str, bytes: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytes, usage: wgpu::BufferUsages::STORAGE })
+        };
+        let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("params"),
+            contents: bytemuck::bytes_of(&buffers.params),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        });
+        let nodes = storage("nodes", bytemuck::cast_slice(&buffers.nodes));
+        let prims = storage("prims", bytemuck::cast_slice(&buffers.prims));
+        let normals = storage("normals", bytemuck::cast_slice(&buffers.normals));
+        let materials = storage("materials", bytemuck::cast_slice(&buffers.materials));
+        let lights = storage("lights", bytemuck::cast_slice(&buffers.lights));
+        let tables = storage("tables", bytemuck::cast_slice(&buffers.tables));
+        let pixels = (buffers.params.width * buffers.params.height) as u64;
+        let accum_size = pixels * ACCUM_STRIDE as u64 * 4;
+        let accum_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("accum"),
+            size: accum_size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let entries: Vec<wgpu::BindGroupEntry> = [&params_buffer, &nodes, &prims, &normals, &materials, &lights, &tables, &accum_buffer]
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+            .collect();
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some("scene"), layout: &pipeline.get_bind_group_layout(0), entries: &entries });
+        let adapter_name = format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend);
+        Ok(GpuBackend { device, queue, pipeline, bind_group, params_buffer, accum_buffer, accum_size, adapter_name, width: buffers.params.width, height: buffers.params.height })
+    }
+
+    fn wait(&self) -> Result<()> {
+        self.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| anyhow!("GPU wait failed: {e}"))?;
+        Ok(())
+    }
+}
+
+impl Backend for GpuBackend {
+    fn describe(&self) -> String {
+        format!("gpu: {}", self.adapter_name)
+    }
+
+    fn pass(&mut self, params: &FrameParams) -> Result<()> {
+        self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(params));
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pass") });
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("render"), timestamp_writes: None });
+            pass.set_pipeline(&self.pipeline);
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            pass.dispatch_workgroups(self.width.div_ceil(TILE), self.height.div_ceil(TILE), 1);
+        }
+        self.queue.submit([encoder.finish()]);
+        self.wait()
+    }
+
+    fn read_accum(&mut self) -> Result<Vec<f32>> {
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: self.accum_size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+        encoder.copy_buffer_to_buffer(&self.accum_buffer, 0, &staging, 0, self.accum_size);
+        self.queue.submit([encoder.finish()]);
+        let slice = staging.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.wait()?;
+        rx.recv().context("GPU readback was dropped")?.map_err(|e| anyhow!("cannot map the accumulation buffer: {e}"))?;
+        let data = {
+            let view = slice.get_mapped_range().map_err(|e| anyhow!("cannot read the accumulation buffer: {e:?}"))?;
+            bytemuck::pod_collect_to_vec(&view)
+        };
+        staging.unmap();
+        Ok(data)
+    }
+}

@@ -1,0 +1,38 @@
+//! Rendering backends: the same kernel on the GPU (wgpu compute) or the CPU (rayon).
+pub mod cpu;
+pub mod gpu;
+
+use anyhow::Result;
+use caustic_kernel::scene::FrameParams;
+
+/// A device that can add samples to an accumulation buffer (`ACCUM_STRIDE` floats per pixel).
+pub trait Backend {
+    /// A short description: backend and adapter.
+    fn describe(&self) -> String;
+    /// Adds `params.sample_count` samples per pixel, starting at sample `params.sample_base`.
+    fn pass(&mut self, params: &FrameParams) -> Result<()>;
+    /// A copy of the accumulation buffer.
+    fn read_accum(&mut self) -> Result<Vec<f32>>;
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum BackendChoice {
+    /// The GPU when a hardware adapter exists, else the CPU.
+    Auto,
+    /// wgpu (Vulkan); accepts software adapters such as lavapipe.
+    Gpu,
+    /// The rayon CPU runner.
+    Cpu,
+}
+
+/// Creates the chosen backend for a scene's buffers.
+pub fn create(choice: BackendChoice, buffers: &crate::buffers::SceneBuffers) -> Result<Box<dyn Backend>> {
+    match choice {
+        BackendChoice::Cpu => Ok(Box::new(cpu::CpuBackend::new(buffers.clone()))),
+        BackendChoice::Gpu => Ok(Box::new(gpu::GpuBackend::new(buffers, false)?)),
+        BackendChoice::Auto => match gpu::GpuBackend::new(buffers, true) {
+            Ok(g) => Ok(Box::new(g)),
+            Err(_) => Ok(Box::new(cpu::CpuBackend::new(buffers.clone()))),
+        },
+    }
+}

@@ -1,0 +1,93 @@
+//! Statistical comparison of a render against a reference image.
+//!
+//! Besides RMSE, relative MSE and the ratio of mean luminances, a render that carries a variance
+//! estimate gets a per-pixel z-test: each channel's difference divided by its standard error must stay
+//! under the critical value of a two-sided test at 1% significance, Šidák-corrected for the number of
+//! values tested (so that a correct renderer fails any one image with probability ≈ 1%). The standard
+//! error combines the render's variance, the reference's (estimated from the render's per-sample variance
+//! and the reference's sample count) and the reference's storage precision (half floats).
+use crate::film::Film;
+use anyhow::{bail, Result};
+use statrs::distribution::{ContinuousCDF, Normal};
+
+/// Relative precision of the reference's storage (half float: 2^-11) plus a small absolute floor,
+/// added to the standard error so that noise-free pixels are not failed by rounding.
+const REFERENCE_RELATIVE_PRECISION: f64 = 1.0 / 2048.0;
+const ABSOLUTE_FLOOR: f64 = 1.0e-4;
+
+#[derive(Clone, Debug)]
+pub struct Comparison {
+    pub rmse: f64,
+    pub rel_mse: f64,
+    /// Mean luminance of the render over that of the reference.
+    pub luminance_ratio: f64,
+    /// Fraction of pixels whose three channels all pass the z-test (when a variance is known).
+    pub pass_fraction: Option<f64>,
+    pub z_critical: f64,
+    /// Per-pixel largest |z| (or relative error without a variance), for the false-colour image.
+    pub error_map: Vec<f32>,
+}
+
+pub fn luminance(c: [f32; 3]) -> f64 {
+    0.212671 * c[0] as f64 + 0.715160 * c[1] as f64 + 0.072169 * c[2] as f64
+}
+
+/// Compares `image` with `reference`. `samples_ratio` = render spp / reference spp estimates the
+/// reference's own variance from the render's (0 ignores it).
+pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Comparison> {
+    if image.width != reference.width || image.height != reference.height {
+        bail!("image is {}×{} but the reference is {}×{}", image.width, image.height, reference.width, reference.height);
+    }
+    let n = image.rgb.len();
+    let values = (n * 3) as f64;
+    let alpha = 1.0 - (1.0f64 - 0.01).powf(1.0 / values);
+    let z_critical = Normal::new(0.0, 1.0).unwrap().inverse_cdf(1.0 - alpha / 2.0);
+    let (mut se, mut rel, mut lum_a, mut lum_b) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut passed = 0usize;
+    let mut error_map = Vec::with_capacity(n);
+    for i in 0..n {
+        let (a, b) = (image.rgb[i], reference.rgb[i]);
+        let mut worst = 0.0f64;
+        let mut ok = true;
+        for c in 0..3 {
+            let d = a[c] as f64 - b[c] as f64;
+            se += d * d;
+            rel += d * d / ((b[c] as f64).powi(2) + 1e-2);
+            match &image.variance {
+                Some(v) => {
+                    let var = v[i][c] as f64 * (1.0 + samples_ratio)
+                        + (REFERENCE_RELATIVE_PRECISION * b[c].abs() as f64).powi(2)
+                        + ABSOLUTE_FLOOR * ABSOLUTE_FLOOR;
+                    let z = d.abs() / var.sqrt();
+                    ok &= z <= z_critical;
+                    worst = worst.max(z);
+                }
+                None => worst = worst.max(d.abs() / (b[c].abs() as f64 + 1e-2)),
+            }
+        }
+        passed += ok as usize;
+        error_map.push(worst as f32);
+        lum_a += luminance(a);
+        lum_b += luminance(b);
+    }
+    Ok(Comparison {
+        rmse: (se / values).sqrt(),
+        rel_mse: rel / values,
+        luminance_ratio: if lum_b > 0.0 { lum_a / lum_b } else { f64::NAN },
+        pass_fraction: image.variance.as_ref().map(|_| passed as f64 / n as f64),
+        z_critical,
+        error_map,
+    })
+}
+
+/// Writes the error map as a false-colour PNG: black (no error) through blue and red to yellow at
+/// `scale` (the z-test's critical value, or 100% relative error).
+pub fn save_error_image(path: &std::path::Path, width: u32, height: u32, errors: &[f32], scale: f32) -> Result<()> {
+    let img = image::RgbImage::from_fn(width, height, |x, y| {
+        let t = (errors[(y * width + x) as usize] / scale).clamp(0.0, 1.0);
+        let rgb = if t < 0.5 { [0.0, 0.0, t * 2.0] } else { [(t - 0.5) * 2.0, (t - 0.5).max(0.0) * 2.0 * (t - 0.5) * 2.0, 1.0 - (t - 0.5) * 2.0] };
+        image::Rgb(rgb.map(|c| (c * 255.0) as u8))
+    });
+    img.save(path)?;
+    Ok(())
+}

@@ -1,0 +1,124 @@
+//! The developed image: per-pixel mean and the variance of that mean, and image files.
+use anyhow::{bail, Context, Result};
+use caustic_kernel::integrator::ACCUM_STRIDE;
+use std::path::Path;
+
+/// A linear-RGB image with a per-pixel, per-channel variance estimate of each value.
+#[derive(Clone, Debug)]
+pub struct Film {
+    pub width: u32,
+    pub height: u32,
+    /// Row-major RGB means.
+    pub rgb: Vec<[f32; 3]>,
+    /// Variance of each mean (sample variance / n), when known.
+    pub variance: Option<Vec<[f32; 3]>>,
+    /// Samples dropped because they were not finite.
+    pub invalid_samples: u64,
+}
+
+impl Film {
+    pub fn from_accum(width: u32, height: u32, accum: Vec<f32>) -> Film {
+        let mut rgb = Vec::with_capacity((width * height) as usize);
+        let mut variance = Vec::with_capacity(rgb.capacity());
+        let mut invalid = 0u64;
+        for px in accum.chunks_exact(ACCUM_STRIDE) {
+            let n = px[3].max(1.0) as f64;
+            let mean: [f64; 3] = std::array::from_fn(|c| px[c] as f64 / n);
+            let var: [f32; 3] = std::array::from_fn(|c| {
+                let second = px[4 + c] as f64 / n;
+                (((second - mean[c] * mean[c]).max(0.0)) * n / (n - 1.0).max(1.0) / n) as f32
+            });
+            rgb.push(mean.map(|m| m as f32));
+            variance.push(var);
+            invalid += px[7] as u64;
+        }
+        Film { width, height, rgb, variance: Some(variance), invalid_samples: invalid }
+    }
+
+    /// Writes `.exr` (linear float), `.png` (sRGB, clamped) or `.ppm` (sRGB, clamped, binary).
+    pub fn save(&self, path: &Path) -> Result<()> {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        }
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+        match ext.as_str() {
+            "exr" => write_exr(path, self.width, self.height, &self.rgb),
+            "png" => {
+                let img = image::RgbImage::from_fn(self.width, self.height, |x, y| image::Rgb(self.srgb8(x, y)));
+                img.save(path).with_context(|| format!("cannot write {}", path.display()))
+            }
+            "ppm" => {
+                let mut bytes = format!("P6\n{} {}\n255\n", self.width, self.height).into_bytes();
+                for y in 0..self.height {
+                    for x in 0..self.width {
+                        bytes.extend(self.srgb8(x, y));
+                    }
+                }
+                std::fs::write(path, bytes).with_context(|| format!("cannot write {}", path.display()))
+            }
+            other => bail!("{}: unknown image format '.{other}' (use .exr, .png or .ppm)", path.display()),
+        }
+    }
+
+    /// Writes the variance estimate (of each pixel's mean) as an EXR.
+    pub fn save_variance(&self, path: &Path) -> Result<()> {
+        match &self.variance {
+            Some(v) => write_exr(path, self.width, self.height, v),
+            None => bail!("this image has no variance estimate"),
+        }
+    }
+
+    fn srgb8(&self, x: u32, y: u32) -> [u8; 3] {
+        self.rgb[(y * self.width + x) as usize].map(|c| (linear_to_srgb(c) * 255.0 + 0.5) as u8)
+    }
+
+    pub fn load_exr(path: &Path) -> Result<Film> {
+        use exr::prelude::*;
+        let image = read_first_rgba_layer_from_file(
+            path,
+            |resolution, _| (resolution.width(), vec![[0.0f32; 3]; resolution.width() * resolution.height()]),
+            |(w, data), pos, (r, g, b, _a): (f32, f32, f32, f32)| data[pos.y() * *w + pos.x()] = [r, g, b],
+        )
+        .with_context(|| format!("cannot read EXR image {}", path.display()))?;
+        let size = image.layer_data.size;
+        let (_, rgb) = image.layer_data.channel_data.pixels;
+        Ok(Film { width: size.width() as u32, height: size.height() as u32, rgb, variance: None, invalid_samples: 0 })
+    }
+
+    /// Loads an image's sibling variance file written by `render --variance`, if present.
+    pub fn load_with_variance(path: &Path) -> Result<Film> {
+        let mut film = Film::load_exr(path)?;
+        let var_path = variance_path(path);
+        if var_path.exists() {
+            let v = Film::load_exr(&var_path)?;
+            if v.width != film.width || v.height != film.height {
+                bail!("{}: size differs from {}", var_path.display(), path.display());
+            }
+            film.variance = Some(v.rgb);
+        }
+        Ok(film)
+    }
+}
+
+/// `image.exr` → `image.variance.exr`.
+pub fn variance_path(path: &Path) -> std::path::PathBuf {
+    path.with_extension("variance.exr")
+}
+
+fn write_exr(path: &Path, width: u32, height: u32, data: &[[f32; 3]]) -> Result<()> {
+    exr::prelude::write_rgb_file(path, width as usize, height as usize, |x, y| {
+        let p = data[y * width as usize + x];
+        (p[0], p[1], p[2])
+    })
+    .with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// The sRGB transfer function, clamped to [0, 1].
+pub fn linear_to_srgb(c: f32) -> f32 {
+    let c = if c.is_finite() { c.clamp(0.0, 1.0) } else { 0.0 };
+    if c <= 0.0031308 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}

@@ -1,0 +1,29 @@
+//! caustic's host: scene loading (Mitsuba 3 XML, OBJ/MTL), BVH construction, the GPU (wgpu) and CPU
+//! backends, progressive rendering, image output and comparison. No shading code lives here: all of
+//! it is in `caustic-kernel`.
+pub mod backend;
+pub mod buffers;
+pub mod compare;
+pub mod film;
+pub mod mesh;
+pub mod mitsuba;
+pub mod obj_scene;
+pub mod render;
+pub mod scene;
+
+use anyhow::Result;
+use std::path::Path;
+
+/// Loads a scene by its extension: `.xml` (Mitsuba 3) or `.obj` (with its MTL library).
+pub fn load_scene(path: &Path, defines: &[(String, String)]) -> Result<scene::Scene> {
+    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some("xml") => mitsuba::load(path, defines),
+        Some("obj") => {
+            if !defines.is_empty() {
+                eprintln!("warning: -D definitions do not apply to OBJ files");
+            }
+            obj_scene::load(path)
+        }
+        _ => anyhow::bail!("{}: unknown scene format (expected .xml or .obj)", path.display()),
+    }
+}

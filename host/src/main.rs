@@ -1,0 +1,172 @@
+//! The `caustic` command line: render, compare, bench.
+use anyhow::{bail, Context, Result};
+use caustic::backend::{self, BackendChoice};
+use caustic::film::{variance_path, Film};
+use caustic::{buffers, compare, render};
+use clap::{Parser, Subcommand};
+use std::path::{Path, PathBuf};
+
+#[derive(Parser)]
+#[command(name = "caustic", version, about = "A physically based renderer whose one kernel runs on the GPU and the CPU")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene (Mitsuba 3 XML or OBJ/MTL) to an image.
+    Render {
+        scene: PathBuf,
+        #[arg(long, value_enum, default_value = "auto")]
+        backend: BackendChoice,
+        /// Samples per pixel (default: the scene's sampler).
+        #[arg(long)]
+        spp: Option<u32>,
+        /// Scene parameter overrides, `-D name=value` (Mitsuba's `$name`).
+        #[arg(short = 'D', value_parser = parse_define)]
+        define: Vec<(String, String)>,
+        /// Random seed; different seeds give statistically independent images.
+        #[arg(long, default_value_t = 0)]
+        seed: u32,
+        /// Output image: .exr (linear float), .png or .ppm (sRGB). Default: SCENE's name with .exr.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Also write the per-pixel variance of the estimate to OUTPUT.variance.exr.
+        #[arg(long)]
+        variance: bool,
+        /// No progress bar.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Compare an EXR render with a reference EXR.
+    Compare {
+        image: PathBuf,
+        reference: PathBuf,
+        /// Samples per pixel of the render and the reference, to account for the reference's noise.
+        #[arg(long, default_value_t = 0)]
+        image_spp: u32,
+        #[arg(long, default_value_t = 0)]
+        reference_spp: u32,
+        /// Where to write the false-colour error image (PNG).
+        #[arg(long)]
+        error_image: Option<PathBuf>,
+    },
+    /// Measure rendering throughput (Msamples/s) per backend.
+    Bench {
+        scene: PathBuf,
+        #[arg(short = 'D', value_parser = parse_define)]
+        define: Vec<(String, String)>,
+        #[arg(long, default_value = "all")]
+        backend: String,
+        #[arg(long, default_value_t = 64)]
+        spp: u32,
+    },
+}
+
+fn parse_define(s: &str) -> Result<(String, String), String> {
+    match s.split_once('=') {
+        Some((k, v)) if !k.is_empty() => Ok((k.to_string(), v.to_string())),
+        _ => Err(format!("'{s}' is not name=value")),
+    }
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render { scene, backend, spp, define, seed, output, variance, quiet } => {
+            let output = output.unwrap_or_else(|| PathBuf::from(scene.file_stem().unwrap_or_default()).with_extension("exr"));
+            cmd_render(&scene, backend, spp, &define, seed, &output, variance, quiet)
+        }
+        Command::Compare { image, reference, image_spp, reference_spp, error_image } => cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref()),
+        Command::Bench { scene, define, backend, spp } => cmd_bench(&scene, &define, &backend, spp),
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn cmd_render(scene_path: &Path, choice: BackendChoice, spp: Option<u32>, defines: &[(String, String)], seed: u32, output: &Path, variance: bool, quiet: bool) -> Result<()> {
+    let scene = caustic::load_scene(scene_path, defines)?;
+    let spp = spp.unwrap_or(scene.sensor.spp);
+    if spp == 0 {
+        bail!("--spp must be at least 1");
+    }
+    let buffers = buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
+    let mut backend = backend::create(choice, &buffers)?;
+    let bar = if quiet { indicatif::ProgressBar::hidden() } else { indicatif::ProgressBar::new(spp as u64) };
+    bar.set_style(indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} spp ({eta} left)").unwrap().progress_chars("=> "));
+    let (mut film, stats) = render::render(backend.as_mut(), &buffers, spp, seed, |done| bar.set_position(done as u64))?;
+    bar.finish_and_clear();
+    sanitize(&mut film);
+    film.save(output)?;
+    if variance {
+        film.save_variance(&variance_path(output))?;
+    }
+    let (w, h) = (film.width, film.height);
+    let msps = w as f64 * h as f64 * spp as f64 / stats.seconds / 1e6;
+    println!("{} | {w}x{h} | {spp} spp | {:.2} s | {msps:.2} Msamples/s | {}", backend.describe(), stats.seconds, output.display());
+    Ok(())
+}
+
+/// Guarantees a finite image. The kernel already drops non-finite samples; report them.
+fn sanitize(film: &mut Film) {
+    if film.invalid_samples > 0 {
+        eprintln!("warning: {} samples were not finite and were counted as black", film.invalid_samples);
+    }
+    for p in film.rgb.iter_mut().flatten() {
+        if !p.is_finite() {
+            *p = 0.0;
+        }
+    }
+}
+
+fn cmd_compare(image: &Path, reference: &Path, image_spp: u32, reference_spp: u32, error_image: Option<&Path>) -> Result<()> {
+    let a = Film::load_with_variance(image)?;
+    let b = Film::load_exr(reference)?;
+    let ratio = if image_spp > 0 && reference_spp > 0 { image_spp as f64 / reference_spp as f64 } else { 0.0 };
+    let c = compare::compare(&a, &b, ratio)?;
+    println!("RMSE                 {:.6}", c.rmse);
+    println!("relative MSE         {:.6}", c.rel_mse);
+    println!("mean luminance ratio {:.5}", c.luminance_ratio);
+    match c.pass_fraction {
+        Some(f) => println!("z-test pass fraction {:.5} (|z| ≤ {:.2}, Šidák-corrected 1%)", f, c.z_critical),
+        None => println!("z-test               n/a (no {} beside the image)", variance_path(image).display()),
+    }
+    if let Some(path) = error_image {
+        let scale = if c.pass_fraction.is_some() { c.z_critical as f32 } else { 1.0 };
+        compare::save_error_image(path, a.width, a.height, &c.error_map, scale)?;
+    }
+    Ok(())
+}
+
+fn cmd_bench(scene_path: &Path, defines: &[(String, String)], which: &str, spp: u32) -> Result<()> {
+    let scene = caustic::load_scene(scene_path, defines)?;
+    let buffers = buffers::build(&scene)?;
+    let choices: Vec<BackendChoice> = match which {
+        "all" => vec![BackendChoice::Cpu, BackendChoice::Gpu],
+        "cpu" => vec![BackendChoice::Cpu],
+        "gpu" => vec![BackendChoice::Gpu],
+        other => bail!("--backend must be all, cpu or gpu, not '{other}'"),
+    };
+    println!("| backend | resolution | spp | seconds | Msamples/s |");
+    println!("|---|---|---|---|---|");
+    for choice in choices {
+        let mut backend = match backend::create(choice, &buffers) {
+            Ok(b) => b,
+            Err(e) => {
+                println!("| {choice:?} | unavailable: {e:#} | | | |");
+                continue;
+            }
+        };
+        // A short warm-up pass (pipeline compilation, caches), then the timed render.
+        render::render(backend.as_mut(), &buffers, 1, 1, |_| {})?;
+        let mut backend = backend::create(choice, &buffers)?;
+        let (film, stats) = render::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
+        let msps = film.width as f64 * film.height as f64 * spp as f64 / stats.seconds / 1e6;
+        println!("| {} | {}x{} | {spp} | {:.3} | {msps:.2} |", backend.describe(), film.width, film.height, stats.seconds);
+    }
+    Ok(())
+}

@@ -1,0 +1,36 @@
+//! Integrator plugins: `path`, and `direct` (rendered by the path tracer limited to direct lighting,
+//! which has the same expectation).
+use super::props::Props;
+use super::Loader;
+use crate::scene::Integrator;
+use anyhow::{bail, Result};
+
+impl Loader {
+    pub(crate) fn load_integrator(&mut self, props: &Props) -> Result<Integrator> {
+        let integrator = match props.kind.as_str() {
+            "path" => {
+                let max_depth = props.integer("max_depth", -1)?;
+                let rr_depth = props.integer("rr_depth", 5)?;
+                if max_depth < -1 || max_depth > 1_000_000 {
+                    bail!("{}: max_depth must be -1 (unbounded) or in [0, 1000000], got {max_depth}", props.loc);
+                }
+                if !(1..=1_000_000).contains(&rr_depth) {
+                    bail!("{}: rr_depth must be in [1, 1000000], got {rr_depth}", props.loc);
+                }
+                Integrator { max_depth: max_depth as i32, rr_depth: rr_depth as u32, hide_emitters: props.boolean("hide_emitters", false)? }
+            }
+            "direct" => {
+                props.integer("emitter_samples", 1)?;
+                props.integer("bsdf_samples", 1)?;
+                Integrator { max_depth: 2, rr_depth: 5, hide_emitters: props.boolean("hide_emitters", false)? }
+            }
+            other => {
+                self.warn(&format!("{}: integrator '{other}' is not supported yet; using path", props.loc));
+                props.mark_all_used();
+                Integrator::default()
+            }
+        };
+        self.warn_unused(props);
+        Ok(integrator)
+    }
+}

@@ -1,0 +1,203 @@
+//! Mitsuba 3 XML scenes (a documented subset; see the README's table).
+//!
+//! One file per family of scene elements, as Mitsuba splits its plugins: `shapes`, `bsdfs`,
+//! `emitters`, `sensors` (sensor, film, filter, sampler), `integrators`; `transform` and `spectrum`
+//! parse values. This module holds the document machinery: `<default>`, `$name` substitution, `-D`
+//! overrides, `<include>`, `<path>`, `id`/`<ref>`, and typed properties with their source locations.
+mod bsdfs;
+pub mod cie_tables;
+mod emitters;
+mod integrators;
+mod props;
+mod sensors;
+mod shapes;
+pub mod spectrum;
+mod transform;
+
+use crate::scene::{Integrator, Scene};
+use anyhow::{bail, Context, Result};
+use caustic_kernel::scene::Material;
+use props::{Loc, Props};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// The state of loading one scene (shared by included files).
+pub(crate) struct Loader {
+    /// `<default>` values and `-D` overrides (the latter win).
+    params: HashMap<String, String>,
+    /// Directories searched for relative file names, most recent `<path>` first.
+    search_paths: Vec<PathBuf>,
+    /// Named BSDFs (`id`), as indices into `materials`.
+    named_bsdfs: HashMap<String, u32>,
+    materials: Vec<Material>,
+    shapes: Vec<crate::scene::Shape>,
+    sensor: Option<crate::scene::Sensor>,
+    integrator: Option<Integrator>,
+    warnings: Vec<String>,
+    include_depth: u32,
+}
+
+/// Loads a Mitsuba 3 scene; `defines` are `-D name=value` overrides.
+pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
+    let mut loader = Loader {
+        params: defines.iter().cloned().collect(),
+        search_paths: Vec::new(),
+        named_bsdfs: HashMap::new(),
+        materials: Vec::new(),
+        shapes: Vec::new(),
+        sensor: None,
+        integrator: None,
+        warnings: Vec::new(),
+        include_depth: 0,
+    };
+    loader.load_file(path)?;
+    let sensor = match loader.sensor.take() {
+        Some(s) => s,
+        None => {
+            loader.warn(&format!("{}: no <sensor>; using Mitsuba's default perspective camera", path.display()));
+            sensors::default_sensor()
+        }
+    };
+    Ok(Scene {
+        sensor,
+        integrator: loader.integrator.take().unwrap_or_default(),
+        materials: loader.materials,
+        shapes: loader.shapes,
+        warnings: loader.warnings,
+    })
+}
+
+impl Loader {
+    pub(crate) fn warn(&mut self, message: &str) {
+        eprintln!("warning: {message}");
+        self.warnings.push(message.to_string());
+    }
+
+    fn load_file(&mut self, path: &Path) -> Result<()> {
+        let text = std::fs::read_to_string(path).with_context(|| format!("cannot read scene file {}", path.display()))?;
+        let doc = roxmltree::Document::parse(&text).map_err(|e| {
+            let pos = e.pos();
+            anyhow::anyhow!("{}:{}:{}: malformed XML: {e}", path.display(), pos.row, pos.col)
+        })?;
+        let root = doc.root_element();
+        let loc = Loc::of(path, &doc, root);
+        if root.tag_name().name() != "scene" {
+            bail!("{loc}: expected a <scene> root element, found <{}>", root.tag_name().name());
+        }
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        self.search_paths.insert(0, dir);
+        let result = self.load_scene_children(path, &doc, root);
+        self.search_paths.remove(0);
+        result
+    }
+
+    fn load_scene_children(&mut self, path: &Path, doc: &roxmltree::Document, root: roxmltree::Node) -> Result<()> {
+        for node in root.children().filter(|n| n.is_element()) {
+            let loc = Loc::of(path, doc, node);
+            match node.tag_name().name() {
+                "default" => {
+                    let name = props::attr(node, "name", &loc)?;
+                    let value = props::attr(node, "value", &loc)?;
+                    self.params.entry(name.to_string()).or_insert_with(|| value.to_string());
+                }
+                "include" => {
+                    let file = self.resolve(&self.substitute(props::attr(node, "filename", &loc)?, &loc)?, &loc)?;
+                    self.include_depth += 1;
+                    if self.include_depth > 32 {
+                        bail!("{loc}: <include> nested more than 32 deep (a cycle?)");
+                    }
+                    self.load_file(&file).with_context(|| format!("{loc}: in the file included here"))?;
+                    self.include_depth -= 1;
+                }
+                "path" => {
+                    let value = self.substitute(props::attr(node, "value", &loc)?, &loc)?;
+                    let dir = self.resolve_dir(&value);
+                    self.search_paths.insert(1.min(self.search_paths.len()), dir);
+                }
+                "bsdf" => {
+                    let props = self.props(path, doc, node)?;
+                    let index = self.load_bsdf(&props)?;
+                    if let Some(id) = node.attribute("id") {
+                        self.named_bsdfs.insert(id.to_string(), index);
+                    }
+                }
+                "shape" => {
+                    let props = self.props(path, doc, node)?;
+                    self.load_shape(&props)?;
+                }
+                "sensor" => {
+                    let props = self.props(path, doc, node)?;
+                    self.sensor = Some(self.load_sensor(&props)?);
+                }
+                "integrator" => {
+                    let props = self.props(path, doc, node)?;
+                    self.integrator = Some(self.load_integrator(&props)?);
+                }
+                other => {
+                    self.warn(&format!("{loc}: <{other}> is not supported yet; ignored"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Replaces `$name` references by their values.
+    pub(crate) fn substitute(&self, value: &str, loc: &Loc) -> Result<String> {
+        if !value.contains('$') {
+            return Ok(value.to_string());
+        }
+        let mut out = String::new();
+        let mut rest = value;
+        while let Some(i) = rest.find('$') {
+            out.push_str(&rest[..i]);
+            let after = &rest[i + 1..];
+            let len = after.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).unwrap_or(after.len());
+            let name = &after[..len];
+            match self.params.get(name) {
+                Some(v) => out.push_str(v),
+                None => bail!("{loc}: undefined parameter ${name} (give it with -D {name}=… or a <default>)"),
+            }
+            rest = &after[len..];
+        }
+        out.push_str(rest);
+        Ok(out)
+    }
+
+    /// Finds a file named in the scene: absolute, or relative to the search paths.
+    pub(crate) fn resolve(&self, name: &str, loc: &Loc) -> Result<PathBuf> {
+        let p = Path::new(name);
+        if p.is_absolute() {
+            if p.exists() {
+                return Ok(p.to_path_buf());
+            }
+        } else {
+            for dir in &self.search_paths {
+                let candidate = dir.join(p);
+                if candidate.exists() {
+                    return Ok(candidate);
+                }
+            }
+        }
+        bail!("{loc}: file not found: {name} (searched {})", self.search_paths.iter().map(|d| d.display().to_string()).collect::<Vec<_>>().join(", "))
+    }
+
+    fn resolve_dir(&self, value: &str) -> PathBuf {
+        let p = Path::new(value);
+        if p.is_absolute() {
+            p.to_path_buf()
+        } else {
+            self.search_paths.first().map(|d| d.join(p)).unwrap_or_else(|| p.to_path_buf())
+        }
+    }
+
+    pub(crate) fn props<'a, 'input>(&self, path: &Path, doc: &'a roxmltree::Document<'input>, node: roxmltree::Node<'a, 'input>) -> Result<Props<'a, 'input>> {
+        Props::collect(self, path, doc, node)
+    }
+
+    /// Warns about every property and nested element of `props` that the plugin did not read.
+    pub(crate) fn warn_unused(&mut self, props: &Props) {
+        for message in props.unused() {
+            self.warn(&message);
+        }
+    }
+}

@@ -1,0 +1,250 @@
+//! Typed access to a plugin element's properties, each remembered with its file:line for messages.
+use super::spectrum::{spectrum_to_rgb, uniform_spectrum_to_rgb, SpectrumUse};
+use super::Loader;
+use anyhow::{bail, Context, Result};
+use glam::{Mat4, Vec3};
+use std::cell::RefCell;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// A position in a scene file.
+#[derive(Clone, Debug)]
+pub struct Loc {
+    pub file: PathBuf,
+    pub line: u32,
+}
+
+impl Loc {
+    pub fn of(path: &Path, doc: &roxmltree::Document, node: roxmltree::Node) -> Loc {
+        Loc { file: path.to_path_buf(), line: doc.text_pos_at(node.range().start).row }
+    }
+}
+
+impl fmt::Display for Loc {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}", self.file.display(), self.line)
+    }
+}
+
+pub fn attr<'a>(node: roxmltree::Node<'a, '_>, name: &str, loc: &Loc) -> Result<&'a str> {
+    match node.attribute(name) {
+        Some(v) => Ok(v),
+        None => bail!("{loc}: <{}> needs the attribute '{name}'", node.tag_name().name()),
+    }
+}
+
+/// Parses a list of numbers separated by commas and/or whitespace.
+pub fn parse_numbers(text: &str, loc: &Loc) -> Result<Vec<f64>> {
+    text.split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse::<f64>().map_err(|_| anyhow::anyhow!("{loc}: '{s}' is not a number")))
+        .collect()
+}
+
+/// One child element of a plugin: a value (`<float name=…>`) or a nested object (`<bsdf>`, `<ref>`).
+pub struct Entry<'a, 'input> {
+    pub tag: String,
+    pub name: Option<String>,
+    /// The `value` attribute after `$name` substitution.
+    pub value: Option<String>,
+    pub node: roxmltree::Node<'a, 'input>,
+    pub loc: Loc,
+}
+
+pub struct Props<'a, 'input> {
+    pub loc: Loc,
+    pub tag: String,
+    /// The plugin type (`type` attribute), empty for `<ref>`.
+    pub kind: String,
+    /// The `id` attribute (the target of a `<ref>`).
+    pub id: Option<String>,
+    pub path: PathBuf,
+    pub doc: &'a roxmltree::Document<'input>,
+    pub entries: Vec<Entry<'a, 'input>>,
+    used: RefCell<Vec<bool>>,
+}
+
+impl<'a, 'input> Props<'a, 'input> {
+    pub fn collect(loader: &Loader, path: &Path, doc: &'a roxmltree::Document<'input>, node: roxmltree::Node<'a, 'input>) -> Result<Self> {
+        let loc = Loc::of(path, doc, node);
+        let mut entries = Vec::new();
+        for child in node.children().filter(|n| n.is_element()) {
+            let child_loc = Loc::of(path, doc, child);
+            let value = match child.attribute("value") {
+                Some(v) => Some(loader.substitute(v, &child_loc)?),
+                None => None,
+            };
+            entries.push(Entry {
+                tag: child.tag_name().name().to_string(),
+                name: child.attribute("name").map(str::to_string),
+                value,
+                node: child,
+                loc: child_loc,
+            });
+        }
+        let kind = match node.attribute("type") {
+            Some(t) => loader.substitute(t, &loc)?,
+            None => String::new(),
+        };
+        let n = entries.len();
+        Ok(Props { loc, tag: node.tag_name().name().to_string(), kind, id: node.attribute("id").map(str::to_string), path: path.to_path_buf(), doc, entries, used: RefCell::new(vec![false; n]) })
+    }
+
+    fn find(&self, name: &str) -> Option<usize> {
+        let i = self.entries.iter().position(|e| e.name.as_deref() == Some(name))?;
+        self.used.borrow_mut()[i] = true;
+        Some(i)
+    }
+
+    fn value_of(&self, i: usize) -> Result<&str> {
+        let e = &self.entries[i];
+        e.value.as_deref().with_context(|| format!("{}: <{}> needs a 'value' attribute", e.loc, e.tag))
+    }
+
+    pub fn float(&self, name: &str, default: f32) -> Result<f32> {
+        let Some(i) = self.find(name) else { return Ok(default) };
+        let e = &self.entries[i];
+        let v: f32 = self.value_of(i)?.trim().parse().map_err(|_| anyhow::anyhow!("{}: '{name}' must be a number", e.loc))?;
+        if !v.is_finite() {
+            bail!("{}: '{name}' must be finite", e.loc);
+        }
+        Ok(v)
+    }
+
+    pub fn integer(&self, name: &str, default: i64) -> Result<i64> {
+        let Some(i) = self.find(name) else { return Ok(default) };
+        let e = &self.entries[i];
+        self.value_of(i)?.trim().parse().map_err(|_| anyhow::anyhow!("{}: '{name}' must be an integer", e.loc))
+    }
+
+    pub fn boolean(&self, name: &str, default: bool) -> Result<bool> {
+        let Some(i) = self.find(name) else { return Ok(default) };
+        match self.value_of(i)?.trim() {
+            "true" | "1" => Ok(true),
+            "false" | "0" => Ok(false),
+            other => bail!("{}: '{name}' must be true or false, not '{other}'", self.entries[i].loc),
+        }
+    }
+
+    pub fn string(&self, name: &str) -> Result<Option<String>> {
+        let Some(i) = self.find(name) else { return Ok(None) };
+        Ok(Some(self.value_of(i)?.to_string()))
+    }
+
+    pub fn point(&self, name: &str, default: Vec3) -> Result<Vec3> {
+        let Some(i) = self.find(name) else { return Ok(default) };
+        let e = &self.entries[i];
+        vector_from_node(e.node, e.value.as_deref(), &e.loc)
+    }
+
+    /// A colour-valued property (`rgb`, `spectrum` or `float`), converted as Mitsuba's rgb variants do.
+    pub fn color(&self, name: &str, usage: SpectrumUse, default: [f32; 3]) -> Result<[f32; 3]> {
+        let Some(i) = self.find(name) else { return Ok(default) };
+        let e = &self.entries[i];
+        let value = self.value_of(i)?;
+        let rgb = match e.tag.as_str() {
+            "rgb" => {
+                let v = parse_numbers(value, &e.loc)?;
+                match v.len() {
+                    1 => [v[0] as f32; 3],
+                    3 => [v[0] as f32, v[1] as f32, v[2] as f32],
+                    _ => bail!("{}: <rgb> needs 1 or 3 numbers", e.loc),
+                }
+            }
+            "float" => [self.float(name, 0.0)?; 3],
+            "spectrum" => parse_spectrum(value, usage, &e.loc)?,
+            other => bail!("{}: '{name}' must be <rgb>, <spectrum> or <float>, not <{other}> (textures are not supported yet)", e.loc),
+        };
+        if rgb.iter().any(|c| !c.is_finite() || *c < 0.0) {
+            bail!("{}: '{name}' must be finite and non-negative, got {rgb:?}", e.loc);
+        }
+        Ok(rgb)
+    }
+
+    pub fn transform(&self, name: &str) -> Result<Mat4> {
+        let Some(i) = self.find(name) else { return Ok(Mat4::IDENTITY) };
+        let e = &self.entries[i];
+        super::transform::parse(self, e.node, &e.loc)
+    }
+
+    /// Nested objects with the given tag (e.g. `bsdf`, `emitter`, `ref`), marked as used.
+    pub fn nested(&self, tag: &str) -> Vec<&Entry<'a, 'input>> {
+        let mut out = Vec::new();
+        for (i, e) in self.entries.iter().enumerate() {
+            if e.tag == tag {
+                self.used.borrow_mut()[i] = true;
+                out.push(e);
+            }
+        }
+        out
+    }
+
+    /// The id a `<ref>` points to.
+    pub fn doc_attr_id(&self) -> Result<String> {
+        self.id.clone().with_context(|| format!("{}: <{}> needs an 'id'", self.loc, self.tag))
+    }
+
+    /// For plugins that are skipped whole: their parameters need no separate warnings.
+    pub fn mark_all_used(&self) {
+        self.used.borrow_mut().iter_mut().for_each(|u| *u = true);
+    }
+
+    /// Messages for the entries no plugin code asked for.
+    pub fn unused(&self) -> Vec<String> {
+        let used = self.used.borrow();
+        self.entries
+            .iter()
+            .zip(used.iter())
+            .filter(|(_, u)| !**u)
+            .map(|(e, _)| match &e.name {
+                Some(n) => format!("{}: <{} name=\"{n}\"> of {} '{}' is not supported; ignored", e.loc, e.tag, self.tag, self.kind),
+                None => format!("{}: <{}> inside {} '{}' is not supported; ignored", e.loc, e.tag, self.tag, self.kind),
+            })
+            .collect()
+    }
+}
+
+/// A point/vector given as `value="x, y, z"` or as `x=… y=… z=…` attributes.
+pub fn vector_from_node(node: roxmltree::Node, value: Option<&str>, loc: &Loc) -> Result<Vec3> {
+    if let Some(v) = value {
+        let n = parse_numbers(v, loc)?;
+        return match n.len() {
+            1 => Ok(Vec3::splat(n[0] as f32)),
+            3 => Ok(Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32)),
+            _ => bail!("{loc}: expected 3 numbers, got {}", n.len()),
+        };
+    }
+    let get = |a: &str| -> Result<f32> {
+        match node.attribute(a) {
+            Some(s) => s.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: '{a}' must be a number")),
+            None => Ok(0.0),
+        }
+    };
+    Ok(Vec3::new(get("x")?, get("y")?, get("z")?))
+}
+
+/// `<spectrum value="0.5"/>` or `value="400:0.1, 500:0.2, …"`.
+fn parse_spectrum(value: &str, usage: SpectrumUse, loc: &Loc) -> Result<[f32; 3]> {
+    if !value.contains(':') {
+        let v: f64 = value.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: spectrum value '{value}' is not a number"))?;
+        return Ok(uniform_spectrum_to_rgb(v, usage));
+    }
+    let mut wavelengths = Vec::new();
+    let mut values = Vec::new();
+    for pair in value.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let (w, v) = pair.split_once(':').with_context(|| format!("{loc}: '{pair}' is not wavelength:value"))?;
+        let w: f64 = w.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: wavelength '{w}' is not a number"))?;
+        let v: f64 = v.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: value '{v}' is not a number"))?;
+        if let Some(&last) = wavelengths.last() {
+            if w <= last {
+                bail!("{loc}: spectrum wavelengths must increase ({w} after {last})");
+            }
+        }
+        wavelengths.push(w);
+        values.push(v);
+    }
+    if wavelengths.is_empty() {
+        bail!("{loc}: empty spectrum");
+    }
+    Ok(spectrum_to_rgb(&wavelengths, &values, usage))
+}

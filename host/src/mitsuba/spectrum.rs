@@ -1,0 +1,106 @@
+//! Spectra in scene files → linear sRGB, as Mitsuba 3's `rgb` variants convert them.
+//!
+//! A `λ:value` list is integrated against the CIE 1931 matching functions (1000 points over
+//! 360–830 nm, linear interpolation, zero outside the listed range), then mapped XYZ → sRGB.
+//! Reflectances are weighted by D65 and clamped to [0, 1]; emission spectra are not weighted
+//! (an equal-energy emitter comes out as XYZ = (1, 1, 1)) and are only clamped at 0. A uniform
+//! `<spectrum value="c"/>` is grey `c` for reflectances, and `c·xyz_to_srgb(1, 1, 1)` for emitters.
+use super::cie_tables::{CIE_MAX, CIE_MIN, CIE_SAMPLES, CIE_X, CIE_Y, CIE_Z, D65};
+
+/// What a spectrum describes; it decides the conversion.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpectrumUse {
+    /// Bounded reflectance-like quantities (D65-weighted, clamped to [0, 1]).
+    Reflectance,
+    /// Emitted radiance (unweighted, clamped at 0).
+    Emission,
+    /// Unbounded non-emissive values such as IORs (D65-weighted, clamped at 0).
+    Unbounded,
+}
+
+const Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_06;
+const D65_NORMALIZATION: f64 = 1.0 / 98.997_417_518_762_55;
+
+pub fn xyz_to_srgb(xyz: [f64; 3]) -> [f64; 3] {
+    let [x, y, z] = xyz;
+    [
+        3.240479 * x - 1.537150 * y - 0.498535 * z,
+        -0.969256 * x + 1.875991 * y + 0.041556 * z,
+        0.055648 * x - 0.204043 * y + 1.057311 * z,
+    ]
+}
+
+/// Linear interpolation in a 5 nm CIE table; zero outside 360–830 nm.
+fn cie_lookup(table: &[f64; CIE_SAMPLES], lambda: f64) -> f64 {
+    if !(CIE_MIN..=CIE_MAX).contains(&lambda) {
+        return 0.0;
+    }
+    let t = (lambda - CIE_MIN) * ((CIE_SAMPLES - 1) as f64 / (CIE_MAX - CIE_MIN));
+    let i = (t as usize).min(CIE_SAMPLES - 2);
+    let f = t - i as f64;
+    (1.0 - f) * table[i] + f * table[i + 1]
+}
+
+/// Converts a sampled spectrum (`wavelengths` ascending, in nm) to linear sRGB.
+pub fn spectrum_to_rgb(wavelengths: &[f64], values: &[f64], usage: SpectrumUse) -> [f32; 3] {
+    const STEPS: usize = 1000;
+    let mut xyz = [0.0f64; 3];
+    let (first, last) = (wavelengths[0], wavelengths[wavelengths.len() - 1]);
+    for i in 0..STEPS {
+        let lambda = CIE_MIN + (i as f64 / (STEPS - 1) as f64) * (CIE_MAX - CIE_MIN);
+        if lambda < first || lambda > last {
+            continue;
+        }
+        let k = wavelengths.partition_point(|&w| w <= lambda).saturating_sub(1).min(wavelengths.len().saturating_sub(2));
+        let value = if wavelengths.len() == 1 {
+            values[0]
+        } else {
+            let (w0, w1, v0, v1) = (wavelengths[k], wavelengths[k + 1], values[k], values[k + 1]);
+            ((lambda - w1) * v0 + (w0 - lambda) * v1) / (w0 - w1)
+        };
+        let weight = if usage == SpectrumUse::Emission { 1.0 } else { cie_lookup(&D65, lambda) * D65_NORMALIZATION };
+        xyz[0] += cie_lookup(&CIE_X, lambda) * value * weight;
+        xyz[1] += cie_lookup(&CIE_Y, lambda) * value * weight;
+        xyz[2] += cie_lookup(&CIE_Z, lambda) * value * weight;
+    }
+    let scale = (CIE_MAX - CIE_MIN) * Y_NORMALIZATION / STEPS as f64;
+    let rgb = xyz_to_srgb([xyz[0] * scale, xyz[1] * scale, xyz[2] * scale]);
+    clamp_for(rgb, usage)
+}
+
+/// A uniform spectrum `<spectrum value="c"/>`.
+pub fn uniform_spectrum_to_rgb(value: f64, usage: SpectrumUse) -> [f32; 3] {
+    if usage == SpectrumUse::Emission {
+        let white = xyz_to_srgb([1.0, 1.0, 1.0]);
+        [(value * white[0]) as f32, (value * white[1]) as f32, (value * white[2]) as f32]
+    } else {
+        [value as f32; 3]
+    }
+}
+
+fn clamp_for(rgb: [f64; 3], usage: SpectrumUse) -> [f32; 3] {
+    let hi = if usage == SpectrumUse::Reflectance { 1.0 } else { f64::INFINITY };
+    rgb.map(|c| c.clamp(0.0, hi) as f32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // Values computed independently from Mitsuba 3's definition (same tables, same quadrature).
+    #[test]
+    fn constant_reflectance_is_nearly_white() {
+        let rgb = spectrum_to_rgb(&[360.0, 830.0], &[1.0, 1.0], SpectrumUse::Reflectance);
+        for (c, want) in rgb.iter().zip([0.998985, 0.998874, 0.998802]) {
+            assert!((*c as f64 - want).abs() < 2e-5, "{rgb:?}");
+        }
+    }
+
+    #[test]
+    fn constant_emission_is_equal_energy_white() {
+        let rgb = spectrum_to_rgb(&[360.0, 830.0], &[1.0, 1.0], SpectrumUse::Emission);
+        for (c, want) in rgb.iter().zip([1.204884, 0.948228, 0.909267]) {
+            assert!((*c as f64 - want).abs() < 2e-5, "{rgb:?}");
+        }
+    }
+}

@@ -1,0 +1,69 @@
+//! `<transform>`: translate, rotate, scale, matrix and lookat, composed in document order
+//! (each later operation is applied after the earlier ones).
+use super::props::{parse_numbers, vector_from_node, Loc, Props};
+use crate::scene::look_at;
+use anyhow::{bail, Result};
+use glam::{Mat4, Vec3};
+
+pub fn parse(props: &Props, node: roxmltree::Node, loc: &Loc) -> Result<Mat4> {
+    let mut m = Mat4::IDENTITY;
+    for op in node.children().filter(|n| n.is_element()) {
+        let op_loc = Loc::of(&props.path, props.doc, op);
+        let value = op.attribute("value");
+        let step = match op.tag_name().name() {
+            "translate" => Mat4::from_translation(vector_from_node(op, value, &op_loc)?),
+            "scale" => {
+                let s = if let Some(v) = value {
+                    let n = parse_numbers(v, &op_loc)?;
+                    match n.len() {
+                        1 => Vec3::splat(n[0] as f32),
+                        3 => Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32),
+                        _ => bail!("{op_loc}: <scale> needs 1 or 3 numbers"),
+                    }
+                } else {
+                    let get = |a: &str| op.attribute(a).map(|s| s.trim().parse::<f32>()).transpose();
+                    match (get("x"), get("y"), get("z")) {
+                        (Ok(x), Ok(y), Ok(z)) => Vec3::new(x.unwrap_or(1.0), y.unwrap_or(1.0), z.unwrap_or(1.0)),
+                        _ => bail!("{op_loc}: <scale> values must be numbers"),
+                    }
+                };
+                Mat4::from_scale(s)
+            }
+            "rotate" => {
+                let axis = vector_from_node(op, value, &op_loc)?;
+                let angle: f32 = match op.attribute("angle") {
+                    Some(a) => a.trim().parse().map_err(|_| anyhow::anyhow!("{op_loc}: angle must be a number"))?,
+                    None => bail!("{op_loc}: <rotate> needs an angle"),
+                };
+                if axis.length_squared() == 0.0 {
+                    bail!("{op_loc}: <rotate> needs a non-zero axis");
+                }
+                Mat4::from_axis_angle(axis.normalize(), angle.to_radians())
+            }
+            "matrix" => {
+                let n = parse_numbers(value.unwrap_or(""), &op_loc)?;
+                if n.len() != 16 {
+                    bail!("{op_loc}: <matrix> needs 16 numbers (row-major), got {}", n.len());
+                }
+                let cols: Vec<f32> = n.iter().map(|&x| x as f32).collect();
+                Mat4::from_cols_slice(&cols).transpose()
+            }
+            "lookat" => {
+                let p = |a: &str| -> Result<Vec3> {
+                    let s = op.attribute(a).unwrap_or(if a == "up" { "0 1 0" } else { "" });
+                    vector_from_node(op, Some(s), &op_loc)
+                };
+                match look_at(p("origin")?, p("target")?, p("up")?) {
+                    Some(l) => l,
+                    None => bail!("{op_loc}: degenerate <lookat> (origin = target, or up parallel to the view direction)"),
+                }
+            }
+            other => bail!("{op_loc}: unknown transform operation <{other}>"),
+        };
+        m = step * m;
+    }
+    if !m.is_finite() {
+        bail!("{loc}: transform is not finite");
+    }
+    Ok(m)
+}

@@ -1,0 +1,125 @@
+//! Rendering an OBJ/MTL file directly: MTL `Kd`/`Ks`/`Ns` become the modified Phong BRDF (`Kd` alone:
+//! Lambert), `Ke` an area emitter; an automatic camera frames the model and a sphere light lights it.
+use crate::mesh;
+use crate::scene::{look_at, Filter, Geometry, Integrator, SamplerKind, Scene, Sensor, Shape};
+use anyhow::Result;
+use caustic_kernel::scene::{Material, BSDF_DIFFUSE, BSDF_PHONG};
+use glam::Vec3;
+use std::path::Path;
+
+fn rgba(c: [f32; 3]) -> [f32; 4] {
+    [c[0], c[1], c[2], 0.0]
+}
+
+fn parse_rgb(text: &str) -> Option<[f32; 3]> {
+    let v: Vec<f32> = text.split_whitespace().filter_map(|s| s.parse().ok()).collect();
+    match v.len() {
+        1 => Some([v[0]; 3]),
+        3 => Some([v[0], v[1], v[2]]),
+        _ => None,
+    }
+}
+
+/// The caustic material and emission of an MTL entry.
+fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material, Option<[f32; 3]>) {
+    let kd = m.diffuse.unwrap_or([0.5; 3]);
+    let ks = m.specular.unwrap_or([0.0; 3]);
+    let mut material = if ks.iter().any(|&c| c > 0.0) {
+        Material { kind: BSDF_PHONG, exponent: m.shininess.unwrap_or(30.0).clamp(0.0, 1.0e6), diffuse: rgba(kd), specular: rgba(ks), ..Default::default() }
+    } else {
+        Material { kind: BSDF_DIFFUSE, diffuse: rgba(kd), ..Default::default() }
+    };
+    // Energy conservation needs kd + ks ≤ 1 per channel; scale both down where an MTL exceeds it.
+    for c in 0..3 {
+        let sum = material.diffuse[c] + material.specular[c];
+        if sum > 1.0 {
+            warnings.push(format!("material '{}': Kd + Ks > 1, scaled down to conserve energy", m.name));
+            material.diffuse[c] /= sum;
+            material.specular[c] /= sum;
+        }
+    }
+    let emission = m.unknown_param.get("Ke").and_then(|s| parse_rgb(s)).filter(|e| e.iter().any(|&c| c > 0.0));
+    (material, emission)
+}
+
+pub fn load(path: &Path) -> Result<Scene> {
+    let (mesh, mtl) = mesh::load_obj(path, true)?;
+    let mut warnings = Vec::new();
+    let mut materials = vec![Material { kind: BSDF_DIFFUSE, diffuse: [0.5, 0.5, 0.5, 0.0], ..Default::default() }];
+    let mut emissions = vec![None];
+    for m in &mtl {
+        let (material, emission) = convert_material(m, &mut warnings);
+        materials.push(material);
+        emissions.push(emission);
+    }
+    let mut with_normals = mesh.clone();
+    with_normals.ensure_normals();
+    let (triangles, normals) = with_normals.transformed(glam::Mat4::IDENTITY);
+    // One shape per material, so that emission stays per shape.
+    let mut shapes = Vec::new();
+    let kept: Vec<usize> = (0..mesh.indices.len() / 3)
+        .filter(|&t| {
+            let p = [0, 1, 2].map(|k| mesh.positions[mesh.indices[3 * t + k] as usize]);
+            let a2 = (p[1] - p[0]).cross(p[2] - p[0]).length_squared();
+            a2 > 0.0 && a2.is_finite()
+        })
+        .collect();
+    for (slot, emission) in emissions.iter().enumerate() {
+        let select: Vec<usize> = (0..kept.len()).filter(|&i| mesh.triangle_materials[kept[i]].map_or(0, |m| m + 1) == slot).collect();
+        if select.is_empty() {
+            continue;
+        }
+        shapes.push(Shape {
+            origin: format!("{} (material {slot})", path.display()),
+            geometry: Geometry::Triangles {
+                triangles: select.iter().map(|&i| triangles[i]).collect(),
+                normals: normals.as_ref().map(|n| select.iter().map(|&i| n[i]).collect()),
+            },
+            material: slot as u32,
+            emission: *emission,
+            flip_normals: false,
+        });
+    }
+
+    // Frame the model: look at its bounding box from the front (+z), slightly above.
+    let (lo, hi) = mesh.positions.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let center = (lo + hi) * 0.5;
+    let radius = ((hi - lo).length() * 0.5).max(1e-3);
+    let fov_x = 40.0f32;
+    let distance = radius / (fov_x.to_radians() * 0.5).sin() * 1.1;
+    let eye = center + Vec3::new(0.0, 0.35, 1.0).normalize() * distance;
+    let to_world = look_at(eye, center, Vec3::Y).expect("the view direction is never parallel to +y");
+    // A sphere light above and to the right, sized and scaled for an irradiance of ≈3 at the model.
+    let light_pos = center + Vec3::new(0.8, 1.6, 1.2).normalize() * distance * 1.5;
+    let light_radius = radius * 0.15;
+    let d2 = (light_pos - center).length_squared();
+    let radiance = 3.0 * d2 / (std::f32::consts::PI * light_radius * light_radius);
+    materials.push(Material { kind: BSDF_DIFFUSE, ..Default::default() });
+    shapes.push(Shape {
+        origin: "automatic sphere light".into(),
+        geometry: Geometry::Sphere { center: light_pos, radius: light_radius },
+        material: materials.len() as u32 - 1,
+        emission: Some([radiance; 3]),
+        flip_normals: false,
+    });
+    for w in &warnings {
+        eprintln!("warning: {}: {w}", path.display());
+    }
+    Ok(Scene {
+        sensor: Sensor {
+            to_world,
+            fov_x,
+            near_clip: distance * 1e-3,
+            far_clip: distance * 1e3,
+            width: 512,
+            height: 512,
+            filter: Filter::Gaussian { stddev: 0.5, radius: 2.0 },
+            sampler: SamplerKind::Stratified,
+            spp: 64,
+        },
+        integrator: Integrator::default(),
+        materials,
+        shapes,
+        warnings,
+    })
+}

@@ -1,0 +1,42 @@
+//! Lambertian reflection (Mitsuba `diffuse`).
+use super::{same_hemisphere_above, BsdfSample};
+use crate::math::{vec3, INV_PI};
+use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::scene::Material;
+use crate::spectrum::Rgb;
+use crate::glam::{Vec2, Vec3};
+
+#[derive(Clone, Copy)]
+pub struct Diffuse {
+    pub reflectance: Rgb,
+}
+
+impl Diffuse {
+    pub fn from_material(m: &Material) -> Self {
+        Diffuse { reflectance: vec3([m.diffuse[0], m.diffuse[1], m.diffuse[2]]) }
+    }
+
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        if !same_hemisphere_above(wo, wi) {
+            return Rgb::ZERO;
+        }
+        self.reflectance * (INV_PI * wi.z)
+    }
+
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if !same_hemisphere_above(wo, wi) {
+            return 0.0;
+        }
+        cosine_hemisphere_pdf(wi.z)
+    }
+
+    pub fn sample(&self, wo: Vec3, u: Vec2) -> BsdfSample {
+        let wi = square_to_cosine_hemisphere(u);
+        let pdf = cosine_hemisphere_pdf(wi.z);
+        if wo.z <= 0.0 || pdf <= 0.0 {
+            return BsdfSample::invalid();
+        }
+        // f·cos/pdf = (ρ/π)·cos / (cos/π) = ρ exactly: no division, no noise from it.
+        BsdfSample { wi, weight: self.reflectance, pdf, eta: 1.0 }
+    }
+}

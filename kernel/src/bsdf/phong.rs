@@ -1,0 +1,93 @@
+//! The modified Phong BRDF (Lafortune & Willems 1994):
+//! `f = kd/π + ks·(n+2)/(2π)·cosⁿα`, α the angle between `wi` and the mirror direction of `wo`.
+//! With `kd + ks ≤ 1` it conserves energy; the `1/π` and `(n+2)/(2π)` normalisations are exactly what
+//! makes that hold (dropping the π over-brightens the image by π).
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
+use super::{same_hemisphere_above, BsdfSample};
+use crate::frame::Frame;
+use crate::math::{vec3, INV_2PI, INV_PI};
+use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::scene::Material;
+use crate::spectrum::{luminance, Rgb};
+use crate::glam::{Vec2, Vec3};
+
+#[derive(Clone, Copy)]
+pub struct Phong {
+    pub kd: Rgb,
+    pub ks: Rgb,
+    pub exponent: f32,
+    /// Probability of sampling the specular lobe, from the lobes' luminance.
+    pub specular_prob: f32,
+}
+
+/// Mirror direction of `wo` about the local normal (+z).
+#[inline]
+fn reflect_local(wo: Vec3) -> Vec3 {
+    Vec3::new(-wo.x, -wo.y, wo.z)
+}
+
+impl Phong {
+    pub fn from_material(m: &Material) -> Self {
+        let kd = vec3([m.diffuse[0], m.diffuse[1], m.diffuse[2]]);
+        let ks = vec3([m.specular[0], m.specular[1], m.specular[2]]);
+        let (ld, ls) = (luminance(kd), luminance(ks));
+        let specular_prob = if ld + ls > 0.0 { ls / (ld + ls) } else { 0.0 };
+        Phong { kd, ks, exponent: m.exponent, specular_prob }
+    }
+
+    /// `cos α` between `wi` and the mirror direction of `wo`, clamped at 0.
+    #[inline]
+    fn cos_alpha(&self, wo: Vec3, wi: Vec3) -> f32 {
+        reflect_local(wo).dot(wi).max(0.0)
+    }
+
+    /// Density of the cosine-power lobe around the mirror direction, `(n+1)/(2π)·cosⁿα`.
+    #[inline]
+    fn lobe_pdf(&self, cos_alpha: f32) -> f32 {
+        if cos_alpha <= 0.0 {
+            0.0
+        } else {
+            (self.exponent + 1.0) * INV_2PI * cos_alpha.powf(self.exponent)
+        }
+    }
+
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
+        if !same_hemisphere_above(wo, wi) {
+            return Rgb::ZERO;
+        }
+        let ca = self.cos_alpha(wo, wi);
+        let specular = if ca > 0.0 { (self.exponent + 2.0) * INV_2PI * ca.powf(self.exponent) } else { 0.0 };
+        (self.kd * INV_PI + self.ks * specular) * wi.z
+    }
+
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if !same_hemisphere_above(wo, wi) {
+            return 0.0;
+        }
+        let ps = self.specular_prob;
+        (1.0 - ps) * cosine_hemisphere_pdf(wi.z) + ps * self.lobe_pdf(self.cos_alpha(wo, wi))
+    }
+
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
+        if wo.z <= 0.0 {
+            return BsdfSample::invalid();
+        }
+        let wi = if u_lobe < self.specular_prob {
+            // cos α = u^(1/(n+1)) distributes directions as cosⁿα around the mirror direction.
+            let cos_a = u.x.powf(1.0 / (self.exponent + 1.0));
+            let sin_a = (1.0 - cos_a * cos_a).max(0.0).sqrt();
+            let phi = 2.0 * crate::math::PI * u.y;
+            let lobe = Frame::from_normal(reflect_local(wo));
+            lobe.to_world(Vec3::new(sin_a * phi.cos(), sin_a * phi.sin(), cos_a))
+        } else {
+            square_to_cosine_hemisphere(u)
+        };
+        let pdf = self.pdf(wo, wi);
+        if pdf <= 0.0 {
+            return BsdfSample::invalid();
+        }
+        BsdfSample { wi, weight: self.eval(wo, wi) / pdf, pdf, eta: 1.0 }
+    }
+}

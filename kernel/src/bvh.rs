@@ -1,0 +1,110 @@
+//! BVH2 traversal with a fixed-size stack (no recursion on the GPU).
+
+use crate::camera::Ray;
+use crate::math::vec3;
+use crate::scene::{BvhNode, Primitive};
+use crate::shape::{self, Hit};
+use crate::glam::{Vec2, Vec3};
+
+/// Distance reported for a missed box. (naga rejects infinite float literals, so no `f32::INFINITY`.)
+const MISS: f32 = f32::MAX;
+
+/// Depth of the traversal stack. The host rejects BVHs deeper than this, so it never overflows.
+pub const STACK_SIZE: usize = 48;
+
+/// Slab test; returns the entry distance, or `MISS` when the box is missed.
+#[inline]
+fn intersect_aabb(node: &BvhNode, origin: Vec3, inv_dir: Vec3, t_min: f32, t_max: f32) -> f32 {
+    let t0 = (vec3(node.min) - origin) * inv_dir;
+    let t1 = (vec3(node.max) - origin) * inv_dir;
+    let near = t0.min(t1).max_element().max(t_min);
+    let far = t0.max(t1).min_element().min(t_max);
+    // The factor makes the test conservative against rounding in the slab distances.
+    if near <= far * 1.000_000_4 {
+        near
+    } else {
+        MISS
+    }
+}
+
+/// The BVH and primitive buffers of a scene.
+#[derive(Clone, Copy)]
+pub struct Accel<'a> {
+    pub nodes: &'a [BvhNode],
+    pub prims: &'a [Primitive],
+}
+
+impl<'a> Accel<'a> {
+    /// Closest hit along the ray, or `None`. With `any_hit`, returns the first hit found (shadow rays).
+    pub fn trace(&self, ray: &Ray, any_hit: bool) -> Option<Hit> {
+        let inv_dir = Vec3::ONE / ray.dir;
+        let mut stack = [0u32; STACK_SIZE];
+        let mut top = 0usize;
+        let mut node_index = 0u32;
+        let mut best_t = ray.t_max;
+        let mut best_prim = u32::MAX;
+        let mut best_uv = Vec2::ZERO;
+        if self.nodes.len() == 0
+            || intersect_aabb(&self.nodes[0], ray.origin, inv_dir, ray.t_min, best_t) == MISS
+        {
+            return None;
+        }
+        loop {
+            let node = self.nodes[node_index as usize];
+            if node.prim_count > 0 {
+                let mut i = node.first;
+                let end = node.first + node.prim_count;
+                while i < end {
+                    if let Some((t, uv)) = shape::intersect(&self.prims[i as usize], ray, best_t) {
+                        best_t = t;
+                        best_prim = i;
+                        best_uv = uv;
+                        if any_hit {
+                            return Some(Hit { t, prim: i, uv });
+                        }
+                    }
+                    i += 1;
+                }
+            } else {
+                let left = node.first;
+                let right = node.first + 1;
+                let t_left = intersect_aabb(&self.nodes[left as usize], ray.origin, inv_dir, ray.t_min, best_t);
+                let t_right = intersect_aabb(&self.nodes[right as usize], ray.origin, inv_dir, ray.t_min, best_t);
+                let hit_left = t_left != MISS;
+                let hit_right = t_right != MISS;
+                if hit_left && hit_right {
+                    // Visit the nearer child first; the farther one waits on the stack.
+                    let (first, second) = if t_left <= t_right { (left, right) } else { (right, left) };
+                    if top < STACK_SIZE {
+                        stack[top] = second;
+                        top += 1;
+                    }
+                    node_index = first;
+                    continue;
+                } else if hit_left {
+                    node_index = left;
+                    continue;
+                } else if hit_right {
+                    node_index = right;
+                    continue;
+                }
+            }
+            if top == 0 {
+                break;
+            }
+            top -= 1;
+            node_index = stack[top];
+        }
+        if best_prim == u32::MAX {
+            None
+        } else {
+            Some(Hit { t: best_t, prim: best_prim, uv: best_uv })
+        }
+    }
+
+    /// Whether anything blocks the open segment of the ray.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        self.trace(ray, true).is_some()
+    }
+}

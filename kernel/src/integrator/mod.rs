@@ -1,0 +1,70 @@
+//! Integrators and the per-pixel driver both backends call.
+pub mod path;
+
+use crate::film;
+use crate::math::is_finite3;
+use crate::rng::Sampler;
+use crate::scene::{BvhNode, FrameParams, Light, Material, Primitive, ShadingNormals};
+use crate::spectrum::Rgb;
+
+/// The scene as the kernel sees it: borrowed buffers.
+#[derive(Clone, Copy)]
+pub struct SceneView<'a> {
+    pub nodes: &'a [BvhNode],
+    pub prims: &'a [Primitive],
+    pub normals: &'a [ShadingNormals],
+    pub materials: &'a [Material],
+    pub lights: &'a [Light],
+    /// Concatenated 1D distributions (light selection CDF, filter CDF, …), located by `FrameParams`.
+    pub tables: &'a [f32],
+}
+
+/// Floats per pixel in the accumulation buffer: RGB sum, sample count, RGB sum of squares, spare.
+pub const ACCUM_STRIDE: usize = 8;
+
+/// What one dispatch adds to a pixel.
+#[derive(Clone, Copy)]
+pub struct PixelSums {
+    pub sum: Rgb,
+    pub sum_sq: Rgb,
+    /// Samples whose estimate was NaN or infinite; they are counted as black so that the image stays
+    /// finite and unbiased estimates elsewhere are unaffected.
+    pub invalid: u32,
+}
+
+/// Renders `params.sample_count` samples of one pixel (row-major index).
+pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> PixelSums {
+    let px = pixel % params.width;
+    let py = pixel / params.width;
+    let mut sums = PixelSums { sum: Rgb::ZERO, sum_sq: Rgb::ZERO, invalid: 0 };
+    let mut s = 0;
+    while s < params.sample_count {
+        let sample_index = params.sample_base + s;
+        let mut sampler = Sampler::new(params.seed, pixel, sample_index);
+        let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
+        let ray = params.camera.generate_ray(film_pos);
+        let l = path::li(scene, params, ray, &mut sampler);
+        if is_finite3(l) {
+            sums.sum += l;
+            sums.sum_sq += l * l;
+        } else {
+            sums.invalid += 1;
+        }
+        s += 1;
+    }
+    sums
+}
+
+/// Adds a pixel's sums to its slot of the accumulation buffer.
+#[inline]
+pub fn accumulate(accum: &mut [f32], pixel: u32, sums: &PixelSums, sample_count: u32) {
+    let base = pixel as usize * ACCUM_STRIDE;
+    accum[base] += sums.sum.x;
+    accum[base + 1] += sums.sum.y;
+    accum[base + 2] += sums.sum.z;
+    accum[base + 3] += sample_count as f32;
+    accum[base + 4] += sums.sum_sq.x;
+    accum[base + 5] += sums.sum_sq.y;
+    accum[base + 6] += sums.sum_sq.z;
+    accum[base + 7] += sums.invalid as f32;
+}

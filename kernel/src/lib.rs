@@ -1,0 +1,29 @@
+//! caustic's rendering kernel.
+//!
+//! Everything that decides what a pixel looks like lives here, once: random numbers, sampling, camera,
+//! BVH traversal and intersection, BSDFs, lights and the integrators. rust-gpu compiles this crate to
+//! SPIR-V for the wgpu backend (`entry`), and the CPU runner links the very same functions natively.
+//!
+//! The dialect is the subset rust-gpu 0.11 accepts: no recursion, no trait objects, no slice iterator
+//! adaptors, no `.get()`, no sub-slices, no 64-bit types. Buffer data are `#[repr(C)]` plain structs
+//! (`scene`) shared with the host.
+#![cfg_attr(target_arch = "spirv", no_std)]
+
+pub mod bsdf;
+pub mod bvh;
+pub mod camera;
+pub mod film;
+pub mod frame;
+pub mod integrator;
+pub mod light;
+pub mod math;
+pub mod rng;
+pub mod sampling;
+pub mod scene;
+pub mod shape;
+pub mod spectrum;
+
+#[cfg(target_arch = "spirv")]
+pub mod entry;
+
+pub use spirv_std::glam;

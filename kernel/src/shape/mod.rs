@@ -1,0 +1,75 @@
+//! Geometric primitives: ray intersection and the surface record of a hit.
+pub mod sphere;
+pub mod triangle;
+
+use crate::camera::Ray;
+use crate::math::vec3;
+use crate::scene::{Primitive, ShadingNormals, PRIM_FLAG_FLIP, PRIM_FLAG_SMOOTH, PRIM_SPHERE};
+use crate::glam::{Vec2, Vec3};
+
+/// The nearest hit found so far: distance, primitive and its parametric coordinates
+/// (barycentrics b1, b2 for triangles; unused for spheres).
+#[derive(Clone, Copy)]
+pub struct Hit {
+    pub t: f32,
+    pub prim: u32,
+    pub uv: Vec2,
+}
+
+/// Intersects one primitive, returning `(t, uv)` inside the ray's interval.
+#[inline]
+pub fn intersect(prim: &Primitive, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
+    if prim.kind == PRIM_SPHERE {
+        sphere::intersect(vec3(prim.p0), prim.p1[0], ray, t_max)
+    } else {
+        triangle::intersect(vec3(prim.p0), vec3(prim.p1), vec3(prim.p2), ray, t_max)
+    }
+}
+
+/// What the integrator needs to know about a surface point.
+#[derive(Clone, Copy)]
+pub struct SurfacePoint {
+    pub p: Vec3,
+    /// Geometric normal, facing the shape's outside (after `flip_normals`).
+    pub ng: Vec3,
+    /// Shading normal, on the same side as `ng`.
+    pub ns: Vec3,
+}
+
+/// Reconstructs the surface point of a hit.
+pub fn surface_point(prim: &Primitive, normals: &[ShadingNormals], hit: &Hit, ray: &Ray) -> SurfacePoint {
+    let flip = if prim.flags & PRIM_FLAG_FLIP != 0 { -1.0 } else { 1.0 };
+    if prim.kind == PRIM_SPHERE {
+        let centre = vec3(prim.p0);
+        let p = sphere::reproject(centre, prim.p1[0], ray.origin + ray.dir * hit.t);
+        let n = (p - centre).normalize() * flip;
+        return SurfacePoint { p, ng: n, ns: n };
+    }
+    let (p0, p1, p2) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
+    let b0 = 1.0 - hit.uv.x - hit.uv.y;
+    let p = p0 * b0 + p1 * hit.uv.x + p2 * hit.uv.y;
+    let ng = (p1 - p0).cross(p2 - p0).normalize() * flip;
+    let mut ns = ng;
+    if prim.flags & PRIM_FLAG_SMOOTH != 0 {
+        let n = normals[hit.prim as usize];
+        let interpolated = vec3(n.n0) * b0 + vec3(n.n1) * hit.uv.x + vec3(n.n2) * hit.uv.y;
+        if interpolated.length_squared() > 0.0 {
+            ns = interpolated.normalize() * flip;
+        }
+    }
+    SurfacePoint { p, ng, ns }
+}
+
+/// Moves a ray origin off a surface along its geometric normal, towards the side `dir` leaves by, so
+/// that the new ray does not re-hit the surface it starts on. The offset scales with the coordinates'
+/// magnitude because floating-point error does.
+#[inline]
+pub fn offset_origin(p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
+    let magnitude = p.abs().max_element().max(1.0);
+    let eps = magnitude * 1.0e-5;
+    if ng.dot(dir) >= 0.0 {
+        p + ng * eps
+    } else {
+        p - ng * eps
+    }
+}

@@ -1,0 +1,49 @@
+//! Analytic spheres.
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
+use crate::camera::Ray;
+use crate::math::sign;
+use crate::glam::{Vec2, Vec3};
+
+/// Ray/sphere intersection in the form of "Precision Improvements for Ray/Sphere Intersection"
+/// (Haines et al., Ray Tracing Gems ch. 7): the discriminant is computed from the distance of the
+/// centre to the ray, which stays accurate for small spheres far away.
+pub fn intersect(centre: Vec3, radius: f32, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
+    let f = ray.origin - centre;
+    let b = -f.dot(ray.dir);
+    let l = f + ray.dir * b;
+    let r2 = radius * radius;
+    let discr = r2 - l.dot(l);
+    if discr < 0.0 {
+        return None;
+    }
+    let c = f.dot(f) - r2;
+    let q = b + sign(b) * discr.sqrt();
+    if q == 0.0 {
+        return None;
+    }
+    let ta = c / q;
+    let tb = q;
+    let t_near = ta.min(tb);
+    let t_far = ta.max(tb);
+    if t_near > ray.t_min && t_near < t_max {
+        return Some((t_near, Vec2::ZERO));
+    }
+    if t_far > ray.t_min && t_far < t_max {
+        return Some((t_far, Vec2::ZERO));
+    }
+    None
+}
+
+/// Puts a computed hit point back onto the sphere's surface (removes the error of `o + t·d`).
+#[inline]
+pub fn reproject(centre: Vec3, radius: f32, p: Vec3) -> Vec3 {
+    let d = p - centre;
+    let len = d.length();
+    if len > 0.0 {
+        centre + d * (radius / len)
+    } else {
+        p
+    }
+}

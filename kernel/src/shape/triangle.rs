@@ -1,0 +1,79 @@
+//! Triangles: watertight intersection and uniform area sampling.
+use crate::camera::Ray;
+use crate::sampling::square_to_uniform_triangle;
+use crate::glam::{Vec2, Vec3};
+
+#[inline]
+fn component(v: Vec3, axis: u32) -> f32 {
+    if axis == 0 {
+        v.x
+    } else if axis == 1 {
+        v.y
+    } else {
+        v.z
+    }
+}
+
+/// Watertight ray/triangle intersection (Woop, Benthin, Wald 2013): rays through shared edges and
+/// vertices never slip between adjacent triangles. Returns `(t, (b1, b2))`.
+pub fn intersect(p0: Vec3, p1: Vec3, p2: Vec3, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
+    let d = ray.dir;
+    let ad = d.abs();
+    let mut kz = 0u32;
+    if ad.y > ad.x {
+        kz = 1;
+    }
+    if ad.z > component(ad, kz) {
+        kz = 2;
+    }
+    let mut kx = if kz == 2 { 0 } else { kz + 1 };
+    let mut ky = if kx == 2 { 0 } else { kx + 1 };
+    let dz = component(d, kz);
+    if dz < 0.0 {
+        let tmp = kx;
+        kx = ky;
+        ky = tmp;
+    }
+    let sx = component(d, kx) / dz;
+    let sy = component(d, ky) / dz;
+    let sz = 1.0 / dz;
+
+    let a = p0 - ray.origin;
+    let b = p1 - ray.origin;
+    let c = p2 - ray.origin;
+    let (az, bz, cz) = (component(a, kz), component(b, kz), component(c, kz));
+    let ax = component(a, kx) - sx * az;
+    let ay = component(a, ky) - sy * az;
+    let bx = component(b, kx) - sx * bz;
+    let by = component(b, ky) - sy * bz;
+    let cx = component(c, kx) - sx * cz;
+    let cy = component(c, ky) - sy * cz;
+
+    let u = cx * by - cy * bx;
+    let v = ax * cy - ay * cx;
+    let w = bx * ay - by * ax;
+    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        return None;
+    }
+    let det = u + v + w;
+    if det == 0.0 {
+        return None;
+    }
+    let t_scaled = u * (sz * az) + v * (sz * bz) + w * (sz * cz);
+    let inv_det = 1.0 / det;
+    let t = t_scaled * inv_det;
+    if !(t > ray.t_min && t < t_max) {
+        return None;
+    }
+    Some((t, Vec2::new(v * inv_det, w * inv_det)))
+}
+
+pub fn area(p0: Vec3, p1: Vec3, p2: Vec3) -> f32 {
+    0.5 * (p1 - p0).cross(p2 - p0).length()
+}
+
+/// A uniformly distributed point on the triangle (density 1 / area).
+pub fn sample_point(p0: Vec3, p1: Vec3, p2: Vec3, u: Vec2) -> Vec3 {
+    let b = square_to_uniform_triangle(u);
+    p0 * (1.0 - b.x - b.y) + p1 * b.x + p2 * b.y
+}
