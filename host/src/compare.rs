@@ -24,6 +24,9 @@ pub struct Comparison {
     /// Fraction of pixels whose three channels all pass the z-test (when a variance is known).
     pub pass_fraction: Option<f64>,
     pub z_critical: f64,
+    /// The difference of mean luminances in units of its standard error (when a variance is known):
+    /// a global bias shows here long before single pixels fail.
+    pub luminance_z: Option<f64>,
     /// Per-pixel largest |z| (or relative error without a variance), for the false-colour image.
     pub error_map: Vec<f32>,
 }
@@ -44,7 +47,9 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
     let z_critical = Normal::new(0.0, 1.0).unwrap().inverse_cdf(1.0 - alpha / 2.0);
     let (mut se, mut rel, mut lum_a, mut lum_b) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let mut passed = 0usize;
+    let mut lum_var = 0.0f64;
     let mut error_map = Vec::with_capacity(n);
+    let variance = image.variance.as_ref().map(|v| pooled_variance(v, image.width, image.height));
     for i in 0..n {
         let (a, b) = (image.rgb[i], reference.rgb[i]);
         let mut worst = 0.0f64;
@@ -53,7 +58,7 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
             let d = a[c] as f64 - b[c] as f64;
             se += d * d;
             rel += d * d / ((b[c] as f64).powi(2) + 1e-2);
-            match &image.variance {
+            match &variance {
                 Some(v) => {
                     let var = v[i][c] as f64 * (1.0 + samples_ratio)
                         + (REFERENCE_RELATIVE_PRECISION * b[c].abs() as f64).powi(2)
@@ -66,6 +71,12 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
             }
         }
         passed += ok as usize;
+        if let Some(v) = &variance {
+            // Channels of one pixel are strongly correlated: bound the luminance's standard error by
+            // the sum of the weighted channel errors (exact for perfect correlation, conservative otherwise).
+            let sd = 0.212671 * (v[i][0] as f64).sqrt() + 0.715160 * (v[i][1] as f64).sqrt() + 0.072169 * (v[i][2] as f64).sqrt();
+            lum_var += sd * sd * (1.0 + samples_ratio);
+        }
         error_map.push(worst as f32);
         lum_a += luminance(a);
         lum_b += luminance(b);
@@ -75,9 +86,40 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
         rel_mse: rel / values,
         luminance_ratio: if lum_b > 0.0 { lum_a / lum_b } else { f64::NAN },
         pass_fraction: image.variance.as_ref().map(|_| passed as f64 / n as f64),
+        luminance_z: image.variance.as_ref().map(|_| (lum_a - lum_b) / lum_var.sqrt().max(1e-12)),
         z_critical,
         error_map,
     })
+}
+
+/// Per-pixel variance made robust to its own noise: the larger of the pixel's estimate and the mean
+/// over its 3×3 neighbourhood. With few samples a pixel's variance estimate is itself very noisy (and
+/// heavy-tailed path contributions make it too small more often than too large); pooling with the
+/// neighbours steadies it while a genuine bias still stands out by many standard errors.
+pub fn pooled_variance(v: &[[f32; 3]], width: u32, height: u32) -> Vec<[f32; 3]> {
+    let (w, h) = (width as i64, height as i64);
+    let mut out = Vec::with_capacity(v.len());
+    for y in 0..h {
+        for x in 0..w {
+            let mut sum = [0.0f64; 3];
+            let mut count = 0.0f64;
+            for dy in -1..=1 {
+                for dx in -1..=1 {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if nx >= 0 && ny >= 0 && nx < w && ny < h {
+                        let p = v[(ny * w + nx) as usize];
+                        for c in 0..3 {
+                            sum[c] += p[c] as f64;
+                        }
+                        count += 1.0;
+                    }
+                }
+            }
+            let own = v[(y * w + x) as usize];
+            out.push(std::array::from_fn(|c| own[c].max((sum[c] / count) as f32)));
+        }
+    }
+    out
 }
 
 /// Writes the error map as a false-colour PNG: black (no error) through blue and red to yellow at

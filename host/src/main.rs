@@ -135,6 +135,9 @@ fn cmd_compare(image: &Path, reference: &Path, image_spp: u32, reference_spp: u3
         Some(f) => println!("z-test pass fraction {:.5} (|z| ≤ {:.2}, Šidák-corrected 1%)", f, c.z_critical),
         None => println!("z-test               n/a (no {} beside the image)", variance_path(image).display()),
     }
+    if let Some(z) = c.luminance_z {
+        println!("mean luminance z     {z:+.2} (standard errors)");
+    }
     if let Some(path) = error_image {
         let scale = if c.pass_fraction.is_some() { c.z_critical as f32 } else { 1.0 };
         compare::save_error_image(path, a.width, a.height, &c.error_map, scale)?;

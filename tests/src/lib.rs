@@ -1,1 +1,37 @@
-//! Helpers shared by the integration tests.
+//! Helpers shared by the integration tests: where the reference data live, and rendering a scene to
+//! a film on a chosen backend.
+use caustic::backend::{self, BackendChoice};
+use caustic::film::Film;
+use caustic::scene::Scene;
+use caustic::{buffers, render};
+use std::path::PathBuf;
+
+/// `../shared` beside the repository (override with CAUSTIC_SHARED).
+pub fn shared_dir() -> PathBuf {
+    match std::env::var_os("CAUSTIC_SHARED") {
+        Some(p) => PathBuf::from(p),
+        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared"),
+    }
+}
+
+pub fn mitsuba_scene(relative: &str) -> PathBuf {
+    shared_dir().join("scenes/mitsuba").join(relative)
+}
+
+pub fn mitsuba_reference(name: &str) -> PathBuf {
+    shared_dir().join("refs/mitsuba").join(format!("{name}.exr"))
+}
+
+pub fn defines(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
+    pairs.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect()
+}
+
+/// Renders `scene` with `spp` samples and `seed` on `choice`; panics with the error if it fails.
+pub fn render_scene(scene: &Scene, choice: BackendChoice, spp: u32, seed: u32) -> Film {
+    let buffers = buffers::build(scene).expect("scene builds");
+    let mut backend = backend::create(choice, &buffers).expect("backend starts (for the GPU: is a Vulkan driver such as lavapipe installed?)");
+    let (film, stats) = render::render(backend.as_mut(), &buffers, spp, seed, |_| {}).expect("render succeeds");
+    eprintln!("rendered on {} in {:.2} s", backend.describe(), stats.seconds);
+    assert!(film.rgb.iter().flatten().all(|c| c.is_finite()), "non-finite pixel");
+    film
+}

@@ -1,0 +1,71 @@
+//! White furnace: a Lambertian sphere of albedo 1 inside a closed emitter of radiance 1 reflects
+//! exactly what it receives, so every pixel's expected value is 1 — on both backends. Exercises the
+//! path tracer's NEE/MIS bookkeeping, Russian roulette (unbiased), and sphere lights seen from inside.
+use caustic::backend::BackendChoice;
+use caustic::scene::*;
+use caustic_kernel::scene::{Material, BSDF_DIFFUSE, BSDF_PHONG};
+use caustic_tests::render_scene;
+use glam::Vec3;
+
+fn furnace(inner: Material) -> Scene {
+    Scene {
+        sensor: Sensor {
+            to_world: look_at(Vec3::new(0.0, 0.0, -4.0), Vec3::ZERO, Vec3::Y).unwrap(),
+            fov_x: 50.0,
+            near_clip: 0.01,
+            far_clip: 100.0,
+            width: 24,
+            height: 24,
+            filter: Filter::Box { radius: 0.5 },
+            sampler: SamplerKind::Independent,
+            spp: 64,
+        },
+        integrator: Integrator::default(),
+        materials: vec![inner, Material { kind: BSDF_DIFFUSE, ..Default::default() }],
+        shapes: vec![
+            Shape { origin: "object".into(), geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 1.0 }, material: 0, emission: None, flip_normals: false },
+            Shape { origin: "enclosure".into(), geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 10.0 }, material: 1, emission: Some([1.0; 3]), flip_normals: true },
+        ],
+        warnings: vec![],
+    }
+}
+
+fn check(scene: &Scene, choice: BackendChoice) {
+    let film = render_scene(scene, choice, 64, 5);
+    let var = film.variance.as_ref().unwrap();
+    let n = film.rgb.len() as f64;
+    let mean = film.rgb.iter().map(|p| p[1] as f64).sum::<f64>() / n;
+    let se = (var.iter().map(|v| v[1] as f64).sum::<f64>()).sqrt() / n;
+    println!("{choice:?}: mean radiance {mean:.5} ± {se:.5}");
+    assert!((mean - 1.0).abs() < 4.0 * se + 1e-4, "furnace mean {mean} ≠ 1 ({:.1} standard errors)", (mean - 1.0) / se);
+    for (p, v) in film.rgb.iter().zip(var) {
+        for c in 0..3 {
+            assert!((p[c] as f64 - 1.0).abs() <= 6.0 * (v[c] as f64).sqrt() + 1e-4, "pixel {p:?} (variance {v:?}) is not 1");
+        }
+    }
+}
+
+fn white_lambert() -> Material {
+    Material { kind: BSDF_DIFFUSE, diffuse: [1.0, 1.0, 1.0, 0.0], ..Default::default() }
+}
+
+/// kd + ks = 1 conserves energy only up to the lobe clipped by the horizon, so Phong is not a furnace
+/// identity; an energy-conserving Phong must not exceed it.
+#[test]
+fn phong_never_exceeds_the_furnace() {
+    let phong = Material { kind: BSDF_PHONG, exponent: 20.0, diffuse: [0.5, 0.5, 0.5, 0.0], specular: [0.5, 0.5, 0.5, 0.0], ..Default::default() };
+    let film = render_scene(&furnace(phong), BackendChoice::Cpu, 64, 6);
+    let mean = film.rgb.iter().map(|p| p[1] as f64).sum::<f64>() / film.rgb.len() as f64;
+    println!("phong furnace mean {mean:.4}");
+    assert!(mean <= 1.0 + 0.01 && mean > 0.5, "phong furnace mean {mean}");
+}
+
+#[test]
+fn furnace_cpu() {
+    check(&furnace(white_lambert()), BackendChoice::Cpu);
+}
+
+#[test]
+fn furnace_gpu() {
+    check(&furnace(white_lambert()), BackendChoice::Gpu);
+}

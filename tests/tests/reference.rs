@@ -1,0 +1,49 @@
+//! caustic against Mitsuba 3.9.1 on the Cornell box (`../shared`): per-pixel z-test and mean-luminance
+//! z-score, on the CPU and on the GPU backend (lavapipe in CI), plus a negative control showing that
+//! the test does catch a 3% error.
+use caustic::backend::BackendChoice;
+use caustic::compare::compare;
+use caustic::film::Film;
+use caustic_tests::*;
+
+const REFERENCE_SPP: f64 = 2048.0;
+
+fn check_cbox(choice: BackendChoice, spp: u32, radiance_scale: f32) -> (f64, f64) {
+    let mut scene = caustic::load_scene(&mitsuba_scene("scenes/cbox/cbox.xml"), &[]).expect("cbox loads");
+    for shape in &mut scene.shapes {
+        if let Some(e) = shape.emission.as_mut() {
+            *e = e.map(|c| c * radiance_scale);
+        }
+    }
+    let film = render_scene(&scene, choice, spp, 7);
+    let reference = Film::load_exr(&mitsuba_reference("cbox")).expect("reference loads");
+    let c = compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
+    let pass = c.pass_fraction.unwrap();
+    let z = c.luminance_z.unwrap();
+    println!("cbox {choice:?} {spp} spp (light ×{radiance_scale}): RMSE {:.5}, luminance ratio {:.4}, luminance z {z:+.2}, pass fraction {pass:.4}", c.rmse, c.luminance_ratio);
+    (pass, z)
+}
+
+fn assert_matches(pass: f64, z: f64) {
+    assert!(pass >= 0.99, "only {:.2}% of pixels agree with Mitsuba", pass * 100.0);
+    assert!(z.abs() < 4.0, "mean luminance differs from Mitsuba by {z:.2} standard errors");
+}
+
+#[test]
+fn cbox_cpu_matches_mitsuba() {
+    let (pass, z) = check_cbox(BackendChoice::Cpu, 64, 1.0);
+    assert_matches(pass, z);
+}
+
+#[test]
+fn cbox_gpu_matches_mitsuba() {
+    let (pass, z) = check_cbox(BackendChoice::Gpu, 16, 1.0);
+    assert_matches(pass, z);
+}
+
+/// The comparison must be able to fail: a light 3% too bright is caught.
+#[test]
+fn comparison_detects_a_three_percent_error() {
+    let (pass, z) = check_cbox(BackendChoice::Cpu, 64, 1.03);
+    assert!(z > 4.0 || pass < 0.99, "a 3% brighter light went unnoticed (z = {z:.2}, pass = {pass:.4})");
+}
