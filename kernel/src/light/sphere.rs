@@ -10,6 +10,7 @@ use crate::frame::Frame;
 use crate::math::{safe_sqrt, vec3, INV_4PI};
 use crate::sampling::{one_minus_cos_from_sin2, square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf};
 use crate::scene::{Light, Primitive, PRIM_FLAG_FLIP};
+use crate::spectrum::Rgb;
 use crate::glam::{Vec2, Vec3};
 
 #[inline]
@@ -41,9 +42,11 @@ pub fn sample(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample 
     let cos_theta = local.z;
     let sin2_theta = local.x * local.x + local.y * local.y;
     let dist = d * cos_theta - safe_sqrt(r2 - d2 * sin2_theta);
-    let q = p + wi * dist;
-    let n = (q - centre).normalize() * orientation(prim);
-    LightSample { wi, dist, radiance: emitted(light, n, -wi), pdf: uniform_cone_pdf(one_minus_cos_max) }
+    // Every direction in the cone meets the near side, whose outward normal faces `p`: the sphere
+    // emits towards `p` unless its normals are flipped. (Deciding this from the sampled point's normal
+    // fails for tiny spheres far away, where that point carries more error than the radius.)
+    let radiance = if orientation(prim) > 0.0 { vec3([light.radiance[0], light.radiance[1], light.radiance[2]]) } else { Rgb::ZERO };
+    LightSample { wi, dist, radiance, pdf: uniform_cone_pdf(one_minus_cos_max) }
 }
 
 fn sample_from_inside(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample {
