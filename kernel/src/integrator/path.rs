@@ -78,7 +78,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
                 let f = bsdf.eval(wo, wi);
                 if max_component(f) > 0.0 {
                     let shadow = Ray {
-                        origin: offset_origin(sp.p, ng, ls.wi),
+                        origin: offset_origin(&sp, ng, ls.wi),
                         dir: ls.wi,
                         t_min: 0.0,
                         t_max: ls.dist * (1.0 - SHADOW_EPSILON),
@@ -109,7 +109,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         prev_p = sp.p;
         prev_pdf = bs.pdf;
         prev_delta = false;
-        ray = Ray { origin: offset_origin(sp.p, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
+        ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
         depth += 1;
 
         let u_rr = sampler.next_1d();

@@ -34,6 +34,9 @@ pub struct SurfacePoint {
     pub ng: Vec3,
     /// Shading normal, on the same side as `ng`.
     pub ns: Vec3,
+    /// Size of the primitive's own coordinates (a sphere's radius, a triangle's largest vertex
+    /// coordinate): the rounding error of `p` grows with it as well as with `|p|`.
+    pub error_scale: f32,
 }
 
 /// Reconstructs the surface point of a hit.
@@ -43,7 +46,8 @@ pub fn surface_point(prim: &Primitive, normals: &[ShadingNormals], hit: &Hit, ra
         let centre = vec3(prim.p0);
         let p = sphere::reproject(centre, prim.p1[0], ray.origin + ray.dir * hit.t);
         let n = (p - centre).normalize() * flip;
-        return SurfacePoint { p, ng: n, ns: n };
+        let error_scale = prim.p1[0];
+        return SurfacePoint { p, ng: n, ns: n, error_scale };
     }
     let (p0, p1, p2) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
     let b0 = 1.0 - hit.uv.x - hit.uv.y;
@@ -57,15 +61,18 @@ pub fn surface_point(prim: &Primitive, normals: &[ShadingNormals], hit: &Hit, ra
             ns = interpolated.normalize() * flip;
         }
     }
-    SurfacePoint { p, ng, ns }
+    let error_scale = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
+    SurfacePoint { p, ng, ns, error_scale }
 }
 
 /// Moves a ray origin off a surface along its geometric normal, towards the side `dir` leaves by, so
-/// that the new ray does not re-hit the surface it starts on. The offset scales with the coordinates'
-/// magnitude because floating-point error does.
+/// that the new ray does not re-hit the surface it starts on. The offset scales with the magnitude of
+/// the point and of the primitive (a point near the origin on a sphere of radius 1000 carries the
+/// error of the sphere's size, which its own small coordinates do not show).
 #[inline]
-pub fn offset_origin(p: Vec3, ng: Vec3, dir: Vec3) -> Vec3 {
-    let magnitude = p.abs().max_element().max(1.0);
+pub fn offset_origin(sp: &SurfacePoint, ng: Vec3, dir: Vec3) -> Vec3 {
+    let p = sp.p;
+    let magnitude = p.abs().max_element().max(sp.error_scale).max(1.0);
     let eps = magnitude * 1.0e-5;
     if ng.dot(dir) >= 0.0 {
         p + ng * eps
