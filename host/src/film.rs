@@ -100,6 +100,14 @@ impl Film {
     }
 }
 
+/// Fails early (before any rendering) on an output name whose format caustic cannot write.
+pub fn check_output_path(path: &Path) -> Result<()> {
+    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some("exr" | "png" | "ppm") => Ok(()),
+        _ => bail!("{}: unknown image format (use .exr, .png or .ppm)", path.display()),
+    }
+}
+
 /// `image.exr` → `image.variance.exr`.
 pub fn variance_path(path: &Path) -> std::path::PathBuf {
     path.with_extension("variance.exr")

@@ -89,6 +89,7 @@ fn main() {
 
 #[allow(clippy::too_many_arguments)]
 fn cmd_render(scene_path: &Path, choice: BackendChoice, spp: Option<u32>, defines: &[(String, String)], seed: u32, output: &Path, variance: bool, quiet: bool) -> Result<()> {
+    caustic::film::check_output_path(output)?;
     let scene = caustic::load_scene(scene_path, defines)?;
     let spp = spp.unwrap_or(scene.sensor.spp);
     if spp == 0 {
@@ -101,7 +102,14 @@ fn cmd_render(scene_path: &Path, choice: BackendChoice, spp: Option<u32>, define
     let (mut film, stats) = render::render(backend.as_mut(), &buffers, spp, seed, |done| bar.set_position(done as u64))?;
     bar.finish_and_clear();
     sanitize(&mut film);
-    film.save(output)?;
+    if let Err(e) = film.save(output) {
+        // Keep the finished render: write it where it can be written, then report the failure.
+        let fallback = std::env::temp_dir().join(format!("caustic-recovered-{}.exr", std::process::id()));
+        match film.save(&fallback) {
+            Ok(()) => bail!("{e:#}; the render was saved to {} instead", fallback.display()),
+            Err(_) => return Err(e),
+        }
+    }
     if variance {
         film.save_variance(&variance_path(output))?;
     }

@@ -8,10 +8,12 @@ use std::path::PathBuf;
 
 /// `../shared` beside the repository (override with CAUSTIC_SHARED).
 pub fn shared_dir() -> PathBuf {
-    match std::env::var_os("CAUSTIC_SHARED") {
+    let dir = match std::env::var_os("CAUSTIC_SHARED") {
         Some(p) => PathBuf::from(p),
         None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared"),
-    }
+    };
+    assert!(dir.join("refs/mitsuba").is_dir(), "reference data not found at {} (set CAUSTIC_SHARED)", dir.display());
+    dir
 }
 
 pub fn mitsuba_scene(relative: &str) -> PathBuf {

@@ -1,0 +1,87 @@
+//! Bad input gives clear errors naming file and line (never a panic); unsupported elements give
+//! warnings naming element and line, and the rest of the scene still loads.
+use std::path::PathBuf;
+
+fn write_scene(name: &str, body: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("caustic-bad-input-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, body).unwrap();
+    path
+}
+
+fn load_err(name: &str, body: &str) -> String {
+    let path = write_scene(name, body);
+    match caustic::load_scene(&path, &[]) {
+        Ok(_) => panic!("{name} loaded but should not"),
+        Err(e) => format!("{e:#}"),
+    }
+}
+
+const SENSOR: &str = r#"<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>"#;
+
+#[test]
+fn malformed_xml_names_file_and_line() {
+    let e = load_err("malformed.xml", "<scene version=\"3.0.0\">\n  <shape type=\"sphere\">\n  </shap>\n</scene>\n");
+    assert!(e.contains("malformed.xml:3"), "{e}");
+}
+
+#[test]
+fn missing_mesh_names_file_line_and_mesh() {
+    let e = load_err("missing.xml", "<scene version=\"3.0.0\">\n\n  <shape type=\"obj\"><string name=\"filename\" value=\"nope.obj\"/></shape>\n</scene>\n");
+    assert!(e.contains("missing.xml:3") && e.contains("nope.obj"), "{e}");
+}
+
+#[test]
+fn broken_mesh_is_an_error_not_a_panic() {
+    let dir = write_scene("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n").parent().unwrap().to_path_buf();
+    let _ = dir;
+    let e = load_err("uses-broken.xml", "<scene version=\"3.0.0\">\n  <shape type=\"obj\"><string name=\"filename\" value=\"broken.obj\"/></shape>\n</scene>\n");
+    assert!(e.contains("uses-broken.xml:2"), "{e}");
+}
+
+#[test]
+fn absurd_parameters_are_rejected() {
+    for (what, body) in [
+        ("fov", r#"<sensor type="perspective"><float name="fov" value="0"/></sensor>"#),
+        ("radius", r#"<shape type="sphere"><float name="radius" value="-1"/></shape>"#),
+        ("film", r#"<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="0"/></film></sensor>"#),
+        ("number", r#"<sensor type="perspective"><float name="fov" value="wide"/></sensor>"#),
+        ("nan", r#"<sensor type="perspective"><float name="fov" value="nan"/></sensor>"#),
+        ("max_depth", r#"<integrator type="path"><integer name="max_depth" value="-7"/></integrator>"#),
+        ("reflectance", r#"<bsdf type="diffuse"><rgb name="reflectance" value="1, -2, 3"/></bsdf>"#),
+    ] {
+        let e = load_err(&format!("absurd-{what}.xml"), &format!("<scene version=\"3.0.0\">\n{body}\n</scene>\n"));
+        assert!(e.contains(&format!("absurd-{what}.xml:2")), "{what}: {e}");
+    }
+}
+
+#[test]
+fn undefined_parameter_is_named() {
+    let e = load_err("undefined.xml", "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><float name=\"fov\" value=\"$zoom\"/></sensor>\n</scene>\n");
+    assert!(e.contains("$zoom") && e.contains("undefined.xml:2"), "{e}");
+}
+
+#[test]
+fn unsupported_elements_warn_and_the_rest_loads() {
+    let path = write_scene(
+        "unsupported.xml",
+        &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<emitter type=\"constant\"/>\n<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n<shape type=\"teapot\"/>\n</scene>\n"),
+    );
+    let scene = caustic::load_scene(&path, &[]).expect("loads with warnings");
+    assert_eq!(scene.shapes.len(), 1, "the supported sphere is kept");
+    let w = scene.warnings.join("\n");
+    assert!(w.contains("unsupported.xml:3") && w.contains("emitter"), "{w}");
+    assert!(w.contains("unsupported.xml:4") && w.contains("wobble"), "{w}");
+    assert!(w.contains("unsupported.xml:5") && w.contains("teapot"), "{w}");
+}
+
+#[test]
+fn defaults_and_overrides() {
+    let path = write_scene("defaults.xml", &format!("<scene version=\"3.0.0\">\n<default name=\"res\" value=\"8\"/>\n<sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"$res\"/><integer name=\"height\" value=\"$res\"/></film></sensor>\n</scene>\n"));
+    let scene = caustic::load_scene(&path, &[]).unwrap();
+    assert_eq!(scene.sensor.width, 8);
+    let scene = caustic::load_scene(&path, &[("res".into(), "12".into())]).unwrap();
+    assert_eq!((scene.sensor.width, scene.sensor.height), (12, 12));
+    let _ = SENSOR;
+}
