@@ -4,11 +4,16 @@
 //! The generated module is committed so that rendering never waits for the SPIR-V compiler; CI rebuilds
 //! it and fails if the committed file differs from what the kernel source compiles to.
 use spirv_builder::{Capability, ShaderPanicStrategy, SpirvBuilder, SpirvMetadata};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 fn main() {
-    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let root = here.parent().expect("shaders-build sits in the repository root");
+    // The repository to build comes from the environment (build.sh sets it), never from where this
+    // builder was compiled: its binary lives in a cache shared by every clone on the machine.
+    let root = match std::env::var_os("CAUSTIC_ROOT") {
+        Some(r) => PathBuf::from(r),
+        None => std::env::current_dir().expect("current directory").parent().expect("run from shaders-build/").to_path_buf(),
+    };
+    let root = root.as_path();
     let out = std::env::args_os()
         .nth(1)
         .map(PathBuf::from)

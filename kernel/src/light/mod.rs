@@ -1,5 +1,8 @@
 //! Emitters: selection proportional to power, direction sampling and densities for next-event
 //! estimation and multiple importance sampling.
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
 pub mod area;
 pub mod sphere;
 
@@ -36,6 +39,44 @@ pub fn emitted(light: &Light, n: Vec3, w: Vec3) -> Rgb {
     } else {
         Rgb::ZERO
     }
+}
+
+/// Converts the density `1/area` of a point seen at squared distance `dist2` under `cos_light` into
+/// a solid-angle density.
+#[inline]
+fn area_to_solid_angle(area: f32, dist2: f32, cos_light: f32) -> f32 {
+    if cos_light <= 0.0 || area <= 0.0 {
+        0.0
+    } else {
+        dist2 / (cos_light * area)
+    }
+}
+
+/// The light sample for a point `q` (normal `n`) drawn uniformly from an emitting surface of area
+/// `area`, as seen from `p`.
+pub(crate) fn from_area_sample(light: &Light, p: Vec3, q: Vec3, n: Vec3, area: f32) -> LightSample {
+    let d = q - p;
+    let dist2 = d.length_squared();
+    if dist2 <= 0.0 {
+        return LightSample::none();
+    }
+    let dist = dist2.sqrt();
+    let wi = d / dist;
+    let pdf = area_to_solid_angle(area, dist2, n.dot(wi).abs());
+    if pdf <= 0.0 {
+        return LightSample::none();
+    }
+    LightSample { wi, dist, radiance: emitted(light, n, -wi), pdf }
+}
+
+/// Solid-angle density at `p` of uniform area sampling that produced `hit_p` (normal `hit_n`).
+pub(crate) fn area_sample_pdf(area: f32, p: Vec3, hit_p: Vec3, hit_n: Vec3) -> f32 {
+    let d = hit_p - p;
+    let dist2 = d.length_squared();
+    if dist2 <= 0.0 {
+        return 0.0;
+    }
+    area_to_solid_angle(area, dist2, hit_n.dot(d).abs() / dist2.sqrt())
 }
 
 /// Picks one of the `count` emitters with probability proportional to its power and samples a direction towards it.

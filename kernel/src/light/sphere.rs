@@ -5,9 +5,9 @@
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
-use super::{emitted, LightSample};
+use super::{area_sample_pdf, from_area_sample, LightSample};
 use crate::frame::Frame;
-use crate::math::{safe_sqrt, vec3, INV_4PI};
+use crate::math::{safe_sqrt, vec3, PI};
 use crate::sampling::{one_minus_cos_from_sin2, square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf};
 use crate::scene::{Light, Primitive, PRIM_FLAG_FLIP};
 use crate::spectrum::Rgb;
@@ -50,24 +50,13 @@ pub fn sample(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample 
 }
 
 fn sample_from_inside(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample {
-    let centre = vec3(prim.p0);
-    let radius = prim.p1[0];
     let dir = square_to_uniform_sphere(u);
-    let q = centre + dir * radius;
-    let d = q - p;
-    let dist2 = d.length_squared();
-    if dist2 <= 0.0 {
-        return LightSample::none();
-    }
-    let dist = dist2.sqrt();
-    let wi = d / dist;
-    let n = dir * orientation(prim);
-    let cos_light = n.dot(-wi).abs();
-    if cos_light <= 0.0 {
-        return LightSample::none();
-    }
-    let pdf = INV_4PI / (radius * radius) * dist2 / cos_light;
-    LightSample { wi, dist, radiance: emitted(light, n, -wi), pdf }
+    let q = vec3(prim.p0) + dir * prim.p1[0];
+    from_area_sample(light, p, q, dir * orientation(prim), area(prim))
+}
+
+fn area(prim: &Primitive) -> f32 {
+    4.0 * PI * prim.p1[0] * prim.p1[0]
 }
 
 pub fn pdf(prim: &Primitive, p: Vec3, hit_p: Vec3, hit_n: Vec3) -> f32 {
@@ -76,13 +65,7 @@ pub fn pdf(prim: &Primitive, p: Vec3, hit_p: Vec3, hit_n: Vec3) -> f32 {
     let d2 = (centre - p).length_squared();
     let r2 = radius * radius;
     if d2 <= r2 {
-        let d = hit_p - p;
-        let dist2 = d.length_squared();
-        let cos_light = hit_n.dot(d).abs() / dist2.sqrt();
-        if cos_light <= 0.0 || dist2 <= 0.0 {
-            return 0.0;
-        }
-        return INV_4PI / r2 * dist2 / cos_light;
+        return area_sample_pdf(area(prim), p, hit_p, hit_n);
     }
     uniform_cone_pdf(one_minus_cos_from_sin2(r2 / d2))
 }
