@@ -11,15 +11,6 @@ fn rgba(c: [f32; 3]) -> [f32; 4] {
     [c[0], c[1], c[2], 0.0]
 }
 
-fn parse_rgb(text: &str) -> Option<[f32; 3]> {
-    let v: Vec<f32> = text.split_whitespace().filter_map(|s| s.parse().ok()).collect();
-    match v.len() {
-        1 => Some([v[0]; 3]),
-        3 => Some([v[0], v[1], v[2]]),
-        _ => None,
-    }
-}
-
 /// The caustic material and emission of an MTL entry.
 fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material, Option<[f32; 3]>) {
     let kd = m.diffuse.unwrap_or([0.5; 3]);
@@ -38,7 +29,7 @@ fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material
             material.specular[c] /= sum;
         }
     }
-    let emission = m.unknown_param.get("Ke").and_then(|s| parse_rgb(s)).filter(|e| e.iter().any(|&c| c > 0.0));
+    let emission = m.emissive.filter(|e| e.iter().any(|&c| c > 0.0));
     (material, emission)
 }
 
