@@ -55,13 +55,12 @@ impl Loader {
                 let center = props.point("center", Vec3::ZERO)?;
                 let radius = props.float("radius", 1.0)?;
                 // Like Mitsuba, fold a uniform scale and translation of to_world into centre and radius.
-                let (scale, _, translation) = to_world.to_scale_rotation_translation();
+                let (scale, _, _) = to_world.to_scale_rotation_translation();
                 if (scale.x - scale.y).abs() > 1e-4 * scale.x.abs() || (scale.x - scale.z).abs() > 1e-4 * scale.x.abs() {
                     bail!("{}: a sphere's to_world may only scale uniformly", props.loc);
                 }
                 let center = to_world.transform_point3(center);
                 let radius = radius * scale.x.abs();
-                let _ = translation;
                 if !(radius > 0.0 && radius.is_finite() && center.is_finite()) {
                     bail!("{}: sphere needs a finite positive radius and centre", props.loc);
                 }
