@@ -74,7 +74,7 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
         if let Some(v) = &variance {
             // Channels of one pixel are strongly correlated: bound the luminance's standard error by
             // the sum of the weighted channel errors (exact for perfect correlation, conservative otherwise).
-            let sd = 0.212671 * (v[i][0] as f64).sqrt() + 0.715160 * (v[i][1] as f64).sqrt() + 0.072169 * (v[i][2] as f64).sqrt();
+            let sd = luminance(v[i].map(f32::sqrt));
             lum_var += sd * sd * (1.0 + samples_ratio);
         }
         error_map.push(worst as f32);

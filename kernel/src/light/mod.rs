@@ -31,11 +31,17 @@ impl LightSample {
     }
 }
 
+/// The emitter's uniform radiance.
+#[inline]
+pub fn radiance(light: &Light) -> Rgb {
+    vec3([light.radiance[0], light.radiance[1], light.radiance[2]])
+}
+
 /// Radiance leaving an emitting surface with normal `n` in direction `w`: area emitters are one-sided.
 #[inline]
 pub fn emitted(light: &Light, n: Vec3, w: Vec3) -> Rgb {
     if n.dot(w) > 0.0 {
-        vec3([light.radiance[0], light.radiance[1], light.radiance[2]])
+        radiance(light)
     } else {
         Rgb::ZERO
     }

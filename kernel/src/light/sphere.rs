@@ -45,7 +45,7 @@ pub fn sample(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample 
     // Every direction in the cone meets the near side, whose outward normal faces `p`: the sphere
     // emits towards `p` unless its normals are flipped. (Deciding this from the sampled point's normal
     // fails for tiny spheres far away, where that point carries more error than the radius.)
-    let radiance = if orientation(prim) > 0.0 { vec3([light.radiance[0], light.radiance[1], light.radiance[2]]) } else { Rgb::ZERO };
+    let radiance = if orientation(prim) > 0.0 { super::radiance(light) } else { Rgb::ZERO };
     LightSample { wi, dist, radiance, pdf: uniform_cone_pdf(one_minus_cos_max) }
 }
 
