@@ -1,13 +1,15 @@
 //! Scene description → the kernel's buffers: primitives in BVH order, BVH2 nodes (built by `obvhs`),
-//! shading normals, materials, lights with power-proportional selection, and the sampling tables.
-use crate::scene::{Filter, Geometry, SamplerKind, Scene};
+//! per-triangle attributes, materials, textures, lights with power-proportional selection, and the
+//! table buffer (sampling distributions, texels, precomputed BSDF tables).
+use crate::scene::{Emitter, Filter, Geometry, Projection, SamplerKind, Scene};
 use anyhow::{bail, Result};
 use caustic_kernel::bvh::STACK_SIZE;
-use caustic_kernel::camera::Camera;
+use caustic_kernel::camera::{Camera, CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, CAMERA_THIN_LENS};
 use caustic_kernel::scene::*;
 use caustic_kernel::spectrum::luminance;
-use glam::{Vec3, Vec3A};
+use glam::{Mat3, Vec2, Vec3, Vec3A};
 use obvhs::aabb::Aabb;
+use std::f32::consts::PI;
 
 /// Bins of the tabulated reconstruction filter.
 pub const FILTER_BINS: u32 = 64;
@@ -18,22 +20,24 @@ pub const FILTER_BINS: u32 = 64;
 pub struct SceneBuffers {
     pub nodes: Vec<BvhNode>,
     pub prims: Vec<Primitive>,
-    pub normals: Vec<ShadingNormals>,
+    pub attributes: Vec<TriangleAttributes>,
     pub materials: Vec<Material>,
     pub lights: Vec<Light>,
+    pub textures: Vec<Texture>,
     pub tables: Vec<f32>,
     /// `FrameParams` with everything but the per-dispatch fields filled in.
     pub params: FrameParams,
 }
 
 impl SceneBuffers {
-    pub fn view(&self) -> caustic_kernel::integrator::SceneView<'_> {
-        caustic_kernel::integrator::SceneView {
+    pub fn view(&self) -> SceneView<'_> {
+        SceneView {
             nodes: &self.nodes,
             prims: &self.prims,
-            normals: &self.normals,
+            attributes: &self.attributes,
             materials: &self.materials,
             lights: &self.lights,
+            textures: &self.textures,
             tables: &self.tables,
         }
     }
@@ -43,51 +47,66 @@ fn arr(v: Vec3) -> [f32; 3] {
     v.to_array()
 }
 
-/// Primitive records and their shading normals, in scene order.
-fn primitives(scene: &Scene) -> (Vec<Primitive>, Vec<ShadingNormals>, Vec<Light>, Vec<f32>) {
+/// Lights with their power (for selection), before normalisation.
+#[derive(Default)]
+struct LightList {
+    lights: Vec<Light>,
+    powers: Vec<f32>,
+}
+
+impl LightList {
+    fn push(&mut self, light: Light, power: f32) -> u32 {
+        self.lights.push(light);
+        self.powers.push(if power.is_finite() { power.max(0.0) } else { 0.0 });
+        self.lights.len() as u32 - 1
+    }
+}
+
+/// Mitsuba's barycentric texture coordinates for meshes without any.
+const DEFAULT_UVS: [Vec2; 3] = [Vec2::ZERO, Vec2::X, Vec2::Y];
+
+/// Primitive records and their attributes in scene order, and the area lights on them.
+fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<TriangleAttributes>) {
     let mut prims = Vec::new();
-    let mut normals = Vec::new();
-    let mut lights = Vec::new();
-    let mut powers = Vec::new();
+    let mut attributes = Vec::new();
     for shape in &scene.shapes {
         let flags_base = if shape.flip_normals { PRIM_FLAG_FLIP } else { 0 };
-        let mut push = |prim: Primitive, n: ShadingNormals, area: f32, light_kind: u32| {
-            let mut prim = prim;
+        let mut push = |mut prim: Primitive, attr: TriangleAttributes, area: f32, light_kind: u32| {
             prim.light = NONE;
             if let Some(radiance) = shape.emission {
-                prim.light = lights.len() as u32;
-                lights.push(Light { kind: light_kind, prim: prims.len() as u32, pmf: 0.0, _pad: 0, radiance: [radiance[0], radiance[1], radiance[2], 0.0] });
-                powers.push(luminance(Vec3::from(radiance)) * area);
+                let light = Light { kind: light_kind, prim: prims.len() as u32, table: NONE, radiance: rgba(radiance), ..Default::default() };
+                prim.light = lights.push(light, PI * area * luminance(Vec3::from(radiance)));
             }
             prims.push(prim);
-            normals.push(n);
+            attributes.push(attr);
         };
         match &shape.geometry {
-            Geometry::Triangles { triangles, normals: corner } => {
+            Geometry::Triangles { triangles, normals, uvs } => {
                 for (i, t) in triangles.iter().enumerate() {
                     let geometric = (t[1] - t[0]).cross(t[2] - t[0]);
                     let area = 0.5 * geometric.length();
                     let mut flags = flags_base;
-                    let mut sn = ShadingNormals::default();
-                    if let Some(c) = corner {
+                    let uv = uvs.as_ref().map_or(DEFAULT_UVS, |u| u[i]);
+                    let mut attr = TriangleAttributes { uv0: uv[0].to_array(), uv1: uv[1].to_array(), uv2: uv[2].to_array(), ..Default::default() };
+                    if let Some(c) = normals {
                         let gn = geometric.normalize();
                         // Flat triangles skip interpolation: a scene pays nothing for normals it does not need.
                         if c[i].iter().any(|n| n.dot(gn) < 1.0 - 1e-6) {
                             flags |= PRIM_FLAG_SMOOTH;
-                            sn = ShadingNormals { n0: arr(c[i][0]), n1: arr(c[i][1]), n2: arr(c[i][2]), ..Default::default() };
+                            (attr.n0, attr.n1, attr.n2) = (arr(c[i][0]), arr(c[i][1]), arr(c[i][2]));
                         }
                     }
                     let prim = Primitive { p0: arr(t[0]), kind: PRIM_TRIANGLE, p1: arr(t[1]), material: shape.material, p2: arr(t[2]), light: NONE, flags, _pad: [0; 3] };
-                    push(prim, sn, area, LIGHT_TRIANGLE);
+                    push(prim, attr, area, LIGHT_TRIANGLE);
                 }
             }
             Geometry::Sphere { center, radius } => {
                 let prim = Primitive { p0: arr(*center), kind: PRIM_SPHERE, p1: [*radius, 0.0, 0.0], material: shape.material, p2: [0.0; 3], light: NONE, flags: flags_base, _pad: [0; 3] };
-                push(prim, ShadingNormals::default(), 4.0 * std::f32::consts::PI * radius * radius, LIGHT_SPHERE);
+                push(prim, TriangleAttributes::default(), 4.0 * PI * radius * radius, LIGHT_SPHERE);
             }
         }
     }
-    (prims, normals, lights, powers)
+    (prims, attributes)
 }
 
 fn bounds(p: &Primitive) -> Aabb {
@@ -102,7 +121,7 @@ fn bounds(p: &Primitive) -> Aabb {
 }
 
 /// Builds the BVH and reorders primitives (and what refers to them) into leaf order.
-fn build_bvh(prims: &mut Vec<Primitive>, normals: &mut Vec<ShadingNormals>, lights: &mut [Light]) -> Result<Vec<BvhNode>> {
+fn build_bvh(prims: &mut Vec<Primitive>, attributes: &mut Vec<TriangleAttributes>, lights: &mut [Light]) -> Result<Vec<BvhNode>> {
     let aabbs: Vec<Aabb> = prims.iter().map(bounds).collect();
     let mut build_time = std::time::Duration::ZERO;
     let bvh = obvhs::bvh2::builder::build_bvh2(&aabbs, obvhs::BvhBuildParams::medium_build(), &mut build_time);
@@ -112,8 +131,8 @@ fn build_bvh(prims: &mut Vec<Primitive>, normals: &mut Vec<ShadingNormals>, ligh
         new_index[old as usize] = new as u32;
     }
     *prims = order.iter().map(|&i| prims[i as usize]).collect();
-    *normals = order.iter().map(|&i| normals[i as usize]).collect();
-    for l in lights.iter_mut() {
+    *attributes = order.iter().map(|&i| attributes[i as usize]).collect();
+    for l in lights.iter_mut().filter(|l| matches!(l.kind, LIGHT_TRIANGLE | LIGHT_SPHERE)) {
         l.prim = new_index[l.prim as usize];
     }
     let nodes: Vec<BvhNode> = bvh
@@ -126,6 +145,17 @@ fn build_bvh(prims: &mut Vec<Primitive>, normals: &mut Vec<ShadingNormals>, ligh
         bail!("the BVH is {depth} levels deep; the kernel's traversal stack holds {STACK_SIZE}");
     }
     Ok(nodes)
+}
+
+/// The scene's bounding sphere (centre, radius), slightly enlarged as Mitsuba does for emitters at
+/// infinity; a unit sphere for an empty scene.
+fn bounding_sphere(nodes: &[BvhNode], has_prims: bool) -> (Vec3, f32) {
+    if !has_prims {
+        return (Vec3::ZERO, 1.0);
+    }
+    let (lo, hi) = (Vec3::from(nodes[0].min), Vec3::from(nodes[0].max));
+    let centre = 0.5 * (lo + hi);
+    (centre, (0.5 * (hi - lo).length() * (1.0 + 1e-4)).max(1e-4))
 }
 
 /// Inclusive CDF of a filter's 1D weight over [-radius, radius].
@@ -147,11 +177,133 @@ fn filter_cdf(filter: &Filter) -> Vec<f32> {
     cdf.iter().map(|&c| (c / total) as f32).collect()
 }
 
+/// Normalised inclusive CDF of non-negative weights (uniform when they sum to zero).
+fn cdf_of(weights: &[f64]) -> Vec<f32> {
+    let total: f64 = weights.iter().sum();
+    let n = weights.len() as f64;
+    let mut running = 0.0f64;
+    let mut cdf: Vec<f32> = weights
+        .iter()
+        .map(|&w| {
+            running += if total > 0.0 { w / total } else { 1.0 / n };
+            running as f32
+        })
+        .collect();
+    if let Some(last) = cdf.last_mut() {
+        *last = 1.0;
+    }
+    cdf
+}
+
+fn rgba(c: [f32; 3]) -> [f32; 4] {
+    [c[0], c[1], c[2], 0.0]
+}
+
+fn rows_of(m: Mat3) -> [[f32; 4]; 3] {
+    [0, 1, 2].map(|r| m.row(r).extend(0.0).to_array())
+}
+
+/// An envmap's sampling tables (marginal CDF over the `height - 1` cell rows, then one conditional
+/// CDF of `width` cells per row; see `light::infinite`) and its power per unit scale and area.
+fn envmap_distribution(t: &Texture, texels: &[f32]) -> (Vec<f32>, f32) {
+    let (w, h) = (t.width as usize, t.height as usize);
+    let lum = |x: usize, y: usize| luminance(Vec3::from_slice(&texels[3 * (y * w + x)..])).max(0.0) as f64;
+    let sin_theta = |y: usize| (PI as f64 * y as f64 / (h - 1) as f64).sin();
+    let mut marginal = Vec::with_capacity(h - 1);
+    let mut conditional = Vec::with_capacity((h - 1) * w);
+    for r in 0..h - 1 {
+        let cells: Vec<f64> = (0..w)
+            .map(|c| {
+                let c1 = (c + 1) % w;
+                0.25 * ((lum(c, r) + lum(c1, r)) * sin_theta(r) + (lum(c, r + 1) + lum(c1, r + 1)) * sin_theta(r + 1))
+            })
+            .collect();
+        marginal.push(cells.iter().sum::<f64>());
+        conditional.extend(cdf_of(&cells));
+    }
+    // ∫ luminance dω over the sphere, by the cells' mean values (dω = sin θ dθ dφ).
+    let cell_solid_angle = (2.0 * PI as f64 / w as f64) * (PI as f64 / (h - 1) as f64);
+    let integral = marginal.iter().sum::<f64>() * cell_solid_angle;
+    let mut table = cdf_of(&marginal);
+    table.extend(conditional);
+    (table, integral as f32)
+}
+
+/// Light records of the emitters that are not shapes; returns the environment light's index.
+fn emitter_lights(scene: &Scene, textures: &[Texture], tables: &mut Vec<f32>, lights: &mut LightList, (centre, radius): (Vec3, f32)) -> u32 {
+    let mut env_light = NONE;
+    let disk_area = PI * radius * radius;
+    let bsphere = [centre.x, centre.y, centre.z, radius];
+    for e in &scene.emitters {
+        let mut light = Light { prim: NONE, table: NONE, position: bsphere, ..Default::default() };
+        let power = match e {
+            Emitter::Point { position, intensity } => {
+                light.kind = LIGHT_POINT;
+                light.radiance = rgba(*intensity);
+                light.position = position.extend(0.0).to_array();
+                4.0 * PI * luminance(Vec3::from(*intensity))
+            }
+            Emitter::Spot { to_world, intensity, cutoff_angle, beam_width } => {
+                let (cutoff, beam) = (cutoff_angle.to_radians(), beam_width.to_radians().min(cutoff_angle.to_radians()));
+                light.kind = LIGHT_SPOT;
+                light.radiance = rgba(*intensity);
+                light.position = to_world.w_axis.truncate().extend(0.0).to_array();
+                let inv_transition = if cutoff > beam { 1.0 / (cutoff - beam) } else { 0.0 };
+                light.params = [cutoff.cos(), beam.cos(), cutoff, inv_transition];
+                light.to_local = rows_of(orthonormal(Mat3::from_mat4(*to_world)).transpose());
+                // Solid angle of the cone out to the middle of the falloff ramp.
+                2.0 * PI * (1.0 - (0.5 * (cutoff + beam)).cos()) * luminance(Vec3::from(*intensity))
+            }
+            Emitter::Directional { direction, irradiance } => {
+                light.kind = LIGHT_DIRECTIONAL;
+                light.radiance = rgba(*irradiance);
+                light.to_local = rows_of(frame_with_z(direction.normalize()).transpose());
+                disk_area * luminance(Vec3::from(*irradiance))
+            }
+            Emitter::Constant { radiance } => {
+                light.kind = LIGHT_CONSTANT;
+                light.radiance = rgba(*radiance);
+                disk_area * 4.0 * PI * luminance(Vec3::from(*radiance))
+            }
+            Emitter::Envmap { texture, to_world, scale } => {
+                let t = &textures[*texture as usize];
+                let texels = &tables[t.offset as usize..(t.offset + 3 * t.width * t.height) as usize];
+                let (table, integral) = envmap_distribution(t, texels);
+                light.kind = LIGHT_ENVMAP;
+                light.prim = *texture;
+                light.radiance = [*scale; 4];
+                light.table = tables.len() as u32;
+                light.to_local = rows_of(to_world.inverse());
+                tables.extend(table);
+                disk_area * scale * integral
+            }
+        };
+        let index = lights.push(light, power);
+        if matches!(e, Emitter::Constant { .. } | Emitter::Envmap { .. }) {
+            env_light = index;
+        }
+    }
+    env_light
+}
+
+/// Gram-Schmidt on the columns: rotations from transforms that may carry scale.
+fn orthonormal(m: Mat3) -> Mat3 {
+    let z = m.z_axis.normalize();
+    let x = (m.x_axis - z * m.x_axis.dot(z)).normalize();
+    Mat3::from_cols(x, z.cross(x), z)
+}
+
+/// A rotation whose third column is `z`.
+fn frame_with_z(z: Vec3) -> Mat3 {
+    let (x, y) = z.any_orthonormal_pair();
+    Mat3::from_cols(x, y, z)
+}
+
 /// The kernel's camera for a sensor.
 pub fn camera(scene: &Scene) -> Camera {
     let s = &scene.sensor;
     let tan_half_x = (s.fov_x.to_radians() * 0.5).tan();
-    Camera {
+    let mut camera = Camera {
         origin: s.to_world.w_axis.truncate().to_array(),
         near_clip: s.near_clip,
         axis_x: s.to_world.x_axis.truncate().to_array(),
@@ -160,36 +312,75 @@ pub fn camera(scene: &Scene) -> Camera {
         tan_half_y: tan_half_x * s.height as f32 / s.width as f32,
         axis_z: s.to_world.z_axis.truncate().to_array(),
         far_clip: s.far_clip,
+        kind: CAMERA_PERSPECTIVE,
+        ..Default::default()
+    };
+    match s.projection {
+        Projection::Perspective => {}
+        Projection::ThinLens { aperture_radius, focus_distance } => {
+            camera.kind = CAMERA_THIN_LENS;
+            camera.aperture_radius = aperture_radius;
+            camera.focus_distance = focus_distance;
+        }
+        Projection::Orthographic { half_width, half_height } => {
+            camera.kind = CAMERA_ORTHOGRAPHIC;
+            camera.tan_half_x = half_width;
+            camera.tan_half_y = half_height;
+        }
     }
+    camera
+}
+
+/// Places each texture's texels in the table buffer.
+fn place_textures(scene: &Scene, tables: &mut Vec<f32>) -> Vec<Texture> {
+    scene
+        .textures
+        .iter()
+        .map(|t| {
+            let mut record = t.record;
+            record.offset = tables.len() as u32;
+            tables.extend_from_slice(&t.texels);
+            record
+        })
+        .collect()
 }
 
 pub fn build(scene: &Scene) -> Result<SceneBuffers> {
-    let (mut prims, mut normals, mut lights, powers) = primitives(scene);
-    let nodes = if prims.is_empty() {
+    let mut light_list = LightList::default();
+    let (mut prims, mut attributes) = primitives(scene, &mut light_list);
+    let has_prims = !prims.is_empty();
+    let nodes = if has_prims {
+        build_bvh(&mut prims, &mut attributes, &mut light_list.lights)?
+    } else {
         // An empty box (min > max) that no ray enters.
         vec![BvhNode { min: [1.0; 3], prim_count: 0, max: [-1.0; 3], first: 0 }]
-    } else {
-        build_bvh(&mut prims, &mut normals, &mut lights)?
     };
-    let total_power: f32 = powers.iter().sum();
-    let mut tables = Vec::new();
-    let mut running = 0.0f32;
-    for (l, p) in lights.iter_mut().zip(&powers) {
-        l.pmf = if total_power > 0.0 { p / total_power } else { 1.0 / powers.len() as f32 };
-        running += l.pmf;
-        tables.push(running);
+    let mut tables = filter_cdf(&scene.sensor.filter);
+    let filter_cdf_offset = 0;
+    let mut textures = place_textures(scene, &mut tables);
+    let env_light = emitter_lights(scene, &textures, &mut tables, &mut light_list, bounding_sphere(&nodes, has_prims));
+
+    let LightList { mut lights, powers } = light_list;
+    let light_cdf = cdf_of(&powers.iter().map(|&p| p as f64).collect::<Vec<_>>());
+    for (l, i) in lights.iter_mut().zip(0..) {
+        l.pmf = light_cdf[i] - if i == 0 { 0.0 } else { light_cdf[i - 1] };
     }
-    if let Some(last) = tables.last_mut() {
-        *last = 1.0;
+    let light_cdf_offset = tables.len() as u32;
+    tables.extend(light_cdf);
+
+    let mut materials = scene.materials.clone();
+    for m in &mut materials {
+        if let Some(table) = caustic_kernel::bsdf::precompute(m) {
+            m.table = tables.len() as u32;
+            tables.extend(table);
+        }
     }
-    let light_cdf_offset = 0;
-    let filter_cdf_offset = tables.len() as u32;
-    tables.extend(filter_cdf(&scene.sensor.filter));
 
     let s = &scene.sensor;
+    let crop = s.crop.unwrap_or(crate::scene::Crop { x: 0, y: 0, width: s.width, height: s.height });
     let params = FrameParams {
-        width: s.width,
-        height: s.height,
+        width: crop.width,
+        height: crop.height,
         max_depth: if scene.integrator.max_depth < 0 { NONE } else { scene.integrator.max_depth as u32 },
         rr_depth: scene.integrator.rr_depth,
         sampler: if s.sampler == SamplerKind::Stratified { SAMPLER_STRATIFIED } else { SAMPLER_INDEPENDENT },
@@ -200,19 +391,26 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         filter_bins: FILTER_BINS,
         filter_radius: s.filter.radius(),
         hide_emitters: scene.integrator.hide_emitters as u32,
+        env_light,
+        crop_x: crop.x,
+        crop_y: crop.y,
+        full_width: s.width,
+        full_height: s.height,
         camera: camera(scene),
         ..Default::default()
     };
-    let mut materials = scene.materials.clone();
     if materials.is_empty() {
         materials.push(Material::default());
     }
     if prims.is_empty() {
         prims.push(Primitive::default());
-        normals.push(ShadingNormals::default());
+        attributes.push(TriangleAttributes::default());
     }
     if lights.is_empty() {
         lights.push(Light::default());
     }
-    Ok(SceneBuffers { nodes, prims, normals, materials, lights, tables, params })
+    if textures.is_empty() {
+        textures.push(Texture::default());
+    }
+    Ok(SceneBuffers { nodes, prims, attributes, materials, lights, textures, tables, params })
 }

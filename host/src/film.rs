@@ -35,6 +35,16 @@ impl Film {
         Film { width, height, rgb, variance: Some(variance), invalid_samples: invalid }
     }
 
+    /// The window of `width` × `height` pixels starting at (`x`, `y`) (clamped to the image).
+    pub fn crop(&self, x: u32, y: u32, width: u32, height: u32) -> Film {
+        let (x, y) = (x.min(self.width), y.min(self.height));
+        let (w, h) = (width.min(self.width - x), height.min(self.height - y));
+        let window = |v: &Vec<[f32; 3]>| -> Vec<[f32; 3]> {
+            (y..y + h).flat_map(|row| (x..x + w).map(move |col| (row * self.width + col) as usize)).map(|i| v[i]).collect()
+        };
+        Film { width: w, height: h, rgb: window(&self.rgb), variance: self.variance.as_ref().map(window), invalid_samples: self.invalid_samples }
+    }
+
     /// Writes `.exr` (linear float), `.png` (sRGB, clamped) or `.ppm` (sRGB, clamped, binary).
     pub fn save(&self, path: &Path) -> Result<()> {
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {

@@ -5,6 +5,7 @@ pub mod backend;
 pub mod buffers;
 pub mod compare;
 pub mod film;
+pub mod image_io;
 pub mod mesh;
 pub mod mitsuba;
 pub mod obj_scene;

@@ -1,107 +1,156 @@
-//! Triangle meshes from files (OBJ through `tobj`), with Mitsuba's normal conventions.
-use anyhow::{bail, Context, Result};
-use glam::{Mat4, Vec3};
+//! Triangle meshes in Mitsuba's vertex layout: each vertex carries a position and, optionally, a
+//! shading normal and a texture coordinate. Loaders for the file formats live in the submodules;
+//! `primitives` tessellates Mitsuba's built-in shapes.
+use anyhow::{bail, Result};
+use glam::{Mat3, Mat4, Vec2, Vec3};
 use std::path::Path;
 
-/// A triangle mesh in object space: positions indexed per corner, plus optional per-corner normals.
+mod obj;
+mod ply;
+pub mod primitives;
+mod serialized;
+
+pub use obj::load_obj;
+pub use ply::load_ply;
+pub use serialized::load_serialized;
+
+/// An indexed triangle mesh. `normals` and `uvs`, when present, run parallel to `positions`, so a
+/// vertex whose corners disagree on a normal or uv is stored once per distinct value (Mitsuba
+/// welds OBJ corners the same way).
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
     pub positions: Vec<Vec3>,
-    /// Corner position indices, three per triangle.
+    /// Vertex indices, three per triangle.
     pub indices: Vec<u32>,
-    /// Per-corner normals (three per triangle) when the file provides them.
-    pub corner_normals: Option<Vec<Vec3>>,
-    /// MTL material of each triangle (index into `materials`), when loaded with materials.
+    /// Per-vertex shading normals (unit length, or zero where unknown).
+    pub normals: Option<Vec<Vec3>>,
+    /// Per-vertex texture coordinates in Mitsuba's convention (v = 0 is the top row of an image).
+    pub uvs: Option<Vec<Vec2>>,
+    /// MTL material of each triangle (index into the loader's materials); empty when not loaded.
     pub triangle_materials: Vec<Option<usize>>,
 }
 
-/// Loads every object of an OBJ file into one mesh. `with_materials` also reads the MTL library.
-pub fn load_obj(path: &Path, with_materials: bool) -> Result<(Mesh, Vec<tobj::Material>)> {
-    let options = tobj::LoadOptions { triangulate: true, single_index: false, ignore_points: true, ignore_lines: true };
-    let (models, materials) = tobj::load_obj(path, &options).with_context(|| format!("cannot load OBJ mesh {}", path.display()))?;
-    let materials = if with_materials {
-        materials.unwrap_or_else(|e| {
-            eprintln!("warning: {}: material library not loaded ({e}); using defaults", path.display());
-            Vec::new()
-        })
-    } else {
-        Vec::new()
-    };
-    let mut mesh = Mesh::default();
-    let mut normals = Vec::new();
-    let mut all_have_normals = true;
-    for model in &models {
-        let m = &model.mesh;
-        let base = mesh.positions.len() as u32;
-        mesh.positions.extend(m.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])));
-        for &i in &m.indices {
-            if i as usize >= m.positions.len() / 3 {
-                bail!("{}: object '{}' references vertex {} of {}", path.display(), model.name, i + 1, m.positions.len() / 3);
-            }
-            mesh.indices.push(base + i);
-        }
-        let tri_count = m.indices.len() / 3;
-        mesh.triangle_materials.extend(std::iter::repeat(m.material_id).take(tri_count));
-        if m.normal_indices.len() == m.indices.len() && !m.normals.is_empty() {
-            for &ni in &m.normal_indices {
-                let k = ni as usize * 3;
-                if k + 2 >= m.normals.len() {
-                    bail!("{}: object '{}' references a missing normal", path.display(), model.name);
-                }
-                normals.push(Vec3::new(m.normals[k], m.normals[k + 1], m.normals[k + 2]));
-            }
-        } else {
-            all_have_normals = false;
-        }
-    }
-    if mesh.indices.is_empty() {
-        bail!("{}: the mesh has no triangles", path.display());
-    }
-    if all_have_normals {
-        mesh.corner_normals = Some(normals);
-    }
-    Ok((mesh, materials))
+/// A mesh flattened into independent triangles, ready for `scene::Geometry::Triangles`. All three
+/// vectors are parallel: triangle `i` has corner normals `normals[i]` and corner uvs `uvs[i]`.
+#[derive(Clone, Debug, Default)]
+pub struct Triangles {
+    pub triangles: Vec<[Vec3; 3]>,
+    pub normals: Option<Vec<[Vec3; 3]>>,
+    pub uvs: Option<Vec<[Vec2; 3]>>,
 }
 
 impl Mesh {
-    /// Smooth normals where the file has none, weighting each face by its angle at the vertex
-    /// (Thürmer & Wüthrich), as Mitsuba does.
-    pub fn ensure_normals(&mut self) {
-        if self.corner_normals.is_some() {
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len() / 3
+    }
+
+    /// Checks what a loader must guarantee before anyone indexes the mesh: whole triangles, indices
+    /// within the vertex list, attribute lists as long as the position list.
+    pub fn validate(&self, path: &Path) -> Result<()> {
+        if self.indices.len() % 3 != 0 {
+            bail!("{}: {} indices do not make whole triangles", path.display(), self.indices.len());
+        }
+        let vertex_count = self.positions.len();
+        if let Some((k, &i)) = self.indices.iter().enumerate().find(|(_, &i)| i as usize >= vertex_count) {
+            bail!("{}: triangle {} references vertex {i}, but the mesh has {vertex_count} vertices", path.display(), k / 3);
+        }
+        if self.normals.as_ref().is_some_and(|n| n.len() != vertex_count) {
+            bail!("{}: the normal list does not match the {vertex_count} vertices", path.display());
+        }
+        if self.uvs.as_ref().is_some_and(|uv| uv.len() != vertex_count) {
+            bail!("{}: the texture coordinate list does not match the {vertex_count} vertices", path.display());
+        }
+        if let Some(p) = self.positions.iter().find(|p| !p.is_finite()) {
+            bail!("{}: the mesh has a non-finite vertex position {p}", path.display());
+        }
+        Ok(())
+    }
+
+    /// Applies `to_world` to positions and (through the inverse transpose) to normals.
+    pub fn transform(&mut self, to_world: Mat4) {
+        if to_world == Mat4::IDENTITY {
             return;
         }
-        let mut vertex_normals = vec![Vec3::ZERO; self.positions.len()];
+        for p in &mut self.positions {
+            *p = to_world.transform_point3(*p);
+        }
+        if let Some(normals) = &mut self.normals {
+            let normal_matrix = Mat3::from_mat4(to_world).inverse().transpose();
+            for n in normals {
+                *n = (normal_matrix * *n).normalize_or_zero();
+            }
+        }
+    }
+
+    /// Mirrors the v texture coordinate (Mitsuba's `flip_tex_coords`).
+    pub fn flip_tex_coords(&mut self) {
+        for uv in self.uvs.iter_mut().flatten() {
+            uv.y = 1.0 - uv.y;
+        }
+    }
+
+    /// Swaps two corners of every triangle, turning its geometric normal around.
+    pub fn reverse_winding(&mut self) {
+        for tri in self.indices.chunks_exact_mut(3) {
+            tri.swap(1, 2);
+        }
+    }
+
+    /// Smooth normals where the file has none: each vertex averages the normals of its faces,
+    /// weighted by the face's angle at the vertex (Thürmer & Wüthrich 1998), as Mitsuba does.
+    /// Mitsuba computes them after `to_world`, so callers transform first.
+    pub fn ensure_normals(&mut self) {
+        if self.normals.is_some() {
+            return;
+        }
+        let mut sums = vec![Vec3::ZERO; self.positions.len()];
         for tri in self.indices.chunks_exact(3) {
             let p = [0, 1, 2].map(|k| self.positions[tri[k] as usize]);
             let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
             for k in 0..3 {
                 let e1 = (p[(k + 1) % 3] - p[k]).normalize_or_zero();
                 let e2 = (p[(k + 2) % 3] - p[k]).normalize_or_zero();
-                let angle = e1.dot(e2).clamp(-1.0, 1.0).acos();
-                vertex_normals[tri[k] as usize] += n * angle;
+                sums[tri[k] as usize] += n * e1.dot(e2).clamp(-1.0, 1.0).acos();
             }
         }
-        let corner: Vec<Vec3> = self.indices.iter().map(|&i| vertex_normals[i as usize].normalize_or_zero()).collect();
-        self.corner_normals = Some(corner);
+        // A zero sum (faces cancelling out) stays zero; `triangles` then falls back to the face normal.
+        self.normals = Some(sums.into_iter().map(Vec3::normalize_or_zero).collect());
     }
 
-    /// World-space triangles and corner normals under `to_world` (normals by the inverse transpose).
-    /// Degenerate (zero-area or non-finite) triangles are dropped.
-    pub fn transformed(&self, to_world: Mat4) -> (Vec<[Vec3; 3]>, Option<Vec<[Vec3; 3]>>) {
-        let normal_matrix = to_world.inverse().transpose();
-        let mut triangles = Vec::with_capacity(self.indices.len() / 3);
-        let mut normals = self.corner_normals.as_ref().map(|_| Vec::with_capacity(self.indices.len() / 3));
-        for (t, tri) in self.indices.chunks_exact(3).enumerate() {
-            let p = [0, 1, 2].map(|k| to_world.transform_point3(self.positions[tri[k] as usize]));
-            let area2 = (p[1] - p[0]).cross(p[2] - p[0]).length_squared();
+    /// The triangles with their corner attributes, as they are (no transform). Degenerate
+    /// (zero-area or non-finite) triangles are dropped together with their attributes.
+    pub fn triangles(&self) -> Triangles {
+        let mut out = Triangles {
+            triangles: Vec::with_capacity(self.triangle_count()),
+            normals: self.normals.as_ref().map(|_| Vec::with_capacity(self.triangle_count())),
+            uvs: self.uvs.as_ref().map(|_| Vec::with_capacity(self.triangle_count())),
+        };
+        for tri in self.indices.chunks_exact(3) {
+            let corner = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
+            let p = corner.map(|i| self.positions[i]);
+            let face_normal = (p[1] - p[0]).cross(p[2] - p[0]);
+            let area2 = face_normal.length_squared();
             if !(area2 > 0.0 && area2.is_finite()) {
                 continue;
             }
-            triangles.push(p);
-            if let (Some(out), Some(cn)) = (normals.as_mut(), self.corner_normals.as_ref()) {
-                out.push([0, 1, 2].map(|k| normal_matrix.transform_vector3(cn[3 * t + k]).normalize_or_zero()));
+            out.triangles.push(p);
+            if let (Some(out), Some(normals)) = (out.normals.as_mut(), self.normals.as_ref()) {
+                // A corner without a usable normal (zero in the file, or a cancelled sum) takes the
+                // face's own, so that shading never sees a zero or NaN normal.
+                let face_normal = face_normal.normalize();
+                out.push(corner.map(|i| if normals[i].is_finite() && normals[i] != Vec3::ZERO { normals[i] } else { face_normal }));
+            }
+            if let (Some(out), Some(uvs)) = (out.uvs.as_mut(), self.uvs.as_ref()) {
+                out.push(corner.map(|i| uvs[i]));
             }
         }
-        (triangles, normals)
+        out
+    }
+
+    /// World-space triangles under `to_world` (see `transform` and `triangles`).
+    pub fn transformed(&self, to_world: Mat4) -> Triangles {
+        let mut world = self.clone();
+        world.transform(to_world);
+        world.triangles()
     }
 }

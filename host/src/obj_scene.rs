@@ -1,7 +1,7 @@
 //! Rendering an OBJ/MTL file directly: MTL `Kd`/`Ks`/`Ns` become the modified Phong BRDF (`Kd` alone:
 //! Lambert), `Ke` an area emitter; an automatic camera frames the model and a sphere light lights it.
 use crate::mesh;
-use crate::scene::{look_at, Filter, Geometry, Integrator, SamplerKind, Scene, Sensor, Shape};
+use crate::scene::{look_at, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape};
 use anyhow::Result;
 use caustic_kernel::scene::{Material, BSDF_DIFFUSE, BSDF_PHONG};
 use glam::Vec3;
@@ -16,17 +16,17 @@ fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material
     let kd = m.diffuse.unwrap_or([0.5; 3]);
     let ks = m.specular.unwrap_or([0.0; 3]);
     let mut material = if ks.iter().any(|&c| c > 0.0) {
-        Material { kind: BSDF_PHONG, exponent: m.shininess.unwrap_or(30.0).clamp(0.0, 1.0e6), diffuse: rgba(kd), specular: rgba(ks), ..Default::default() }
+        Material { kind: BSDF_PHONG, eta: m.shininess.unwrap_or(30.0).clamp(0.0, 1.0e6), reflectance: rgba(kd), specular_reflectance: rgba(ks), ..Default::default() }
     } else {
-        Material { kind: BSDF_DIFFUSE, diffuse: rgba(kd), ..Default::default() }
+        Material { kind: BSDF_DIFFUSE, reflectance: rgba(kd), ..Default::default() }
     };
     // Energy conservation needs kd + ks ≤ 1 per channel; scale both down where an MTL exceeds it.
     for c in 0..3 {
-        let sum = material.diffuse[c] + material.specular[c];
+        let sum = material.reflectance[c] + material.specular_reflectance[c];
         if sum > 1.0 {
             warnings.push(format!("material '{}': Kd + Ks > 1, scaled down to conserve energy", m.name));
-            material.diffuse[c] /= sum;
-            material.specular[c] /= sum;
+            material.reflectance[c] /= sum;
+            material.specular_reflectance[c] /= sum;
         }
     }
     let emission = m.emissive.filter(|e| e.iter().any(|&c| c > 0.0));
@@ -36,7 +36,7 @@ fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material
 pub fn load(path: &Path) -> Result<Scene> {
     let (mesh, mtl) = mesh::load_obj(path, true)?;
     let mut warnings = Vec::new();
-    let mut materials = vec![Material { kind: BSDF_DIFFUSE, diffuse: [0.5, 0.5, 0.5, 0.0], ..Default::default() }];
+    let mut materials = vec![Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }];
     let mut emissions = vec![None];
     for m in &mtl {
         let (material, emission) = convert_material(m, &mut warnings);
@@ -45,7 +45,7 @@ pub fn load(path: &Path) -> Result<Scene> {
     }
     let mut with_normals = mesh.clone();
     with_normals.ensure_normals();
-    let (triangles, normals) = with_normals.transformed(glam::Mat4::IDENTITY);
+    let mesh::Triangles { triangles, normals, .. } = with_normals.transformed(glam::Mat4::IDENTITY);
     // One shape per material, so that emission stays per shape.
     let mut shapes = Vec::new();
     let kept: Vec<usize> = (0..mesh.indices.len() / 3)
@@ -65,6 +65,7 @@ pub fn load(path: &Path) -> Result<Scene> {
             geometry: Geometry::Triangles {
                 triangles: select.iter().map(|&i| triangles[i]).collect(),
                 normals: normals.as_ref().map(|n| select.iter().map(|&i| n[i]).collect()),
+                uvs: None,
             },
             material: slot as u32,
             emission: *emission,
@@ -98,6 +99,8 @@ pub fn load(path: &Path) -> Result<Scene> {
     }
     Ok(Scene {
         sensor: Sensor {
+            projection: Projection::Perspective,
+            crop: None,
             to_world,
             fov_x,
             near_clip: distance * 1e-3,
@@ -111,6 +114,8 @@ pub fn load(path: &Path) -> Result<Scene> {
         integrator: Integrator::default(),
         materials,
         shapes,
+        emitters: vec![],
+        textures: vec![],
         warnings,
     })
 }

@@ -1,7 +1,7 @@
 //! A renderer-neutral description of a scene, produced by the loaders (Mitsuba XML, OBJ) and turned
 //! into kernel buffers by `buffers`.
-use caustic_kernel::scene::Material;
-use glam::{Mat4, Vec3};
+use caustic_kernel::scene::{Material, Texture};
+use glam::{Mat3, Mat4, Vec2, Vec3};
 
 /// Reconstruction filter of the film (Mitsuba's `rfilter`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,16 +43,36 @@ pub enum SamplerKind {
     Stratified,
 }
 
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    Perspective,
+    ThinLens { aperture_radius: f32, focus_distance: f32 },
+    /// Half extents of the view volume along local x and y.
+    Orthographic { half_width: f32, half_height: f32 },
+}
+
+/// The part of the full image that is rendered (Mitsuba's `crop_*`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Crop {
+    pub x: u32,
+    pub y: u32,
+    pub width: u32,
+    pub height: u32,
+}
+
 #[derive(Clone, Debug)]
 pub struct Sensor {
+    pub projection: Projection,
     /// Camera-to-world transform (no scale): local +z looks forward, +x to the image's left.
     pub to_world: Mat4,
     /// Horizontal field of view in degrees.
     pub fov_x: f32,
     pub near_clip: f32,
     pub far_clip: f32,
+    /// Size of the full image; `crop` selects what is rendered.
     pub width: u32,
     pub height: u32,
+    pub crop: Option<Crop>,
     pub filter: Filter,
     pub sampler: SamplerKind,
     pub spp: u32,
@@ -75,7 +95,7 @@ impl Default for Integrator {
 #[derive(Clone, Debug)]
 pub enum Geometry {
     /// World-space triangles, with optional per-corner shading normals.
-    Triangles { triangles: Vec<[Vec3; 3]>, normals: Option<Vec<[Vec3; 3]>> },
+    Triangles { triangles: Vec<[Vec3; 3]>, normals: Option<Vec<[Vec3; 3]>>, uvs: Option<Vec<[Vec2; 3]>> },
     Sphere { center: Vec3, radius: f32 },
 }
 
@@ -91,12 +111,35 @@ pub struct Shape {
     pub flip_normals: bool,
 }
 
+/// An emitter not attached to a shape.
+#[derive(Clone, Debug)]
+pub enum Emitter {
+    Point { position: Vec3, intensity: [f32; 3] },
+    /// `to_world` maps the beam axis to local +z; angles in degrees.
+    Spot { to_world: Mat4, intensity: [f32; 3], cutoff_angle: f32, beam_width: f32 },
+    /// `direction` the light travels in.
+    Directional { direction: Vec3, irradiance: [f32; 3] },
+    Constant { radiance: [f32; 3] },
+    /// A lat-long image (`texture` indexes `Scene::textures`), rotated by `to_world`.
+    Envmap { texture: u32, to_world: Mat3, scale: f32 },
+}
+
+/// A texture record with its texels (linear RGB, row-major from the top; empty for procedural
+/// textures); `buffers` places the texels in the table buffer and sets the record's offset.
+#[derive(Clone, Debug)]
+pub struct SceneTexture {
+    pub record: Texture,
+    pub texels: Vec<f32>,
+}
+
 #[derive(Clone, Debug)]
 pub struct Scene {
     pub sensor: Sensor,
     pub integrator: Integrator,
     pub materials: Vec<Material>,
     pub shapes: Vec<Shape>,
+    pub emitters: Vec<Emitter>,
+    pub textures: Vec<SceneTexture>,
     /// Non-fatal problems found while loading (unsupported elements, clamped values), already printed.
     pub warnings: Vec<String>,
 }

@@ -1,7 +1,7 @@
 //! GPU compute entry points (SPIR-V only). They do nothing but fetch the buffers and call the same
 //! functions the CPU runner calls.
 use crate::integrator::{accumulate, render_pixel, SceneView};
-use crate::scene::{BvhNode, FrameParams, Light, Material, Primitive, ShadingNormals};
+use crate::scene::{BvhNode, FrameParams, Light, Material, Primitive, Texture, TriangleAttributes};
 use spirv_std::glam::UVec3;
 use spirv_std::spirv;
 
@@ -15,16 +15,17 @@ pub fn render(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &FrameParams,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] prims: &[Primitive],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] normals: &[ShadingNormals],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] attributes: &[TriangleAttributes],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] materials: &[Material],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] lights: &[Light],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] tables: &[f32],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] accum: &mut [f32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] textures: &[Texture],
 ) {
     if id.x >= params.width || id.y >= params.height {
         return;
     }
-    let scene = SceneView { nodes, prims, normals, materials, lights, tables };
+    let scene = SceneView { nodes, prims, attributes, materials, lights, textures, tables };
     let pixel = id.y * params.width + id.x;
     let sums = render_pixel(&scene, params, pixel);
     accumulate(accum, pixel, &sums, params.sample_count);

@@ -57,9 +57,11 @@ fn pixel_sample(params: &FrameParams, sample_index: u32, sampler: &mut Sampler) 
 pub fn sample_position(params: &FrameParams, tables: &[f32], px: u32, py: u32, sample_index: u32, sampler: &mut Sampler) -> Vec2 {
     let u = pixel_sample(params, sample_index, sampler);
     let r = params.filter_radius;
-    let cx = px as f32 + 0.5;
-    let cy = py as f32 + 0.5;
-    let dx = sample_filter_1d(tables, params, u.x, (-cx).max(-r), (params.width as f32 - cx).min(r));
-    let dy = sample_filter_1d(tables, params, u.y, (-cy).max(-r), (params.height as f32 - cy).min(r));
-    Vec2::new((cx + dx) / params.width as f32, (cy + dy) / params.height as f32)
+    // Pixel centre in the full image (the rendered pixels may be a crop of it).
+    let cx = (params.crop_x + px) as f32 + 0.5;
+    let cy = (params.crop_y + py) as f32 + 0.5;
+    let (full_w, full_h) = (params.full_width as f32, params.full_height as f32);
+    let dx = sample_filter_1d(tables, params, u.x, (-cx).max(-r), (full_w - cx).min(r));
+    let dy = sample_filter_1d(tables, params, u.y, (-cy).max(-r), (full_h - cy).min(r));
+    Vec2::new((cx + dx) / full_w, (cy + dy) / full_h)
 }

@@ -22,6 +22,7 @@ pub mod sampling;
 pub mod scene;
 pub mod shape;
 pub mod spectrum;
+pub mod texture;
 
 #[cfg(target_arch = "spirv")]
 pub mod entry;

@@ -42,50 +42,158 @@ pub struct Primitive {
     pub _pad: [u32; 3],
 }
 
-/// Per-vertex shading normals of a smooth triangle, indexed like `Primitive`.
+/// Per-triangle vertex attributes, indexed like `Primitive`: shading normals (used when the primitive
+/// has `PRIM_FLAG_SMOOTH`) and texture coordinates (Mitsuba's barycentric default `(0,0), (1,0), (0,1)`
+/// when the mesh has none).
 #[repr(C)]
 #[derive(Clone, Copy, Default)]
 #[cfg_attr(not(target_arch = "spirv"), derive(bytemuck::Pod, bytemuck::Zeroable, Debug))]
-pub struct ShadingNormals {
+pub struct TriangleAttributes {
     pub n0: [f32; 3],
     pub _p0: f32,
     pub n1: [f32; 3],
     pub _p1: f32,
     pub n2: [f32; 3],
     pub _p2: f32,
+    pub uv0: [f32; 2],
+    pub uv1: [f32; 2],
+    pub uv2: [f32; 2],
+    pub _p3: [f32; 2],
 }
 
 pub const BSDF_DIFFUSE: u32 = 0;
 pub const BSDF_PHONG: u32 = 1;
+pub const BSDF_CONDUCTOR: u32 = 2;
+pub const BSDF_ROUGH_CONDUCTOR: u32 = 3;
+pub const BSDF_DIELECTRIC: u32 = 4;
+pub const BSDF_THIN_DIELECTRIC: u32 = 5;
+pub const BSDF_ROUGH_DIELECTRIC: u32 = 6;
+pub const BSDF_PLASTIC: u32 = 7;
+pub const BSDF_ROUGH_PLASTIC: u32 = 8;
 
-/// A BSDF record. `diffuse` is the diffuse reflectance (Lambert) or `kd` (Phong); `specular` is `ks`.
+/// Material flag: both sides of the surface scatter (Mitsuba's `twosided`).
+pub const MATERIAL_TWO_SIDED: u32 = 1;
+/// Material flag: the microfacet distribution is Beckmann (GGX otherwise).
+pub const MATERIAL_BECKMANN: u32 = 2;
+/// Material flag: plastic's `nonlinear` (colour shift from internal scattering).
+pub const MATERIAL_NONLINEAR: u32 = 4;
+
+/// A BSDF record (112 bytes). Which fields a model reads is documented by the model's `from_material`;
+/// colours are linear RGB with an unused fourth lane. `Default` is a black diffuse without textures.
 #[repr(C)]
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(bytemuck::Pod, bytemuck::Zeroable, Debug))]
 pub struct Material {
     pub kind: u32,
-    pub exponent: f32,
-    /// 1 when both sides of the surface scatter (Mitsuba's `twosided`), else 0.
-    pub two_sided: u32,
-    pub _pad: u32,
-    pub diffuse: [f32; 4],
-    pub specular: [f32; 4],
+    pub flags: u32,
+    /// Microfacet roughness along the shading frame's tangent and bitangent.
+    pub alpha_u: f32,
+    pub alpha_v: f32,
+    /// Relative index of refraction (interior over exterior) of dielectrics and plastics; the Phong
+    /// exponent for `BSDF_PHONG`.
+    pub eta: f32,
+    /// Texture replacing `reflectance` (index into the texture list), or `NONE`.
+    pub reflectance_texture: u32,
+    /// Texture replacing `specular_reflectance`, or `NONE`.
+    pub specular_texture: u32,
+    /// Start of a model's precomputed table in `tables` (rough plastic's transmittance), or `NONE`.
+    pub table: u32,
+    /// Diffuse reflectance (diffuse, Phong `kd`, plastic).
+    pub reflectance: [f32; 4],
+    /// Specular reflectance (Phong `ks`, conductors, dielectrics, plastics).
+    pub specular_reflectance: [f32; 4],
+    /// Specular transmittance of dielectrics.
+    pub specular_transmittance: [f32; 4],
+    /// Conductors: real part of the relative complex index of refraction, per channel.
+    pub conductor_eta: [f32; 4],
+    /// Conductors: imaginary part (absorption), per channel.
+    pub conductor_k: [f32; 4],
+    /// Model-specific precomputed scalars (see the model's `precompute`).
+    pub params: [f32; 4],
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Material {
+            kind: BSDF_DIFFUSE,
+            flags: 0,
+            alpha_u: 0.0,
+            alpha_v: 0.0,
+            eta: 1.0,
+            reflectance_texture: NONE,
+            specular_texture: NONE,
+            table: NONE,
+            reflectance: [0.0; 4],
+            specular_reflectance: [0.0; 4],
+            specular_transmittance: [0.0; 4],
+            conductor_eta: [0.0; 4],
+            conductor_k: [0.0; 4],
+            params: [0.0; 4],
+        }
+    }
 }
 
 pub const LIGHT_TRIANGLE: u32 = 0;
 pub const LIGHT_SPHERE: u32 = 1;
+pub const LIGHT_POINT: u32 = 2;
+pub const LIGHT_SPOT: u32 = 3;
+pub const LIGHT_DIRECTIONAL: u32 = 4;
+pub const LIGHT_CONSTANT: u32 = 5;
+pub const LIGHT_ENVMAP: u32 = 6;
 
-/// An emitter: an emissive primitive (`prim`) with uniform radiance, chosen for next-event estimation
-/// with probability `pmf` (proportional to its power).
+/// An emitter (128 bytes), chosen for next-event estimation with probability `pmf` (proportional to
+/// its power).
 #[repr(C)]
 #[derive(Clone, Copy, Default)]
 #[cfg_attr(not(target_arch = "spirv"), derive(bytemuck::Pod, bytemuck::Zeroable, Debug))]
 pub struct Light {
     pub kind: u32,
+    /// The emitting primitive of area lights; the texture of an envmap; else `NONE`.
     pub prim: u32,
     pub pmf: f32,
-    pub _pad: u32,
+    /// Start of the light's sampling distribution in `tables` (envmap), else `NONE`.
+    pub table: u32,
+    /// Radiance (area, constant, envmap scale), intensity (point, spot) or irradiance (directional).
     pub radiance: [f32; 4],
+    /// Position (point, spot); the scene's bounding-sphere centre and radius in `w` (directional,
+    /// constant, envmap).
+    pub position: [f32; 4],
+    /// Spot: `cos cutoff, cos beam_width, cutoff (radians), 1 / (cutoff - beam_width)`.
+    pub params: [f32; 4],
+    /// Rows of the world-to-local rotation (spot: local +z is the beam axis; directional: local +z is
+    /// the direction of travel; envmap: Mitsuba's lat-long frame).
+    pub to_local: [[f32; 4]; 3],
+}
+
+pub const TEXTURE_BITMAP: u32 = 0;
+pub const TEXTURE_CHECKERBOARD: u32 = 1;
+
+/// Texture flag: nearest-neighbour lookups (bilinear otherwise).
+pub const TEXTURE_NEAREST: u32 = 1;
+/// Texture flags: wrap mode in bits 1..2 (`TEXTURE_WRAP_*` shifted by 1).
+pub const TEXTURE_WRAP_SHIFT: u32 = 1;
+pub const TEXTURE_WRAP_REPEAT: u32 = 0;
+pub const TEXTURE_WRAP_MIRROR: u32 = 1;
+pub const TEXTURE_WRAP_CLAMP: u32 = 2;
+
+/// A texture (96 bytes). Bitmaps keep their linear RGB texels in `tables` (three floats per texel,
+/// row-major from the top row).
+#[repr(C)]
+#[derive(Clone, Copy, Default)]
+#[cfg_attr(not(target_arch = "spirv"), derive(bytemuck::Pod, bytemuck::Zeroable, Debug))]
+pub struct Texture {
+    pub kind: u32,
+    pub width: u32,
+    pub height: u32,
+    /// Where the texels start in `tables`.
+    pub offset: u32,
+    pub flags: u32,
+    pub _pad: [u32; 3],
+    /// Rows of the affine `to_uv` transform: `u' = r0·(u, v, 1)`, `v' = r1·(u, v, 1)`.
+    pub to_uv: [[f32; 4]; 2],
+    /// Checkerboard colours.
+    pub color0: [f32; 4],
+    pub color1: [f32; 4],
 }
 
 pub const SAMPLER_INDEPENDENT: u32 = 0;
@@ -121,7 +229,28 @@ pub struct FrameParams {
     pub filter_bins: u32,
     pub filter_radius: f32,
     pub hide_emitters: u32,
-    pub _pad0: u32,
+    /// The environment emitter (constant or envmap) in the light list, or `NONE`.
+    pub env_light: u32,
+
+    /// The rendered pixels (`width` × `height`) start at (`crop_x`, `crop_y`) of the full image.
+    pub crop_x: u32,
+    pub crop_y: u32,
+    pub full_width: u32,
+    pub full_height: u32,
 
     pub camera: crate::camera::Camera,
+}
+
+/// The scene as the kernel sees it: borrowed buffers.
+#[derive(Clone, Copy)]
+pub struct SceneView<'a> {
+    pub nodes: &'a [BvhNode],
+    pub prims: &'a [Primitive],
+    pub attributes: &'a [TriangleAttributes],
+    pub materials: &'a [Material],
+    pub lights: &'a [Light],
+    pub textures: &'a [Texture],
+    /// Concatenated tables: 1D distributions (light selection CDF, filter CDF, envmap CDFs), bitmap
+    /// texels, precomputed BSDF tables; located by `FrameParams`, `Texture`, `Light` and `Material`.
+    pub tables: &'a [f32],
 }

@@ -7,9 +7,9 @@ use caustic_kernel::sampling::square_to_uniform_sphere;
 use caustic_kernel::scene::*;
 
 fn materials() -> Vec<Material> {
-    let mut v = vec![Material { kind: BSDF_DIFFUSE, diffuse: [1.0, 0.5, 0.2, 0.0], ..Default::default() }];
+    let mut v = vec![Material { kind: BSDF_DIFFUSE, reflectance: [1.0, 0.5, 0.2, 0.0], ..Default::default() }];
     for (kd, ks, n) in [(0.0, 1.0, 1.0), (0.0, 1.0, 50.0), (0.5, 0.5, 10.0), (0.3, 0.7, 1000.0), (0.9, 0.1, 0.0)] {
-        v.push(Material { kind: BSDF_PHONG, exponent: n, diffuse: [kd; 4], specular: [ks; 4], ..Default::default() });
+        v.push(Material { kind: BSDF_PHONG, eta: n, reflectance: [kd; 4], specular_reflectance: [ks; 4], ..Default::default() });
     }
     v
 }
@@ -23,7 +23,7 @@ fn directions(n: usize) -> Vec<Vec3> {
 fn reciprocity() {
     let dirs = directions(400);
     for m in materials() {
-        let b = Bsdf::from_material(&m);
+        let b = Bsdf::from_material(&m, &[]);
         for pair in dirs.chunks(2) {
             let (wo, wi) = (pair[0], pair[1]);
             // eval includes |cos θi|; f itself must be symmetric.
@@ -57,10 +57,10 @@ fn albedo(b: &Bsdf, wo: Vec3) -> Vec3 {
 #[test]
 fn energy_is_conserved_and_sampling_weights_agree() {
     for m in materials() {
-        let b = Bsdf::from_material(&m);
+        let b = Bsdf::from_material(&m, &[]);
         for wo in [Vec3::Z, Vec3::new(0.5, 0.0, 0.5).normalize(), Vec3::new(0.99, 0.1, 0.02).normalize()] {
             let a = albedo(&b, wo);
-            assert!(a.max_element() <= 1.0 + 2e-3, "kind {} exponent {} reflects {a} > 1 at wo {wo}", m.kind, m.exponent);
+            assert!(a.max_element() <= 1.0 + 2e-3, "kind {} exponent {} reflects {a} > 1 at wo {wo}", m.kind, m.eta);
             // The mean sampling weight estimates the same albedo.
             let mut rng = Sampler::new(1, m.kind, (wo.x * 1000.0) as u32);
             let n = 200_000;
@@ -78,7 +78,7 @@ fn energy_is_conserved_and_sampling_weights_agree() {
             mean /= n as f32;
             let se = ((sq / n as f32 - mean * mean) / n as f32).max(Vec3::ZERO);
             let tol = se.x.sqrt().max(se.y.sqrt()).max(se.z.sqrt()) * 5.0 + 2e-3;
-            assert!((mean - a).abs().max_element() <= tol, "kind {} n {} wo {wo}: sampled albedo {mean} vs quadrature {a}", m.kind, m.exponent);
+            assert!((mean - a).abs().max_element() <= tol, "kind {} n {} wo {wo}: sampled albedo {mean} vs quadrature {a}", m.kind, m.eta);
         }
     }
 }
@@ -86,7 +86,7 @@ fn energy_is_conserved_and_sampling_weights_agree() {
 #[test]
 fn back_side_is_black_for_one_sided_models() {
     for m in materials() {
-        let b = Bsdf::from_material(&m);
+        let b = Bsdf::from_material(&m, &[]);
         let below = Vec3::new(0.2, 0.1, -0.9).normalize();
         let above = Vec3::new(0.1, -0.3, 0.8).normalize();
         assert_eq!(b.eval(below, above), Vec3::ZERO);

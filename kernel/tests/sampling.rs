@@ -27,14 +27,10 @@ fn uniform_cone_wide_and_narrow() {
     }
 }
 
-fn phong_material(kd: f32, ks: f32, exponent: f32) -> Material {
-    Material { kind: BSDF_PHONG, exponent, diffuse: [kd, kd, kd, 0.0], specular: [ks, ks, ks, 0.0], ..Default::default() }
-}
-
 #[test]
 fn phong_lobe_and_mixture() {
     for (kd, ks, n) in [(0.0, 1.0, 10.0), (0.0, 0.9, 200.0), (0.5, 0.5, 30.0), (0.8, 0.1, 1.0)] {
-        let bsdf = Phong::from_material(&phong_material(kd, ks, n));
+        let bsdf = Phong::new(Vec3::splat(kd), Vec3::splat(ks), n);
         for wo in [Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.6, 0.2, 0.3).normalize(), Vec3::new(0.99, 0.0, 0.05).normalize()] {
             chi2_directions(
                 &format!("phong kd={kd} ks={ks} n={n} wo={wo:?}"),

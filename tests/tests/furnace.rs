@@ -10,6 +10,8 @@ use glam::Vec3;
 fn furnace(inner: Material) -> Scene {
     Scene {
         sensor: Sensor {
+            projection: Projection::Perspective,
+            crop: None,
             to_world: look_at(Vec3::new(0.0, 0.0, -4.0), Vec3::ZERO, Vec3::Y).unwrap(),
             fov_x: 50.0,
             near_clip: 0.01,
@@ -26,6 +28,8 @@ fn furnace(inner: Material) -> Scene {
             Shape { origin: "object".into(), geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 1.0 }, material: 0, emission: None, flip_normals: false },
             Shape { origin: "enclosure".into(), geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 10.0 }, material: 1, emission: Some([1.0; 3]), flip_normals: true },
         ],
+        emitters: vec![],
+        textures: vec![],
         warnings: vec![],
     }
 }
@@ -46,14 +50,14 @@ fn check(scene: &Scene, choice: BackendChoice) {
 }
 
 fn white_lambert() -> Material {
-    Material { kind: BSDF_DIFFUSE, diffuse: [1.0, 1.0, 1.0, 0.0], ..Default::default() }
+    Material { kind: BSDF_DIFFUSE, reflectance: [1.0, 1.0, 1.0, 0.0], ..Default::default() }
 }
 
 /// kd + ks = 1 conserves energy only up to the lobe clipped by the horizon, so Phong is not a furnace
 /// identity; an energy-conserving Phong must not exceed it.
 #[test]
 fn phong_never_exceeds_the_furnace() {
-    let phong = Material { kind: BSDF_PHONG, exponent: 20.0, diffuse: [0.5, 0.5, 0.5, 0.0], specular: [0.5, 0.5, 0.5, 0.0], ..Default::default() };
+    let phong = Material { kind: BSDF_PHONG, eta: 20.0, reflectance: [0.5, 0.5, 0.5, 0.0], specular_reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() };
     let film = render_scene(&furnace(phong), BackendChoice::Cpu, 64, 6);
     let mean = film.rgb.iter().map(|p| p[1] as f64).sum::<f64>() / film.rgb.len() as f64;
     println!("phong furnace mean {mean:.4}");

@@ -16,8 +16,8 @@ fn obj_with_mtl_renders() {
     )
     .unwrap();
     let scene = caustic::load_scene(&dir.join("model.obj"), &[]).expect("OBJ loads");
-    assert!(scene.materials.iter().any(|m| m.kind == BSDF_PHONG && (m.exponent - 40.0).abs() < 1e-6));
-    assert!(scene.materials.iter().any(|m| m.kind == BSDF_DIFFUSE && (m.diffuse[0] - 0.7).abs() < 1e-6));
+    assert!(scene.materials.iter().any(|m| m.kind == BSDF_PHONG && (m.eta - 40.0).abs() < 1e-6));
+    assert!(scene.materials.iter().any(|m| m.kind == BSDF_DIFFUSE && (m.reflectance[0] - 0.7).abs() < 1e-6));
     let emissive: Vec<_> = scene.shapes.iter().filter(|s| s.emission.is_some()).collect();
     assert_eq!(emissive.len(), 2, "the Ke triangle and the automatic sphere light emit");
     assert!(emissive.iter().any(|s| matches!(s.geometry, Geometry::Sphere { .. })));

@@ -94,10 +94,11 @@ impl GpuBackend {
         });
         let nodes = storage("nodes", bytemuck::cast_slice(&buffers.nodes));
         let prims = storage("prims", bytemuck::cast_slice(&buffers.prims));
-        let normals = storage("normals", bytemuck::cast_slice(&buffers.normals));
+        let attributes = storage("attributes", bytemuck::cast_slice(&buffers.attributes));
         let materials = storage("materials", bytemuck::cast_slice(&buffers.materials));
         let lights = storage("lights", bytemuck::cast_slice(&buffers.lights));
         let tables = storage("tables", bytemuck::cast_slice(&buffers.tables));
+        let textures = storage("textures", bytemuck::cast_slice(&buffers.textures));
         let pixels = (buffers.params.width * buffers.params.height) as u64;
         let accum_size = pixels * ACCUM_STRIDE as u64 * 4;
         let accum_buffer = device.create_buffer(&wgpu::BufferDescriptor {
@@ -106,7 +107,7 @@ impl GpuBackend {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let entries: Vec<wgpu::BindGroupEntry> = [&params_buffer, &nodes, &prims, &normals, &materials, &lights, &tables, &accum_buffer]
+        let entries: Vec<wgpu::BindGroupEntry> = [&params_buffer, &nodes, &prims, &attributes, &materials, &lights, &tables, &accum_buffer, &textures]
             .iter()
             .enumerate()
             .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })

@@ -1,13 +1,30 @@
-//! BSDF plugins: `diffuse`, `phong` (the modified Phong BRDF), `twosided`.
+//! BSDF plugins: `diffuse`, `phong` (the modified Phong BRDF), `conductor`, `roughconductor`,
+//! `dielectric`, `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `twosided`; with
+//! Mitsuba 3's parameter names and defaults.
+use super::ior;
 use super::props::Props;
 use super::spectrum::SpectrumUse;
+use super::textures::ColorParam;
 use super::Loader;
 use anyhow::{bail, Result};
-use caustic_kernel::scene::{Material, BSDF_DIFFUSE, BSDF_PHONG};
+use caustic_kernel::scene::*;
 
 fn rgba(c: [f32; 3]) -> [f32; 4] {
     [c[0], c[1], c[2], 0.0]
 }
+
+fn set_reflectance(m: &mut Material, c: ColorParam) {
+    m.reflectance = rgba(c.rgb);
+    m.reflectance_texture = c.texture;
+}
+
+fn set_specular(m: &mut Material, c: ColorParam) {
+    m.specular_reflectance = rgba(c.rgb);
+    m.specular_texture = c.texture;
+}
+
+/// Roughness below this is treated as this: keeps microfacet densities finite in f32.
+const MIN_ALPHA: f32 = 1.0e-4;
 
 impl Loader {
     /// Parses a `<bsdf>` (or resolves a `<ref>`) and returns its index in the material list.
@@ -27,41 +44,148 @@ impl Loader {
 
     fn parse_material(&mut self, props: &Props) -> Result<Material> {
         Ok(match props.kind.as_str() {
-            "diffuse" => Material {
-                kind: BSDF_DIFFUSE,
-                diffuse: rgba(props.color("reflectance", SpectrumUse::Reflectance, [0.5; 3])?),
-                ..Default::default()
-            },
-            "phong" => {
-                let kd = props.color("diffuse_reflectance", SpectrumUse::Reflectance, [0.5; 3])?;
-                let ks = props.color("specular_reflectance", SpectrumUse::Reflectance, [0.2; 3])?;
-                let exponent = props.float("exponent", 30.0)?;
-                if !(0.0..=1.0e6).contains(&exponent) {
-                    bail!("{}: phong exponent must be in [0, 1e6], got {exponent}", props.loc);
-                }
-                if (0..3).any(|c| kd[c] + ks[c] > 1.0 + 1e-6) {
-                    self.warn(&format!("{}: phong with diffuse + specular reflectance > 1 does not conserve energy", props.loc));
-                }
-                Material { kind: BSDF_PHONG, exponent, diffuse: rgba(kd), specular: rgba(ks), ..Default::default() }
-            }
-            "twosided" => {
-                let nested = props.nested("bsdf");
-                let refs = props.nested("ref");
-                let inner_entry = match (nested.first(), refs.first()) {
-                    (Some(e), _) | (None, Some(e)) => *e,
-                    (None, None) => bail!("{}: twosided needs a nested <bsdf>", props.loc),
-                };
-                let inner_props = self.props(&props.path, props.doc, inner_entry.node)?;
-                let index = self.load_bsdf(&inner_props)?;
-                let mut m = self.materials[index as usize];
-                m.two_sided = 1;
+            "diffuse" => {
+                let mut m = Material { kind: BSDF_DIFFUSE, ..Default::default() };
+                let reflectance = self.color_param(props, "reflectance", SpectrumUse::Reflectance, [0.5; 3])?;
+                set_reflectance(&mut m, reflectance);
                 m
             }
+            "phong" => self.phong(props)?,
+            "conductor" | "roughconductor" => self.conductor(props)?,
+            "dielectric" | "thindielectric" | "roughdielectric" => self.dielectric(props)?,
+            "plastic" | "roughplastic" => self.plastic(props)?,
+            "twosided" => self.twosided(props)?,
             other => {
                 self.warn(&format!("{}: bsdf type '{other}' is not supported yet; rendering it as grey diffuse", props.loc));
                 props.mark_all_used();
-                Material { kind: BSDF_DIFFUSE, diffuse: [0.5, 0.5, 0.5, 0.0], ..Default::default() }
+                Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }
             }
         })
+    }
+
+    fn phong(&mut self, props: &Props) -> Result<Material> {
+        let kd = self.color_param(props, "diffuse_reflectance", SpectrumUse::Reflectance, [0.5; 3])?;
+        let ks = self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [0.2; 3])?;
+        let exponent = props.float("exponent", 30.0)?;
+        if !(0.0..=1.0e6).contains(&exponent) {
+            bail!("{}: phong exponent must be in [0, 1e6], got {exponent}", props.loc);
+        }
+        if (0..3).any(|c| kd.rgb[c] + ks.rgb[c] > 1.0 + 1e-6) {
+            self.warn(&format!("{}: phong with diffuse + specular reflectance > 1 does not conserve energy", props.loc));
+        }
+        let mut m = Material { kind: BSDF_PHONG, eta: exponent, ..Default::default() };
+        set_reflectance(&mut m, kd);
+        set_specular(&mut m, ks);
+        Ok(m)
+    }
+
+    fn twosided(&mut self, props: &Props) -> Result<Material> {
+        let nested = props.nested("bsdf");
+        let refs = props.nested("ref");
+        let inner_entry = match (nested.first(), refs.first()) {
+            (Some(e), _) | (None, Some(e)) => *e,
+            (None, None) => bail!("{}: twosided needs a nested <bsdf>", props.loc),
+        };
+        if nested.len() + refs.len() > 1 {
+            self.warn(&format!("{}: twosided with two different BSDFs is not supported; using the first on both sides", props.loc));
+        }
+        let inner_props = self.props(&props.path, props.doc, inner_entry.node)?;
+        let index = self.load_bsdf(&inner_props)?;
+        let mut m = self.materials[index as usize];
+        if matches!(m.kind, BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC | BSDF_ROUGH_DIELECTRIC) {
+            bail!("{}: twosided cannot wrap a transmissive BSDF ('{}')", props.loc, inner_props.kind);
+        }
+        m.flags |= MATERIAL_TWO_SIDED;
+        Ok(m)
+    }
+
+    /// `distribution`, `alpha` / `alpha_u`, `alpha_v` of the rough models (Mitsuba's default: Beckmann,
+    /// α = 0.1); sets the material's roughness fields and flags.
+    fn microfacet(&mut self, props: &Props, m: &mut Material) -> Result<()> {
+        match props.string("distribution")?.as_deref() {
+            None | Some("beckmann") => m.flags |= MATERIAL_BECKMANN,
+            Some("ggx") => {}
+            Some(other) => bail!("{}: distribution must be beckmann or ggx, not '{other}'", props.loc),
+        }
+        let alpha = props.float("alpha", 0.1)?;
+        let alpha_u = props.float("alpha_u", alpha)?;
+        let alpha_v = props.float("alpha_v", alpha)?;
+        for (name, a) in [("alpha_u", alpha_u), ("alpha_v", alpha_v)] {
+            if !(0.0..=10.0).contains(&a) {
+                bail!("{}: {name} must be in [0, 10], got {a}", props.loc);
+            }
+        }
+        if !props.boolean("sample_visible", true)? {
+            self.warn(&format!("{}: sample_visible=false is not supported; caustic always samples visible normals (same image, less noise)", props.loc));
+        }
+        m.alpha_u = alpha_u.max(MIN_ALPHA);
+        m.alpha_v = alpha_v.max(MIN_ALPHA);
+        Ok(())
+    }
+
+    fn conductor(&mut self, props: &Props) -> Result<Material> {
+        let rough = props.kind == "roughconductor";
+        let mut m = Material { kind: if rough { BSDF_ROUGH_CONDUCTOR } else { BSDF_CONDUCTOR }, ..Default::default() };
+        if rough {
+            self.microfacet(props, &mut m)?;
+        }
+        let has_explicit = props.entries.iter().any(|e| matches!(e.name.as_deref(), Some("eta") | Some("k")));
+        let (eta, k) = match props.string("material")? {
+            Some(name) if has_explicit => bail!("{}: give either 'material' ({name}) or 'eta'/'k', not both", props.loc),
+            None if has_explicit => (props.color("eta", SpectrumUse::Unbounded, [0.0; 3])?, props.color("k", SpectrumUse::Unbounded, [1.0; 3])?),
+            name => {
+                let name = name.unwrap_or_else(|| "none".to_string());
+                let dirs = ior::with_ancestors(&self.search_paths);
+                ior::conductor_eta_k(&name, &dirs).map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?
+            }
+        };
+        m.conductor_eta = rgba(eta);
+        m.conductor_k = rgba(k);
+        set_specular(&mut m, self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?);
+        Ok(m)
+    }
+
+    /// An `int_ior` / `ext_ior` property (a `<float>` or a named material), range-checked.
+    fn ior(&self, props: &Props, name: &str, default: &str) -> Result<f32> {
+        let value = ior::ior_property(props, name, default)?;
+        if !(value > 0.0 && value < 100.0) {
+            bail!("{}: {name} must be in (0, 100), got {value}", props.loc);
+        }
+        Ok(value)
+    }
+
+    fn relative_ior(&self, props: &Props, int_default: &str) -> Result<f32> {
+        let int_ior = self.ior(props, "int_ior", int_default)?;
+        let ext_ior = self.ior(props, "ext_ior", "air")?;
+        Ok(int_ior / ext_ior)
+    }
+
+    fn dielectric(&mut self, props: &Props) -> Result<Material> {
+        let kind = match props.kind.as_str() {
+            "dielectric" => BSDF_DIELECTRIC,
+            "thindielectric" => BSDF_THIN_DIELECTRIC,
+            _ => BSDF_ROUGH_DIELECTRIC,
+        };
+        let mut m = Material { kind, eta: self.relative_ior(props, "bk7")?, ..Default::default() };
+        if kind == BSDF_ROUGH_DIELECTRIC {
+            self.microfacet(props, &mut m)?;
+        }
+        set_specular(&mut m, self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?);
+        m.specular_transmittance = rgba(props.color("specular_transmittance", SpectrumUse::Reflectance, [1.0; 3])?);
+        Ok(m)
+    }
+
+    fn plastic(&mut self, props: &Props) -> Result<Material> {
+        let rough = props.kind == "roughplastic";
+        let mut m = Material { kind: if rough { BSDF_ROUGH_PLASTIC } else { BSDF_PLASTIC }, eta: self.relative_ior(props, "polypropylene")?, ..Default::default() };
+        if rough {
+            self.microfacet(props, &mut m)?;
+        }
+        set_reflectance(&mut m, self.color_param(props, "diffuse_reflectance", SpectrumUse::Reflectance, [0.5; 3])?);
+        set_specular(&mut m, self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?);
+        if props.boolean("nonlinear", false)? {
+            m.flags |= MATERIAL_NONLINEAR;
+        }
+        Ok(m)
     }
 }

@@ -1,19 +1,84 @@
-//! Emitter plugins: `area` (attached to a shape).
+//! Emitter plugins: `area` (attached to a shape), `point`, `spot`, `directional`, `constant` and
+//! `envmap` (at most one environment emitter per scene, as in Mitsuba).
 use super::props::Props;
 use super::spectrum::SpectrumUse;
 use super::Loader;
-use anyhow::Result;
+use crate::scene::{Emitter, SceneTexture};
+use anyhow::{bail, Result};
+use caustic_kernel::scene::{Texture, TEXTURE_BITMAP};
+use glam::{Mat3, Vec3};
 
 impl Loader {
     /// The radiance of an `<emitter>` nested in a shape, or `None` (with a warning) for other kinds.
     pub(crate) fn load_shape_emitter(&mut self, props: &Props) -> Result<Option<[f32; 3]>> {
         if props.kind != "area" {
-            self.warn(&format!("{}: emitter type '{}' is not supported yet; ignored", props.loc, props.kind));
+            self.warn(&format!("{}: emitter type '{}' cannot be attached to a shape; ignored", props.loc, props.kind));
             props.mark_all_used();
             return Ok(None);
         }
         let radiance = props.color("radiance", SpectrumUse::Emission, [1.0; 3])?;
         self.warn_unused(props);
         Ok(Some(radiance))
+    }
+
+    /// A top-level `<emitter>`.
+    pub(crate) fn load_emitter(&mut self, props: &Props) -> Result<()> {
+        let to_world = props.transform("to_world")?;
+        let emitter = match props.kind.as_str() {
+            "point" => {
+                let position = props.point("position", to_world.w_axis.truncate())?;
+                Emitter::Point { position, intensity: props.color("intensity", SpectrumUse::Emission, [1.0; 3])? }
+            }
+            "spot" => {
+                let intensity = props.color("intensity", SpectrumUse::Emission, [1.0; 3])?;
+                let cutoff_angle = props.float("cutoff_angle", 20.0)?;
+                let beam_width = props.float("beam_width", cutoff_angle * 0.75)?;
+                if !(cutoff_angle > 0.0 && cutoff_angle <= 180.0 && beam_width >= 0.0) {
+                    bail!("{}: spot needs 0 < cutoff_angle ≤ 180 and beam_width ≥ 0 (degrees)", props.loc);
+                }
+                Emitter::Spot { to_world, intensity, cutoff_angle, beam_width }
+            }
+            "directional" => {
+                let direction = props.point("direction", to_world.transform_vector3(Vec3::Z))?;
+                if direction.length_squared() == 0.0 {
+                    bail!("{}: directional emitter needs a non-zero direction", props.loc);
+                }
+                Emitter::Directional { direction, irradiance: props.color("irradiance", SpectrumUse::Emission, [1.0; 3])? }
+            }
+            "constant" => Emitter::Constant { radiance: props.color("radiance", SpectrumUse::Emission, [1.0; 3])? },
+            "envmap" => self.envmap(props, Mat3::from_mat4(to_world))?,
+            "area" => bail!("{}: an area emitter must be nested in a <shape>", props.loc),
+            other => {
+                self.warn(&format!("{}: emitter type '{other}' is not supported yet; ignored", props.loc));
+                props.mark_all_used();
+                return Ok(());
+            }
+        };
+        if matches!(emitter, Emitter::Constant { .. } | Emitter::Envmap { .. }) && self.emitters.iter().any(|e| matches!(e, Emitter::Constant { .. } | Emitter::Envmap { .. })) {
+            bail!("{}: only one environment emitter (constant or envmap) is allowed per scene", props.loc);
+        }
+        self.warn_unused(props);
+        self.emitters.push(emitter);
+        Ok(())
+    }
+
+    fn envmap(&mut self, props: &Props, to_world: Mat3) -> Result<Emitter> {
+        let Some(name) = props.string("filename")? else { bail!("{}: envmap needs a 'filename'", props.loc) };
+        let path = self.resolve(&name, &props.loc)?;
+        let image = crate::image_io::load_linear_rgb(&path, false).map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?;
+        if image.height < 2 {
+            bail!("{}: envmap {} must be at least 2 pixels high", props.loc, path.display());
+        }
+        let scale = props.float("scale", 1.0)?;
+        if scale < 0.0 {
+            bail!("{}: envmap scale must be non-negative", props.loc);
+        }
+        if (to_world.transpose() * to_world - Mat3::IDENTITY).to_cols_array().iter().any(|v| v.abs() > 1e-3) {
+            self.warn(&format!("{}: envmap to_world is not a rotation; directions are mapped by its inverse", props.loc));
+        }
+        props.boolean("mis_compensation", false)?;
+        let record = Texture { kind: TEXTURE_BITMAP, width: image.width, height: image.height, ..Default::default() };
+        self.textures.push(SceneTexture { record, texels: image.rgb });
+        Ok(Emitter::Envmap { texture: self.textures.len() as u32 - 1, to_world, scale })
     }
 }

@@ -8,10 +8,12 @@ mod bsdfs;
 pub mod cie_tables;
 mod emitters;
 mod integrators;
+pub mod ior;
 mod props;
 mod sensors;
 mod shapes;
 pub mod spectrum;
+mod textures;
 mod transform;
 
 use crate::scene::{Integrator, Scene};
@@ -31,6 +33,10 @@ pub(crate) struct Loader {
     named_bsdfs: HashMap<String, u32>,
     materials: Vec<Material>,
     shapes: Vec<crate::scene::Shape>,
+    emitters: Vec<crate::scene::Emitter>,
+    textures: Vec<crate::scene::SceneTexture>,
+    /// Named textures (`id`), as indices into `textures`.
+    named_textures: HashMap<String, u32>,
     sensor: Option<crate::scene::Sensor>,
     integrator: Option<Integrator>,
     warnings: Vec<String>,
@@ -45,6 +51,9 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
         named_bsdfs: HashMap::new(),
         materials: Vec::new(),
         shapes: Vec::new(),
+        emitters: Vec::new(),
+        textures: Vec::new(),
+        named_textures: HashMap::new(),
         sensor: None,
         integrator: None,
         warnings: Vec::new(),
@@ -63,6 +72,8 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
         integrator: loader.integrator.take().unwrap_or_default(),
         materials: loader.materials,
         shapes: loader.shapes,
+        emitters: loader.emitters,
+        textures: loader.textures,
         warnings: loader.warnings,
     })
 }
@@ -124,6 +135,17 @@ impl Loader {
                 "shape" => {
                     let props = self.props(path, doc, node)?;
                     self.load_shape(&props)?;
+                }
+                "texture" => {
+                    let props = self.props(path, doc, node)?;
+                    let index = self.load_texture(&props)?;
+                    if let Some(id) = node.attribute("id") {
+                        self.named_textures.insert(id.to_string(), index);
+                    }
+                }
+                "emitter" => {
+                    let props = self.props(path, doc, node)?;
+                    self.load_emitter(&props)?;
                 }
                 "sensor" => {
                     let props = self.props(path, doc, node)?;

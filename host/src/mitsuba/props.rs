@@ -184,6 +184,11 @@ impl<'a, 'input> Props<'a, 'input> {
         self.id.clone().with_context(|| format!("{}: <{}> needs an 'id'", self.loc, self.tag))
     }
 
+    /// Marks the entry named `name` as read (for values a plugin consumes without the typed getters).
+    pub fn mark_used(&self, name: &str) {
+        self.find(name);
+    }
+
     /// For plugins that are skipped whole: their parameters need no separate warnings.
     pub fn mark_all_used(&self) {
         self.used.borrow_mut().iter_mut().for_each(|u| *u = true);

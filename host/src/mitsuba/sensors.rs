@@ -2,19 +2,21 @@
 //! `gaussian`) and sampler (`independent`, `stratified`; others map to the nearest with a warning).
 use super::props::Props;
 use super::Loader;
-use crate::scene::{Filter, SamplerKind, Sensor};
+use crate::scene::{Crop, Filter, Projection, SamplerKind, Sensor};
 use anyhow::{bail, Result};
 use glam::Mat4;
 
 /// Mitsuba's defaults: 768×576, 39.3077° horizontal fov, Gaussian filter, 4 spp.
 pub fn default_sensor() -> Sensor {
     Sensor {
+        projection: Projection::Perspective,
         to_world: Mat4::IDENTITY,
         fov_x: 39.3077,
         near_clip: 0.01,
         far_clip: 10_000.0,
         width: 768,
         height: 576,
+        crop: None,
         filter: Filter::Gaussian { stddev: 0.5, radius: 2.0 },
         sampler: SamplerKind::Independent,
         spp: 4,
@@ -45,7 +47,7 @@ fn horizontal_fov(fov: f32, axis: &str, width: u32, height: u32, props: &Props) 
 impl Loader {
     pub(crate) fn load_sensor(&mut self, props: &Props) -> Result<Sensor> {
         let mut sensor = default_sensor();
-        if props.kind != "perspective" {
+        if !matches!(props.kind.as_str(), "perspective" | "thinlens" | "orthographic") {
             self.warn(&format!("{}: sensor type '{}' is not supported yet; using perspective", props.loc, props.kind));
         }
         for e in props.nested("film") {
@@ -56,19 +58,41 @@ impl Loader {
             let sampler = self.props(&props.path, props.doc, e.node)?;
             self.load_sampler(&sampler, &mut sensor)?;
         }
-        let fov = props.float("fov", 39.3077)?;
-        if !(fov > 0.0 && fov < 180.0) {
-            bail!("{}: fov must be in (0, 180) degrees, got {fov}", props.loc);
+        if props.kind != "orthographic" {
+            let fov = props.float("fov", 39.3077)?;
+            if !(fov > 0.0 && fov < 180.0) {
+                bail!("{}: fov must be in (0, 180) degrees, got {fov}", props.loc);
+            }
+            let axis = props.string("fov_axis")?.unwrap_or_else(|| "x".to_string());
+            sensor.fov_x = horizontal_fov(fov, &axis, sensor.width, sensor.height, props)?;
         }
-        let axis = props.string("fov_axis")?.unwrap_or_else(|| "x".to_string());
-        sensor.fov_x = horizontal_fov(fov, &axis, sensor.width, sensor.height, props)?;
         sensor.near_clip = props.float("near_clip", 0.01)?;
         sensor.far_clip = props.float("far_clip", 10_000.0)?;
         if !(sensor.near_clip > 0.0 && sensor.far_clip > sensor.near_clip) {
             bail!("{}: need 0 < near_clip < far_clip", props.loc);
         }
-        props.float("focus_distance", 0.0)?; // meaningful only for thin-lens cameras
         let to_world = props.transform("to_world")?;
+        sensor.projection = match props.kind.as_str() {
+            "thinlens" => {
+                let aperture_radius = props.float("aperture_radius", 0.0)?;
+                let focus_distance = props.float("focus_distance", 0.0)?;
+                if !(aperture_radius >= 0.0 && focus_distance > 0.0) {
+                    bail!("{}: thinlens needs aperture_radius ≥ 0 and focus_distance > 0", props.loc);
+                }
+                Projection::ThinLens { aperture_radius, focus_distance }
+            }
+            "orthographic" => {
+                // The view volume spans [-1, 1] along local x (and the image's aspect along y) before
+                // to_world's scale.
+                let aspect = sensor.width as f32 / sensor.height as f32;
+                let half_width = to_world.x_axis.truncate().length();
+                Projection::Orthographic { half_width, half_height: to_world.y_axis.truncate().length() / aspect }
+            }
+            _ => {
+                props.float("focus_distance", 0.0)?; // meaningful only for thin-lens cameras
+                Projection::Perspective
+            }
+        };
         // Mitsuba rejects scaled camera transforms; normalising the axes gives the same rays.
         sensor.to_world = Mat4::from_cols(
             to_world.x_axis.truncate().normalize().extend(0.0),
@@ -91,6 +115,7 @@ impl Loader {
         }
         sensor.width = width as u32;
         sensor.height = height as u32;
+        sensor.crop = self.load_crop(props, sensor.width, sensor.height)?;
         for e in props.nested("rfilter") {
             let f = self.props(&props.path, props.doc, e.node)?;
             sensor.filter = match f.kind.as_str() {
@@ -116,6 +141,19 @@ impl Loader {
         }
         self.warn_unused(props);
         Ok(())
+    }
+
+    /// Mitsuba's `crop_offset_x/y`, `crop_width/height`: render only that window of the image.
+    fn load_crop(&mut self, props: &Props, width: u32, height: u32) -> Result<Option<Crop>> {
+        let x = props.integer("crop_offset_x", 0)?;
+        let y = props.integer("crop_offset_y", 0)?;
+        let w = props.integer("crop_width", width as i64)?;
+        let h = props.integer("crop_height", height as i64)?;
+        if x < 0 || y < 0 || w < 1 || h < 1 || x + w > width as i64 || y + h > height as i64 {
+            bail!("{}: the crop window ({x}, {y}) + {w}×{h} must lie inside the {width}×{height} film", props.loc);
+        }
+        let crop = Crop { x: x as u32, y: y as u32, width: w as u32, height: h as u32 };
+        Ok((crop != Crop { x: 0, y: 0, width, height }).then_some(crop))
     }
 
     fn load_sampler(&mut self, props: &Props, sensor: &mut Sensor) -> Result<()> {

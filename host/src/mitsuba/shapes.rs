@@ -1,41 +1,15 @@
-//! Shape plugins: `obj`, `sphere` (analytic), `rectangle`, `cube`; each with `to_world`,
+//! Shape plugins: `obj`, `ply`, `serialized` (meshes from files), `rectangle`, `cube`, `disk`,
+//! `cylinder` (tessellated; see `mesh::primitives`) and `sphere` (analytic); each with `to_world`,
 //! `flip_normals`, `face_normals`, a nested or referenced BSDF and an optional area emitter.
+//! `flip_normals` travels to the kernel as a flag of the shape, which turns both the geometric and
+//! the shading normal around, as Mitsuba does.
 use super::props::Props;
 use super::Loader;
-use crate::mesh::{self, Mesh};
+use crate::mesh::{self, primitives, Mesh};
 use crate::scene::{Geometry, Shape};
-use anyhow::{bail, Result};
+use anyhow::{anyhow, bail, Result};
 use caustic_kernel::scene::{Material, BSDF_DIFFUSE};
-use glam::{Mat4, Vec3};
-
-/// Mitsuba's `rectangle`: [-1, 1]² in the z = 0 plane, facing +z.
-fn rectangle() -> Mesh {
-    Mesh {
-        positions: vec![Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, -1.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(-1.0, 1.0, 0.0)],
-        indices: vec![0, 1, 2, 2, 3, 0],
-        corner_normals: None,
-        triangle_materials: vec![None; 2],
-    }
-}
-
-/// Mitsuba's `cube`: [-1, 1]³ with outward faces.
-fn cube() -> Mesh {
-    let mut m = Mesh::default();
-    for axis in 0..3 {
-        for sign in [-1.0f32, 1.0] {
-            let n = Vec3::from_array(std::array::from_fn(|i| if i == axis { sign } else { 0.0 }));
-            let u = Vec3::from_array(std::array::from_fn(|i| if i == (axis + 1) % 3 { 1.0 } else { 0.0 }));
-            let v = n.cross(u);
-            let base = m.positions.len() as u32;
-            for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-                m.positions.push(n + u * a + v * b);
-            }
-            m.indices.extend([base, base + 1, base + 2, base + 2, base + 3, base]);
-        }
-    }
-    m.triangle_materials = vec![None; 12];
-    m
-}
+use glam::{Mat3, Mat4, Vec3};
 
 impl Loader {
     pub(crate) fn load_shape(&mut self, props: &Props) -> Result<()> {
@@ -43,14 +17,19 @@ impl Loader {
         let flip_normals = props.boolean("flip_normals", false)?;
         let face_normals = props.boolean("face_normals", false)?;
         let geometry = match props.kind.as_str() {
-            "obj" => {
-                let Some(name) = props.string("filename")? else { bail!("{}: obj shape needs a 'filename'", props.loc) };
-                let path = self.resolve(&name, &props.loc)?;
-                let (mesh, _) = mesh::load_obj(&path, false).map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?;
-                mesh_geometry(mesh, to_world, face_normals)
+            "obj" | "ply" | "serialized" => mesh_geometry(self.load_mesh_file(props)?, to_world, face_normals),
+            // Mitsuba's rectangle and cube are flat, whatever face_normals says.
+            "rectangle" => flat_geometry(primitives::rectangle(), to_world),
+            "cube" => flat_geometry(primitives::cube(), to_world),
+            "disk" => tessellated_geometry(primitives::disk(), to_world),
+            "cylinder" => {
+                let radius = props.float("radius", 1.0)?;
+                let (p0, p1) = (props.point("p0", Vec3::ZERO)?, props.point("p1", Vec3::Z)?);
+                let Some(placement) = primitives::cylinder_placement(radius, p0, p1) else {
+                    bail!("{}: a cylinder needs distinct end points p0 and p1", props.loc);
+                };
+                tessellated_geometry(primitives::unit_cylinder(), to_world * placement)
             }
-            "rectangle" => mesh_geometry(rectangle(), to_world, true),
-            "cube" => mesh_geometry(cube(), to_world, true),
             "sphere" => {
                 let center = props.point("center", Vec3::ZERO)?;
                 let radius = props.float("radius", 1.0)?;
@@ -90,6 +69,33 @@ impl Loader {
         Ok(())
     }
 
+    /// The mesh of an `obj`, `ply` or `serialized` shape in object space, with Mitsuba's
+    /// `flip_tex_coords` (default true for OBJ, false for PLY; serialized files have no such option).
+    fn load_mesh_file(&self, props: &Props) -> Result<Mesh> {
+        let Some(name) = props.string("filename")? else { bail!("{}: a {} shape needs a 'filename'", props.loc, props.kind) };
+        let path = self.resolve(&name, &props.loc)?;
+        // load_obj has already flipped v, as Mitsuba's default for OBJ asks.
+        let flip_tex_coords = match props.kind.as_str() {
+            "obj" => !props.boolean("flip_tex_coords", true)?,
+            "ply" => props.boolean("flip_tex_coords", false)?,
+            _ => false,
+        };
+        let loaded = match props.kind.as_str() {
+            "obj" => mesh::load_obj(&path, false).map(|(mesh, _)| mesh),
+            "ply" => mesh::load_ply(&path),
+            _ => {
+                let index = props.integer("shape_index", 0)?;
+                let Ok(index) = u32::try_from(index) else { bail!("{}: shape_index must be a non-negative integer, not {index}", props.loc) };
+                mesh::load_serialized(&path, index)
+            }
+        };
+        let mut mesh = loaded.map_err(|e| anyhow!("{}: {e:#}", props.loc))?;
+        if flip_tex_coords {
+            mesh.flip_tex_coords();
+        }
+        Ok(mesh)
+    }
+
     /// The shape's nested `<bsdf>` or `<ref>`; Mitsuba's default is a diffuse BSDF.
     fn shape_material(&mut self, props: &Props) -> Result<u32> {
         let mut entries = props.nested("bsdf");
@@ -100,19 +106,40 @@ impl Loader {
                 self.load_bsdf(&p)
             }
             None => {
-                self.materials.push(Material { kind: BSDF_DIFFUSE, diffuse: [0.5, 0.5, 0.5, 0.0], ..Default::default() });
+                self.materials.push(Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() });
                 Ok(self.materials.len() as u32 - 1)
             }
         }
     }
 }
 
+/// A mesh read from a file. Mitsuba applies `to_world` before it generates missing normals (which
+/// matters under non-uniform scaling), so this transforms first.
 fn mesh_geometry(mut mesh: Mesh, to_world: Mat4, face_normals: bool) -> Geometry {
+    mesh.transform(to_world);
     if face_normals {
-        mesh.corner_normals = None;
+        mesh.normals = None;
     } else {
         mesh.ensure_normals();
     }
-    let (triangles, normals) = mesh.transformed(to_world);
-    Geometry::Triangles { triangles, normals }
+    triangle_geometry(mesh.triangles())
+}
+
+fn flat_geometry(mesh: Mesh, to_world: Mat4) -> Geometry {
+    triangle_geometry(mesh.transformed(to_world))
+}
+
+/// A tessellated analytic shape. Mitsuba's disk and cylinder take their normal from the local one
+/// through the inverse transpose of `to_world`, whatever the handedness of `to_world`; a mirroring
+/// transform would turn the tessellation's winding (and so its geometric normal) inside out, so the
+/// winding is reversed to match.
+fn tessellated_geometry(mut mesh: Mesh, to_world: Mat4) -> Geometry {
+    if false && Mat3::from_mat4(to_world).determinant() < 0.0 {
+        mesh.reverse_winding();
+    }
+    triangle_geometry(mesh.transformed(to_world))
+}
+
+fn triangle_geometry(t: mesh::Triangles) -> Geometry {
+    Geometry::Triangles { triangles: t.triangles, normals: t.normals, uvs: t.uvs }
 }

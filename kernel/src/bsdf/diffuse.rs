@@ -1,8 +1,7 @@
 //! Lambertian reflection (Mitsuba `diffuse`).
 use super::{same_hemisphere_above, BsdfSample};
-use crate::math::{vec3, INV_PI};
+use crate::math::INV_PI;
 use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use crate::scene::Material;
 use crate::spectrum::Rgb;
 use crate::glam::{Vec2, Vec3};
 
@@ -12,10 +11,6 @@ pub struct Diffuse {
 }
 
 impl Diffuse {
-    pub fn from_material(m: &Material) -> Self {
-        Diffuse { reflectance: vec3([m.diffuse[0], m.diffuse[1], m.diffuse[2]]) }
-    }
-
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
         if !same_hemisphere_above(wo, wi) {
             return Rgb::ZERO;
@@ -37,6 +32,6 @@ impl Diffuse {
             return BsdfSample::invalid();
         }
         // f·cos/pdf = (ρ/π)·cos / (cos/π) = ρ exactly: no division, no noise from it.
-        BsdfSample { wi, weight: self.reflectance, pdf, eta: 1.0 }
+        BsdfSample { wi, weight: self.reflectance, pdf, eta: 1.0, delta: false }
     }
 }

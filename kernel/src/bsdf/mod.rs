@@ -3,8 +3,18 @@
 //! `|cos θi|` so that sampling weights are `eval / pdf`.
 pub mod diffuse;
 pub mod phong;
+pub mod conductor;
+pub mod dielectric;
+pub mod fresnel;
+pub mod microfacet;
+pub mod plastic;
+pub mod rough_conductor;
+pub mod rough_dielectric;
+pub mod rough_plastic;
+pub mod thin_dielectric;
 
-use crate::scene::{Material, BSDF_PHONG};
+use crate::scene::{Material, Texture, BSDF_CONDUCTOR, BSDF_DIELECTRIC, BSDF_PHONG, BSDF_THIN_DIELECTRIC, MATERIAL_TWO_SIDED};
+use crate::texture;
 use crate::spectrum::Rgb;
 use crate::glam::{Vec2, Vec3};
 
@@ -17,53 +27,96 @@ pub struct BsdfSample {
     /// Relative index of refraction across the sampled interface (1 for reflection); Russian
     /// roulette divides it out as Mitsuba does.
     pub eta: f32,
+    /// The sampled lobe is a Dirac delta (mirror or refraction): its `pdf` is a discrete
+    /// probability, emitters it hits are not weighted against light sampling.
+    pub delta: bool,
 }
 
 impl BsdfSample {
     pub fn invalid() -> Self {
-        BsdfSample { wi: Vec3::Z, weight: Rgb::ZERO, pdf: 0.0, eta: 1.0 }
+        BsdfSample { wi: Vec3::Z, weight: Rgb::ZERO, pdf: 0.0, eta: 1.0, delta: false }
     }
 }
 
-/// A surface's BSDF: the material record, dispatched on its `kind` with `match`. (The models are built
-/// per call from the record rather than held in a data-carrying enum: rust-gpu 0.11 cannot cast between
-/// variants of different layouts.)
+/// A surface's BSDF: the material record with its textures evaluated at the hit, dispatched on the
+/// record's `kind` with `match`. (The models are built per call from the record rather than held in a
+/// data-carrying enum: rust-gpu 0.11 cannot cast between variants of different layouts.)
 #[derive(Clone, Copy)]
-pub struct Bsdf {
+pub struct Bsdf<'a> {
     pub material: Material,
+    /// `reflectance` and `specular_reflectance` after texture lookup.
+    pub reflectance: Rgb,
+    pub specular: Rgb,
+    /// Precomputed tables some models read (rough plastic).
+    pub tables: &'a [f32],
 }
 
-impl Bsdf {
-    pub fn from_material(m: &Material) -> Bsdf {
-        Bsdf { material: *m }
+impl<'a> Bsdf<'a> {
+    /// The BSDF of `m` at texture coordinates `uv`.
+    pub fn new(m: &Material, textures: &[Texture], tables: &'a [f32], uv: Vec2) -> Bsdf<'a> {
+        let reflectance = texture::eval_or(textures, tables, m.reflectance_texture, vec3_of(m.reflectance), uv);
+        let specular = texture::eval_or(textures, tables, m.specular_texture, vec3_of(m.specular_reflectance), uv);
+        Bsdf { material: *m, reflectance, specular, tables }
+    }
+
+    /// A BSDF without textures (tests, tools).
+    pub fn from_material(m: &Material, tables: &'a [f32]) -> Bsdf<'a> {
+        Bsdf { material: *m, reflectance: vec3_of(m.reflectance), specular: vec3_of(m.specular_reflectance), tables }
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
         match self.material.kind {
-            BSDF_PHONG => phong::Phong::from_material(&self.material).eval(wo, wi),
-            _ => diffuse::Diffuse::from_material(&self.material).eval(wo, wi),
+            BSDF_PHONG => self.phong().eval(wo, wi),
+            _ => self.diffuse().eval(wo, wi),
         }
     }
 
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
         match self.material.kind {
-            BSDF_PHONG => phong::Phong::from_material(&self.material).pdf(wo, wi),
-            _ => diffuse::Diffuse::from_material(&self.material).pdf(wo, wi),
+            BSDF_PHONG => self.phong().pdf(wo, wi),
+            _ => self.diffuse().pdf(wo, wi),
         }
     }
 
     /// `u_lobe` picks a lobe of multi-lobe models; `u` warps to a direction.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
         match self.material.kind {
-            BSDF_PHONG => phong::Phong::from_material(&self.material).sample(wo, u_lobe, u),
-            _ => diffuse::Diffuse::from_material(&self.material).sample(wo, u),
+            BSDF_PHONG => self.phong().sample(wo, u_lobe, u),
+            _ => self.diffuse().sample(wo, u),
         }
     }
 
     /// Whether next-event estimation can contribute (false for purely specular models).
     pub fn has_smooth_component(&self) -> bool {
-        true
+        !matches!(self.material.kind, BSDF_CONDUCTOR | BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC)
     }
+
+    /// Whether both sides of the surface reflect like the front (Mitsuba's `twosided`).
+    pub fn two_sided(&self) -> bool {
+        self.material.flags & MATERIAL_TWO_SIDED != 0
+    }
+
+    fn diffuse(&self) -> diffuse::Diffuse {
+        diffuse::Diffuse { reflectance: self.reflectance }
+    }
+
+    fn phong(&self) -> phong::Phong {
+        phong::Phong::new(self.reflectance, self.specular, self.material.eta)
+    }
+}
+
+/// Fills a material's precomputed parameters (native builds only: the host calls it while building the
+/// scene buffers) and returns the table the model reads at `Material::table`, if it needs one.
+#[cfg(not(target_arch = "spirv"))]
+pub fn precompute(m: &mut Material) -> Option<std::vec::Vec<f32>> {
+    match m.kind {
+        _ => None,
+    }
+}
+
+#[inline]
+fn vec3_of(c: [f32; 4]) -> Rgb {
+    Vec3::new(c[0], c[1], c[2])
 }
 
 /// Both directions on the outer side of the surface: the reflection models here are one-sided, as in

@@ -7,9 +7,8 @@ use spirv_std::num_traits::Float;
 
 use super::{same_hemisphere_above, BsdfSample};
 use crate::frame::Frame;
-use crate::math::{vec3, INV_2PI, INV_PI};
+use crate::math::{INV_2PI, INV_PI};
 use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use crate::scene::Material;
 use crate::spectrum::{luminance, Rgb};
 use crate::glam::{Vec2, Vec3};
 
@@ -29,12 +28,10 @@ fn reflect_local(wo: Vec3) -> Vec3 {
 }
 
 impl Phong {
-    pub fn from_material(m: &Material) -> Self {
-        let kd = vec3([m.diffuse[0], m.diffuse[1], m.diffuse[2]]);
-        let ks = vec3([m.specular[0], m.specular[1], m.specular[2]]);
+    pub fn new(kd: Rgb, ks: Rgb, exponent: f32) -> Self {
         let (ld, ls) = (luminance(kd), luminance(ks));
         let specular_prob = if ld + ls > 0.0 { ls / (ld + ls) } else { 0.0 };
-        Phong { kd, ks, exponent: m.exponent, specular_prob }
+        Phong { kd, ks, exponent, specular_prob }
     }
 
     /// `cos α` between `wi` and the mirror direction of `wo`, clamped at 0.
@@ -88,6 +85,6 @@ impl Phong {
         if pdf <= 0.0 {
             return BsdfSample::invalid();
         }
-        BsdfSample { wi, weight: self.eval(wo, wi) / pdf, pdf, eta: 1.0 }
+        BsdfSample { wi, weight: self.eval(wo, wi) / pdf, pdf, eta: 1.0, delta: false }
     }
 }

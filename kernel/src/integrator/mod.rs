@@ -4,20 +4,9 @@ pub mod path;
 use crate::film;
 use crate::math::is_finite3;
 use crate::rng::Sampler;
-use crate::scene::{BvhNode, FrameParams, Light, Material, Primitive, ShadingNormals};
+use crate::scene::FrameParams;
+pub use crate::scene::SceneView;
 use crate::spectrum::Rgb;
-
-/// The scene as the kernel sees it: borrowed buffers.
-#[derive(Clone, Copy)]
-pub struct SceneView<'a> {
-    pub nodes: &'a [BvhNode],
-    pub prims: &'a [Primitive],
-    pub normals: &'a [ShadingNormals],
-    pub materials: &'a [Material],
-    pub lights: &'a [Light],
-    /// Concatenated 1D distributions (light selection CDF, filter CDF, …), located by `FrameParams`.
-    pub tables: &'a [f32],
-}
 
 /// Floats per pixel in the accumulation buffer: RGB sum, sample count, RGB sum of squares, spare.
 pub const ACCUM_STRIDE: usize = 8;
@@ -42,7 +31,8 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
         let sample_index = params.sample_base + s;
         let mut sampler = Sampler::new(params.seed, pixel, sample_index);
         let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
-        let ray = params.camera.generate_ray(film_pos);
+        let u_lens = sampler.next_2d();
+        let ray = params.camera.generate_ray(film_pos, u_lens);
         let l = path::li(scene, params, ray, &mut sampler);
         if is_finite3(l) {
             sums.sum += l;

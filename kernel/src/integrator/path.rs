@@ -1,16 +1,16 @@
 //! Unidirectional path tracing with next-event estimation, combined with BSDF sampling by the power
 //! heuristic; Mitsuba's `path` semantics for `max_depth`, `rr_depth` and `hide_emitters`.
-use super::SceneView;
 use crate::bsdf::Bsdf;
 use crate::bvh::Accel;
 use crate::camera::Ray;
 use crate::frame::Frame;
-use crate::light;
+use crate::glam::{Vec2, Vec3};
+use crate::light::{self, infinite};
 use crate::math::max_component;
 use crate::rng::Sampler;
 use crate::sampling::power_heuristic;
-use crate::scene::{FrameParams, NONE};
-use crate::shape::{offset_origin, surface_point};
+use crate::scene::{FrameParams, SceneView, NONE};
+use crate::shape::{offset_origin, surface_point, SurfacePoint};
 use crate::spectrum::Rgb;
 
 /// Random dimensions: the camera uses the first few; bounce `k` starts at a fixed offset so that all
@@ -21,6 +21,16 @@ pub const DIMS_PER_BOUNCE: u32 = 8;
 /// Shadow rays stop this fraction short of the light so that the emitter itself does not occlude.
 const SHADOW_EPSILON: f32 = 1.0e-4;
 
+/// Where the path came from: what weighting an emitter it hits needs.
+#[derive(Clone, Copy)]
+struct PreviousVertex {
+    p: Vec3,
+    /// Solid-angle density of the BSDF sample that left it.
+    pdf: f32,
+    /// The camera, or a Dirac-delta BSDF lobe: emitters hit are not weighted against light sampling.
+    delta: bool,
+}
+
 /// Radiance arriving along `ray`.
 pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mut Sampler) -> Rgb {
     let accel = Accel { nodes: scene.nodes, prims: scene.prims };
@@ -29,28 +39,27 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     let mut result = Rgb::ZERO;
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
-    // The previous scattering vertex, for weighting emitters hit by BSDF sampling.
-    let mut prev_p = ray.origin;
-    let mut prev_pdf = 0.0f32;
-    let mut prev_delta = true;
+    let mut prev = PreviousVertex { p: ray.origin, pdf: 0.0, delta: true };
 
     loop {
         sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
+        let visible_emitter = !(depth == 0 && params.hide_emitters != 0);
         let hit = match accel.trace(&ray, false) {
             Some(h) => h,
-            None => break,
+            None => {
+                if visible_emitter {
+                    result += throughput * environment(scene, params, ray.dir, &prev);
+                }
+                break;
+            }
         };
         let prim = scene.prims[hit.prim as usize];
-        let sp = surface_point(&prim, scene.normals, &hit, &ray);
+        let sp = surface_point(&prim, scene.attributes, &hit, &ray);
 
-        if prim.light != NONE && !(depth == 0 && params.hide_emitters != 0) {
+        if prim.light != NONE && visible_emitter {
             let emitter = scene.lights[prim.light as usize];
             let le = light::emitted(&emitter, sp.ns, -ray.dir);
-            let weight = if prev_delta {
-                1.0
-            } else {
-                power_heuristic(prev_pdf, light::pdf(&emitter, &prim, prev_p, sp.p, sp.ng))
-            };
+            let weight = if prev.delta { 1.0 } else { power_heuristic(prev.pdf, light::pdf(&emitter, &prim, prev.p, sp.p, sp.ng)) };
             result += throughput * le * weight;
         }
 
@@ -59,36 +68,19 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         }
 
         let material = scene.materials[prim.material as usize];
-        let bsdf = Bsdf::from_material(&material);
+        let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv);
         let (mut ns, mut ng) = (sp.ns, sp.ng);
-        if material.two_sided != 0 && ng.dot(ray.dir) > 0.0 {
+        if bsdf.two_sided() && ng.dot(ray.dir) > 0.0 {
             ns = -ns;
             ng = -ng;
         }
         let frame = Frame::from_normal(ns);
         let wo = frame.to_local(-ray.dir);
 
-        // Next-event estimation.
         let u_select = sampler.next_1d();
         let u_light = sampler.next_2d();
         if bsdf.has_smooth_component() {
-            let ls = light::sample(scene.lights, scene.prims, scene.tables, params.light_count, params.light_cdf_offset, sp.p, u_select, u_light);
-            if ls.pdf > 0.0 && max_component(ls.radiance) > 0.0 {
-                let wi = frame.to_local(ls.wi);
-                let f = bsdf.eval(wo, wi);
-                if max_component(f) > 0.0 {
-                    let shadow = Ray {
-                        origin: offset_origin(&sp, ng, ls.wi),
-                        dir: ls.wi,
-                        t_min: 0.0,
-                        t_max: ls.dist * (1.0 - SHADOW_EPSILON),
-                    };
-                    if !accel.occluded(&shadow) {
-                        let weight = power_heuristic(ls.pdf, bsdf.pdf(wo, wi));
-                        result += throughput * f * ls.radiance * (weight / ls.pdf);
-                    }
-                }
-            }
+            result += throughput * next_event(scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light);
         }
 
         // BSDF sampling.
@@ -99,16 +91,14 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
             break;
         }
         let wi = frame.to_world(bs.wi);
-        // A direction the shading normal calls "above" but the geometric normal "below" would leak
-        // light through the surface.
+        // A direction the shading normal puts on one side and the geometric normal on the other would
+        // leak light through the surface.
         if wi.dot(ng) * bs.wi.z <= 0.0 {
             break;
         }
         throughput *= bs.weight;
         eta_scale *= bs.eta * bs.eta;
-        prev_p = sp.p;
-        prev_pdf = bs.pdf;
-        prev_delta = false;
+        prev = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta };
         ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
         depth += 1;
 
@@ -125,4 +115,36 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         }
     }
     result
+}
+
+/// Light sampling at a surface point, weighted against BSDF sampling by the power heuristic (delta
+/// emitters, which BSDF sampling cannot hit, take the full weight).
+#[allow(clippy::too_many_arguments)]
+fn next_event(scene: &SceneView, params: &FrameParams, accel: &Accel, bsdf: &Bsdf, frame: &Frame, sp: &SurfacePoint, ng: Vec3, wo: Vec3, u_select: f32, u_light: Vec2) -> Rgb {
+    let ls = light::sample(scene, params, sp.p, u_select, u_light);
+    if ls.pdf <= 0.0 || max_component(ls.radiance) <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let wi = frame.to_local(ls.wi);
+    let f = bsdf.eval(wo, wi);
+    if max_component(f) <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let shadow = Ray { origin: offset_origin(sp, ng, ls.wi), dir: ls.wi, t_min: 0.0, t_max: ls.dist * (1.0 - SHADOW_EPSILON) };
+    if accel.occluded(&shadow) {
+        return Rgb::ZERO;
+    }
+    let weight = if ls.delta { 1.0 } else { power_heuristic(ls.pdf, bsdf.pdf(wo, wi)) };
+    f * ls.radiance * (weight / ls.pdf)
+}
+
+/// Radiance of the environment emitter (if any) along an escaping ray, MIS-weighted.
+fn environment(scene: &SceneView, params: &FrameParams, dir: Vec3, prev: &PreviousVertex) -> Rgb {
+    if params.env_light == NONE {
+        return Rgb::ZERO;
+    }
+    let env = scene.lights[params.env_light as usize];
+    let le = infinite::eval(&env, scene, dir);
+    let weight = if prev.delta { 1.0 } else { power_heuristic(prev.pdf, infinite::pdf(&env, scene, dir) * env.pmf) };
+    le * weight
 }

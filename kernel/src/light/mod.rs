@@ -4,34 +4,40 @@
 use spirv_std::num_traits::Float;
 
 pub mod area;
+pub mod directional;
+pub mod infinite;
+pub mod point;
 pub mod sphere;
 
+use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
 use crate::sampling::sample_cdf;
-use crate::scene::{Light, Primitive, LIGHT_SPHERE};
+use crate::scene::{FrameParams, Light, Primitive, SceneView, LIGHT_CONSTANT, LIGHT_DIRECTIONAL, LIGHT_ENVMAP, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, LIGHT_TRIANGLE};
 use crate::spectrum::Rgb;
-use crate::glam::{Vec2, Vec3};
 
 /// A direction towards a point on an emitter, with what arrives along it.
 #[derive(Clone, Copy)]
 pub struct LightSample {
     /// Unit direction from the shading point towards the emitter.
     pub wi: Vec3,
-    /// Distance to the sampled emitter point.
+    /// Distance to the sampled emitter point (beyond the scene for infinite emitters).
     pub dist: f32,
-    /// Emitted radiance towards the shading point (zero when its back faces it).
+    /// Radiance arriving at the shading point (for delta emitters: intensity / distance²).
     pub radiance: Rgb,
-    /// Solid-angle density at the shading point, including the selection probability.
+    /// Solid-angle density at the shading point, including the selection probability; for delta
+    /// emitters the selection probability alone.
     pub pdf: f32,
+    /// Point, spot and directional emitters: BSDF sampling cannot hit them, so no MIS weight.
+    pub delta: bool,
 }
 
 impl LightSample {
     pub fn none() -> Self {
-        LightSample { wi: Vec3::Z, dist: 0.0, radiance: Rgb::ZERO, pdf: 0.0 }
+        LightSample { wi: Vec3::Z, dist: 0.0, radiance: Rgb::ZERO, pdf: 0.0, delta: false }
     }
 }
 
-/// The emitter's uniform radiance.
+/// The emitter's uniform radiance (or intensity, irradiance, envmap scale).
 #[inline]
 pub fn radiance(light: &Light) -> Rgb {
     vec3([light.radiance[0], light.radiance[1], light.radiance[2]])
@@ -45,6 +51,36 @@ pub fn emitted(light: &Light, n: Vec3, w: Vec3) -> Rgb {
     } else {
         Rgb::ZERO
     }
+}
+
+/// `light.to_local` applied to a world vector.
+#[inline]
+pub(crate) fn to_local(light: &Light, v: Vec3) -> Vec3 {
+    let r = light.to_local;
+    Vec3::new(
+        r[0][0] * v.x + r[0][1] * v.y + r[0][2] * v.z,
+        r[1][0] * v.x + r[1][1] * v.y + r[1][2] * v.z,
+        r[2][0] * v.x + r[2][1] * v.y + r[2][2] * v.z,
+    )
+}
+
+/// The inverse of `to_local` (a rotation, so its transpose).
+#[inline]
+pub(crate) fn to_world(light: &Light, v: Vec3) -> Vec3 {
+    let r = light.to_local;
+    Vec3::new(
+        r[0][0] * v.x + r[1][0] * v.y + r[2][0] * v.z,
+        r[0][1] * v.x + r[1][1] * v.y + r[2][1] * v.z,
+        r[0][2] * v.x + r[1][2] * v.y + r[2][2] * v.z,
+    )
+}
+
+/// How far a shadow ray towards an infinite emitter must reach from `p`: past the scene's bounding
+/// sphere (centre and radius in `light.position`).
+#[inline]
+pub(crate) fn beyond_scene(light: &Light, p: Vec3) -> f32 {
+    let centre = vec3([light.position[0], light.position[1], light.position[2]]);
+    2.0 * light.position[3].max((p - centre).length())
 }
 
 /// Converts the density `1/area` of a point seen at squared distance `dist2` under `cos_light` into
@@ -72,7 +108,7 @@ pub(crate) fn from_area_sample(light: &Light, p: Vec3, q: Vec3, n: Vec3, area: f
     if pdf <= 0.0 {
         return LightSample::none();
     }
-    LightSample { wi, dist, radiance: emitted(light, n, -wi), pdf }
+    LightSample { wi, dist, radiance: emitted(light, n, -wi), pdf, delta: false }
 }
 
 /// Solid-angle density at `p` of uniform area sampling that produced `hit_p` (normal `hit_n`).
@@ -85,27 +121,21 @@ pub(crate) fn area_sample_pdf(area: f32, p: Vec3, hit_p: Vec3, hit_n: Vec3) -> f
     area_to_solid_angle(area, dist2, hit_n.dot(d).abs() / dist2.sqrt())
 }
 
-/// Picks one of the `count` emitters with probability proportional to its power and samples a direction towards it.
-pub fn sample(
-    lights: &[Light],
-    prims: &[Primitive],
-    tables: &[f32],
-    count: u32,
-    cdf_offset: u32,
-    p: Vec3,
-    u_select: f32,
-    u: Vec2,
-) -> LightSample {
-    if count == 0 {
+/// Picks an emitter with probability proportional to its power and samples a direction towards it.
+pub fn sample(scene: &SceneView, params: &FrameParams, p: Vec3, u_select: f32, u: Vec2) -> LightSample {
+    if params.light_count == 0 {
         return LightSample::none();
     }
-    let chosen = sample_cdf(tables, cdf_offset, count, u_select);
-    let light = lights[chosen.index as usize];
-    let prim = prims[light.prim as usize];
-    let mut s = if light.kind == LIGHT_SPHERE {
-        sphere::sample(&light, &prim, p, u)
-    } else {
-        area::sample(&light, &prim, p, u)
+    let chosen = sample_cdf(scene.tables, params.light_cdf_offset, params.light_count, u_select);
+    let light = scene.lights[chosen.index as usize];
+    let mut s = match light.kind {
+        LIGHT_TRIANGLE => area::sample(&light, &scene.prims[light.prim as usize], p, u),
+        LIGHT_SPHERE => sphere::sample(&light, &scene.prims[light.prim as usize], p, u),
+        LIGHT_POINT | LIGHT_SPOT => point::sample(&light, p),
+        LIGHT_DIRECTIONAL => directional::sample(&light, p),
+        LIGHT_CONSTANT => infinite::sample_constant(&light, p, u),
+        LIGHT_ENVMAP => infinite::sample_envmap(&light, scene, p, u),
+        _ => LightSample::none(),
     };
     s.pdf *= light.pmf;
     s

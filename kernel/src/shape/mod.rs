@@ -4,7 +4,7 @@ pub mod triangle;
 
 use crate::camera::Ray;
 use crate::math::vec3;
-use crate::scene::{Primitive, ShadingNormals, PRIM_FLAG_FLIP, PRIM_FLAG_SMOOTH, PRIM_SPHERE};
+use crate::scene::{Primitive, TriangleAttributes, PRIM_FLAG_FLIP, PRIM_FLAG_SMOOTH, PRIM_SPHERE};
 use crate::glam::{Vec2, Vec3};
 
 /// The nearest hit found so far: distance, primitive and its parametric coordinates
@@ -37,32 +37,37 @@ pub struct SurfacePoint {
     /// Size of the primitive's own coordinates (a sphere's radius, a triangle's largest vertex
     /// coordinate): the rounding error of `p` grows with it as well as with `|p|`.
     pub error_scale: f32,
+    /// Texture coordinates (Mitsuba's conventions per shape).
+    pub uv: Vec2,
 }
 
 /// Reconstructs the surface point of a hit.
-pub fn surface_point(prim: &Primitive, normals: &[ShadingNormals], hit: &Hit, ray: &Ray) -> SurfacePoint {
+pub fn surface_point(prim: &Primitive, attributes: &[TriangleAttributes], hit: &Hit, ray: &Ray) -> SurfacePoint {
     let flip = if prim.flags & PRIM_FLAG_FLIP != 0 { -1.0 } else { 1.0 };
     if prim.kind == PRIM_SPHERE {
         let centre = vec3(prim.p0);
         let p = sphere::reproject(centre, prim.p1[0], ray.origin + ray.dir * hit.t);
         let n = (p - centre).normalize() * flip;
         let error_scale = prim.p1[0];
-        return SurfacePoint { p, ng: n, ns: n, error_scale };
+        let uv = sphere::uv((p - centre) / prim.p1[0]);
+        return SurfacePoint { p, ng: n, ns: n, error_scale, uv };
     }
     let (p0, p1, p2) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
     let b0 = 1.0 - hit.uv.x - hit.uv.y;
     let p = p0 * b0 + p1 * hit.uv.x + p2 * hit.uv.y;
     let ng = (p1 - p0).cross(p2 - p0).normalize() * flip;
     let mut ns = ng;
+    let attr = attributes[hit.prim as usize];
+    let uv = Vec2::from(attr.uv0) * b0 + Vec2::from(attr.uv1) * hit.uv.x + Vec2::from(attr.uv2) * hit.uv.y;
     if prim.flags & PRIM_FLAG_SMOOTH != 0 {
-        let n = normals[hit.prim as usize];
+        let n = attr;
         let interpolated = vec3(n.n0) * b0 + vec3(n.n1) * hit.uv.x + vec3(n.n2) * hit.uv.y;
         if interpolated.length_squared() > 0.0 {
             ns = interpolated.normalize() * flip;
         }
     }
     let error_scale = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
-    SurfacePoint { p, ng, ns, error_scale }
+    SurfacePoint { p, ng, ns, error_scale, uv }
 }
 
 /// Moves a ray origin off a surface along its geometric normal, towards the side `dir` leaves by, so

@@ -47,3 +47,10 @@ pub fn reproject(centre: Vec3, radius: f32, p: Vec3) -> Vec3 {
         p
     }
 }
+
+/// Mitsuba's sphere parametrisation of a unit local position: u the azimuth about +z, v = θ / π.
+pub fn uv(local: Vec3) -> Vec2 {
+    let phi = local.y.atan2(local.x);
+    let phi = if phi < 0.0 { phi + 2.0 * crate::math::PI } else { phi };
+    Vec2::new(phi * crate::math::INV_2PI, local.z.clamp(-1.0, 1.0).acos() * crate::math::INV_PI)
+}

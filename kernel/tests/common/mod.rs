@@ -116,3 +116,114 @@ pub fn chi2_p_value(observed: &[f64], expected: &[f64]) -> f64 {
     let dist = ChiSquared::new((dof.max(2) - 1) as f64).unwrap();
     1.0 - dist.cdf(chi2)
 }
+
+/// A binning of the sphere for `chi2_grid`: bins in (cos α, φ) of a frame, with arbitrary edges in
+/// cos α (ascending, from -1 to 1) so that narrow lobes can be resolved around their axis.
+pub struct Grid {
+    pub frame: caustic_kernel::frame::Frame,
+    pub cos_edges: Vec<f64>,
+    pub phi_bins: usize,
+    /// Levels of subdivision the quadrature of each bin makes before it may stop: a lobe narrower than
+    /// a bin is then not missed by the first few nodes.
+    pub min_depth: u32,
+    /// How far above 1 the integrated pdf may come (approximate shadowing terms are allowed a little).
+    pub mass_tolerance: f64,
+}
+
+impl Grid {
+    /// The whole sphere around +z, bins uniform in cos θ and φ (as `chi2_directions`).
+    pub fn sphere() -> Grid {
+        Grid::around(Vec3::Z, 1.0)
+    }
+
+    /// Bins around `axis` with `1 - cos α = 2 (k/K)^power`: `power` > 1 crowds them near the axis.
+    pub fn around(axis: Vec3, power: f64) -> Grid {
+        let mut cos_edges: Vec<f64> = (0..=THETA_BINS).map(|k| 1.0 - 2.0 * (k as f64 / THETA_BINS as f64).powf(power)).collect();
+        cos_edges.reverse();
+        cos_edges[0] = -1.0;
+        cos_edges[THETA_BINS] = 1.0;
+        Grid { frame: caustic_kernel::frame::Frame::from_normal(axis.normalize()), cos_edges, phi_bins: PHI_BINS, min_depth: 3, mass_tolerance: 1e-3 }
+    }
+
+    fn bins(&self) -> usize {
+        (self.cos_edges.len() - 1) * self.phi_bins
+    }
+
+    fn bin_of(&self, d: Vec3) -> usize {
+        let l = self.frame.to_local(d);
+        let c = (l.z as f64).clamp(-1.0, 1.0);
+        let t = self.cos_edges.partition_point(|&e| e <= c).clamp(1, self.cos_edges.len() - 1) - 1;
+        let mut phi = (l.y as f64).atan2(l.x as f64);
+        if phi < 0.0 {
+            phi += 2.0 * std::f64::consts::PI;
+        }
+        let p = ((phi / (2.0 * std::f64::consts::PI)) * self.phi_bins as f64) as usize;
+        t * self.phi_bins + p.min(self.phi_bins - 1)
+    }
+}
+
+/// Adaptive Simpson quadrature that subdivides at least `min_depth` times before testing convergence.
+fn simpson_min_depth(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, eps: f64, min_depth: u32) -> f64 {
+    #[allow(clippy::too_many_arguments)]
+    fn recurse(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fm: f64, fb: f64, whole: f64, eps: f64, depth: u32, min_depth: u32) -> f64 {
+        let m = 0.5 * (a + b);
+        let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
+        let (flm, frm) = (f(lm), f(rm));
+        let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
+        let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
+        if depth >= 14 || (depth >= min_depth && (left + right - whole).abs() <= 15.0 * eps) {
+            return left + right + (left + right - whole) / 15.0;
+        }
+        recurse(f, a, m, fa, flm, fm, left, eps * 0.5, depth + 1, min_depth) + recurse(f, m, b, fm, frm, fb, right, eps * 0.5, depth + 1, min_depth)
+    }
+    let (fa, fm, fb) = (f(a), f(0.5 * (a + b)), f(b));
+    let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
+    recurse(f, a, b, fa, fm, fb, whole, eps, 0, min_depth)
+}
+
+/// Integral of `f` over each bin of `grid` (nested adaptive quadrature in cos α and φ).
+pub fn integrate_grid(grid: &Grid, f: &dyn Fn(Vec3) -> f64) -> Vec<f64> {
+    let mut out = vec![0.0; grid.bins()];
+    let d_phi = 2.0 * std::f64::consts::PI / grid.phi_bins as f64;
+    for t in 0..grid.cos_edges.len() - 1 {
+        let (z0, z1) = (grid.cos_edges[t], grid.cos_edges[t + 1]);
+        for j in 0..grid.phi_bins {
+            let p0 = j as f64 * d_phi;
+            let mut over_z = |z: f64| {
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let mut over_phi = |phi: f64| {
+                    let local = Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32);
+                    f(grid.frame.to_world(local))
+                };
+                simpson_min_depth(&mut over_phi, p0, p0 + d_phi, 1e-8, grid.min_depth)
+            };
+            out[t * grid.phi_bins + j] = simpson_min_depth(&mut over_z, z0, z1, 1e-7, grid.min_depth);
+        }
+    }
+    out
+}
+
+/// χ² test of `sample` against `pdf` on `grid` (see `chi2_directions`); `seed` varies the samples.
+/// Returns the p-value.
+pub fn chi2_grid(name: &str, grid: &Grid, seed: u32, mut sample: impl FnMut(f32, Vec2) -> Option<Vec3>, pdf: impl Fn(Vec3) -> f64) -> f64 {
+    let n = grid.bins();
+    let mut observed = vec![0.0f64; n + 1];
+    let mut rng = Sampler::new(0xc41, seed, name.len() as u32);
+    for _ in 0..SAMPLES {
+        let u_lobe = rng.next_1d();
+        let u = rng.next_2d();
+        match sample(u_lobe, u) {
+            Some(d) => observed[grid.bin_of(d)] += 1.0,
+            None => observed[n] += 1.0,
+        }
+    }
+    let mut exp = integrate_grid(grid, &pdf);
+    exp.push(0.0);
+    let mass: f64 = exp.iter().sum();
+    assert!(mass < 1.0 + grid.mass_tolerance, "{name}: the pdf integrates to {mass} > 1");
+    exp[n] = (1.0 - mass).max(0.0);
+    let p = chi2_p_value(&observed, &exp.iter().map(|e| e * SAMPLES as f64).collect::<Vec<_>>());
+    println!("{name}: χ² p-value {p:.4} (pdf mass {mass:.5}, rejected {})", observed[n]);
+    assert!(p > ALPHA, "{name}: samples do not follow the pdf (p = {p:.2e}, pdf mass {mass:.5}, rejected {})", observed[n]);
+    p
+}

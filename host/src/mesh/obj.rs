@@ -1,0 +1,67 @@
+//! Wavefront OBJ through `tobj`.
+use super::Mesh;
+use anyhow::{Context, Result};
+use glam::{Vec2, Vec3};
+use std::path::Path;
+
+/// Loads every object of an OBJ file into one mesh; `with_materials` also reads the MTL library.
+///
+/// Like Mitsuba's `obj` plugin, a vertex is one distinct (position, uv, normal) index triple, and
+/// polygons fan out from their first corner. The v coordinate is flipped (Mitsuba's default
+/// `flip_tex_coords = true`, which puts OBJ's bottom-left uv origin at an image's top-left);
+/// `Mesh::flip_tex_coords` undoes it. One difference: tobj welds vertices within each object or
+/// group only, so normals generated for a mesh without them do not blend across group borders.
+pub fn load_obj(path: &Path, with_materials: bool) -> Result<(Mesh, Vec<tobj::Material>)> {
+    let options = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
+    let (models, materials) = tobj::load_obj(path, &options).with_context(|| format!("cannot load OBJ mesh {}", path.display()))?;
+    let materials = if with_materials {
+        materials.unwrap_or_else(|e| {
+            eprintln!("warning: {}: material library not loaded ({e}); using defaults", path.display());
+            Vec::new()
+        })
+    } else {
+        Vec::new()
+    };
+    let any_normals = models.iter().any(|m| has_one_per_vertex(&m.mesh.normals, 3, &m.mesh));
+    let any_uvs = models.iter().any(|m| has_one_per_vertex(&m.mesh.texcoords, 2, &m.mesh));
+    let mut mesh = Mesh { normals: any_normals.then(Vec::new), uvs: any_uvs.then(Vec::new), ..Default::default() };
+    for model in &models {
+        append_model(&mut mesh, &model.mesh);
+    }
+    if mesh.indices.is_empty() {
+        anyhow::bail!("{}: the OBJ file has no faces", path.display());
+    }
+    mesh.validate(path)?;
+    mesh.flip_tex_coords();
+    Ok((mesh, materials))
+}
+
+/// Whether `values` holds one `dim`-tuple per vertex of `m` (tobj leaves it short when only some
+/// corners reference a normal or texture coordinate).
+fn has_one_per_vertex(values: &[f32], dim: usize, m: &tobj::Mesh) -> bool {
+    !values.is_empty() && values.len() / dim == m.positions.len() / 3
+}
+
+/// Appends one tobj model; attributes it lacks while others have them become zero (a zero normal
+/// shades with the face normal).
+fn append_model(mesh: &mut Mesh, m: &tobj::Mesh) {
+    let base = mesh.positions.len() as u32;
+    let vertex_count = m.positions.len() / 3;
+    mesh.positions.extend(m.positions.chunks_exact(3).map(|p| Vec3::new(p[0], p[1], p[2])));
+    mesh.indices.extend(m.indices.iter().map(|&i| base + i));
+    mesh.triangle_materials.extend(std::iter::repeat_n(m.material_id, m.indices.len() / 3));
+    if let Some(normals) = &mut mesh.normals {
+        if has_one_per_vertex(&m.normals, 3, m) {
+            normals.extend(m.normals.chunks_exact(3).map(|n| Vec3::new(n[0], n[1], n[2]).normalize_or_zero()));
+        } else {
+            normals.extend(std::iter::repeat_n(Vec3::ZERO, vertex_count));
+        }
+    }
+    if let Some(uvs) = &mut mesh.uvs {
+        if has_one_per_vertex(&m.texcoords, 2, m) {
+            uvs.extend(m.texcoords.chunks_exact(2).map(|t| Vec2::new(t[0], t[1])));
+        } else {
+            uvs.extend(std::iter::repeat_n(Vec2::ZERO, vertex_count));
+        }
+    }
+}

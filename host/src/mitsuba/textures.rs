@@ -1,0 +1,103 @@
+//! Texture plugins: `bitmap` (image files, sRGB-decoded unless `raw`, bilinear or nearest, wrap modes)
+//! and `checkerboard`; both with `to_uv`. Also colour parameters that may be a texture.
+use super::props::{Entry, Props};
+use super::spectrum::SpectrumUse;
+use super::Loader;
+use crate::scene::SceneTexture;
+use anyhow::{bail, Result};
+use caustic_kernel::scene::*;
+use glam::Mat4;
+
+/// A colour parameter: a constant, or a texture (whose mean is kept as the constant for the
+/// models that need one number, e.g. a plastic's lobe sampling weights).
+#[derive(Clone, Copy, Debug)]
+pub struct ColorParam {
+    pub rgb: [f32; 3],
+    pub texture: u32,
+}
+
+/// The rows (u, v) of a 2D affine map from a Mitsuba 4×4 `to_uv` (its x, y and translation parts).
+fn to_uv_rows(m: Mat4) -> [[f32; 4]; 2] {
+    [0, 1].map(|r| {
+        let row = m.row(r);
+        [row.x, row.y, row.w, 0.0]
+    })
+}
+
+impl Loader {
+    /// Parses a `<texture>` (or resolves a `<ref>` to one) and returns its index.
+    pub(crate) fn load_texture(&mut self, props: &Props) -> Result<u32> {
+        if props.tag == "ref" {
+            let id = props.doc_attr_id()?;
+            return match self.named_textures.get(&id) {
+                Some(&i) => Ok(i),
+                None => bail!("{}: <ref id=\"{id}\"> names no texture defined before it", props.loc),
+            };
+        }
+        let to_uv = to_uv_rows(props.transform("to_uv")?);
+        let texture = match props.kind.as_str() {
+            "checkerboard" => {
+                let color0 = props.color("color0", SpectrumUse::Reflectance, [0.4; 3])?;
+                let color1 = props.color("color1", SpectrumUse::Reflectance, [0.2; 3])?;
+                let record = Texture { kind: TEXTURE_CHECKERBOARD, to_uv, color0: rgba(color0), color1: rgba(color1), ..Default::default() };
+                SceneTexture { record, texels: Vec::new() }
+            }
+            "bitmap" => self.bitmap(props, to_uv)?,
+            other => bail!("{}: texture type '{other}' is not supported (bitmap, checkerboard are)", props.loc),
+        };
+        self.warn_unused(props);
+        self.textures.push(texture);
+        Ok(self.textures.len() as u32 - 1)
+    }
+
+    fn bitmap(&mut self, props: &Props, to_uv: [[f32; 4]; 2]) -> Result<SceneTexture> {
+        let Some(name) = props.string("filename")? else { bail!("{}: bitmap needs a 'filename'", props.loc) };
+        let path = self.resolve(&name, &props.loc)?;
+        let raw = props.boolean("raw", false)?;
+        let image = crate::image_io::load_linear_rgb(&path, raw).map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?;
+        let filter = match props.string("filter_type")?.as_deref() {
+            None | Some("bilinear") => 0,
+            Some("nearest") => TEXTURE_NEAREST,
+            Some(other) => bail!("{}: filter_type must be bilinear or nearest, not '{other}'", props.loc),
+        };
+        let wrap = match props.string("wrap_mode")?.as_deref() {
+            None | Some("repeat") => TEXTURE_WRAP_REPEAT,
+            Some("mirror") => TEXTURE_WRAP_MIRROR,
+            Some("clamp") => TEXTURE_WRAP_CLAMP,
+            Some(other) => bail!("{}: wrap_mode must be repeat, mirror or clamp, not '{other}'", props.loc),
+        };
+        props.string("format")?; // caustic always stores linear RGB
+        let record = Texture { kind: TEXTURE_BITMAP, width: image.width, height: image.height, flags: filter | (wrap << TEXTURE_WRAP_SHIFT), to_uv, ..Default::default() };
+        Ok(SceneTexture { record, texels: image.rgb })
+    }
+
+    /// A colour-valued BSDF parameter that may also be a nested `<texture>` or a `<ref>` to one.
+    pub(crate) fn color_param(&mut self, props: &Props, name: &str, usage: SpectrumUse, default: [f32; 3]) -> Result<ColorParam> {
+        let texture_entry = props.entries.iter().find(|e| e.name.as_deref() == Some(name) && matches!(e.tag.as_str(), "texture" | "ref"));
+        let Some(entry) = texture_entry else {
+            return Ok(ColorParam { rgb: props.color(name, usage, default)?, texture: NONE });
+        };
+        props.mark_used(name);
+        let index = self.texture_entry(props, entry)?;
+        Ok(ColorParam { rgb: self.texture_mean(index), texture: index })
+    }
+
+    fn texture_entry(&mut self, props: &Props, entry: &Entry) -> Result<u32> {
+        let p = self.props(&props.path, props.doc, entry.node)?;
+        self.load_texture(&p)
+    }
+
+    /// The mean colour of a texture (checkerboard: of its two colours).
+    fn texture_mean(&self, index: u32) -> [f32; 3] {
+        let t = &self.textures[index as usize];
+        if t.record.kind == TEXTURE_CHECKERBOARD {
+            return [0, 1, 2].map(|c| 0.5 * (t.record.color0[c] + t.record.color1[c]));
+        }
+        let n = (t.texels.len() / 3).max(1) as f64;
+        [0, 1, 2].map(|c| (t.texels.iter().skip(c).step_by(3).map(|&v| v as f64).sum::<f64>() / n) as f32)
+    }
+}
+
+fn rgba(c: [f32; 3]) -> [f32; 4] {
+    [c[0], c[1], c[2], 0.0]
+}

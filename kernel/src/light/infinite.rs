@@ -1,0 +1,126 @@
+//! Emitters at infinity: `constant` (uniform radiance from every direction, sampled uniformly on the
+//! sphere) and `envmap` (a lat-long image in Mitsuba's convention, importance-sampled by a
+//! piecewise-constant 2D distribution over the cells between its texels, weighted by luminance·sin θ).
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
+use super::{beyond_scene, radiance, to_local, to_world, LightSample};
+use crate::glam::{Vec2, Vec3};
+use crate::math::{INV_2PI, INV_4PI, INV_PI, PI};
+use crate::sampling::{sample_cdf, square_to_uniform_sphere};
+use crate::scene::{Light, SceneView, Texture, LIGHT_ENVMAP};
+use crate::spectrum::Rgb;
+use crate::texture::texel;
+
+/// Radiance arriving from direction `dir` (the direction a ray escaping the scene travels).
+pub fn eval(light: &Light, scene: &SceneView, dir: Vec3) -> Rgb {
+    if light.kind == LIGHT_ENVMAP {
+        let t = scene.textures[light.prim as usize];
+        envmap_radiance(&t, scene.tables, direction_to_uv(to_local(light, dir))) * radiance(light)
+    } else {
+        radiance(light)
+    }
+}
+
+/// Solid-angle density of `sample_*` producing `dir`, without the selection probability.
+pub fn pdf(light: &Light, scene: &SceneView, dir: Vec3) -> f32 {
+    if light.kind != LIGHT_ENVMAP {
+        return INV_4PI;
+    }
+    let t = scene.textures[light.prim as usize];
+    let local = to_local(light, dir);
+    let sin_theta = (local.x * local.x + local.z * local.z).sqrt();
+    if sin_theta <= 0.0 {
+        return 0.0;
+    }
+    let uv = direction_to_uv(local);
+    let (col, row) = envmap_cell(&t, uv);
+    cell_pmf(&t, scene.tables, light.table, col, row) * cell_count(&t) / (2.0 * PI * PI * sin_theta)
+}
+
+pub fn sample_constant(light: &Light, p: Vec3, u: Vec2) -> LightSample {
+    let wi = square_to_uniform_sphere(u);
+    LightSample { wi, dist: beyond_scene(light, p), radiance: radiance(light), pdf: INV_4PI, delta: false }
+}
+
+pub fn sample_envmap(light: &Light, scene: &SceneView, p: Vec3, u: Vec2) -> LightSample {
+    let t = scene.textures[light.prim as usize];
+    let (rows, cols) = (t.height - 1, t.width);
+    let row = sample_cdf(scene.tables, light.table, rows, u.y);
+    let col = sample_cdf(scene.tables, conditional_offset(&t, light.table, row.index), cols, u.x);
+    // Cell (c, r) spans u from texel centre c to c + 1 and v from texel row r to r + 1.
+    let uv = Vec2::new((col.index as f32 + 0.5 + col.remapped) / cols as f32, (row.index as f32 + row.remapped) / rows as f32);
+    let theta = uv.y * PI;
+    let phi = uv.x * 2.0 * PI;
+    let sin_theta = theta.sin();
+    if sin_theta <= 0.0 {
+        return LightSample::none();
+    }
+    let local = Vec3::new(phi.sin() * sin_theta, theta.cos(), -phi.cos() * sin_theta);
+    let pdf = cell_pmf(&t, scene.tables, light.table, col.index, row.index) * cell_count(&t) / (2.0 * PI * PI * sin_theta);
+    if pdf <= 0.0 {
+        return LightSample::none();
+    }
+    let wi = to_world(light, local);
+    let radiance = envmap_radiance(&t, scene.tables, uv) * radiance(light);
+    LightSample { wi, dist: beyond_scene(light, p), radiance, pdf, delta: false }
+}
+
+/// Mitsuba's lat-long parametrisation: u from the azimuth about +y (0 at -z), v = θ / π from +y.
+#[inline]
+fn direction_to_uv(d: Vec3) -> Vec2 {
+    Vec2::new(d.x.atan2(-d.z) * INV_2PI, d.y.clamp(-1.0, 1.0).acos() * INV_PI)
+}
+
+#[inline]
+fn cell_count(t: &Texture) -> f32 {
+    (t.width * (t.height - 1)) as f32
+}
+
+/// The cell containing `uv`: columns start at texel centres (wrapping in u), rows at texel rows.
+fn envmap_cell(t: &Texture, uv: Vec2) -> (u32, u32) {
+    let w = t.width as f32;
+    let x = uv.x * w - 0.5;
+    let x = x - (x / w).floor() * w;
+    let col = (x as u32).min(t.width - 1);
+    let row = ((uv.y * (t.height - 1) as f32) as u32).min(t.height - 2);
+    (col, row)
+}
+
+#[inline]
+fn conditional_offset(t: &Texture, table: u32, row: u32) -> u32 {
+    table + (t.height - 1) + row * t.width
+}
+
+/// Probability of the cell: the marginal row probability times the conditional column probability,
+/// read back from the inclusive CDFs.
+fn cell_pmf(t: &Texture, tables: &[f32], table: u32, col: u32, row: u32) -> f32 {
+    let row_pmf = cdf_step(tables, table, row);
+    let col_pmf = cdf_step(tables, conditional_offset(t, table, row), col);
+    row_pmf * col_pmf
+}
+
+#[inline]
+fn cdf_step(tables: &[f32], first: u32, i: u32) -> f32 {
+    let prev = if i == 0 { 0.0 } else { tables[(first + i - 1) as usize] };
+    tables[(first + i) as usize] - prev
+}
+
+/// Mitsuba's envmap lookup: bilinear between texels, whose centres sit at u = (x + ½) / width
+/// (wrapping) and v = y / (height - 1) (clamped at the poles).
+fn envmap_radiance(t: &Texture, tables: &[f32], uv: Vec2) -> Rgb {
+    let w = t.width;
+    let u = uv.x - uv.x.floor();
+    let v = uv.y.clamp(0.0, 1.0);
+    let px = u * w as f32 - 0.5;
+    let py = v * (t.height - 1) as f32;
+    let (x0f, y0f) = (px.floor(), py.floor());
+    let (fx, fy) = (px - x0f, py - y0f);
+    let xa = ((x0f as i32 + w as i32) as u32) % w;
+    let xb = (xa + 1) % w;
+    let ya = (y0f as u32).min(t.height - 1);
+    let yb = (ya + 1).min(t.height - 1);
+    let top = texel(t, tables, xa, ya) * (1.0 - fx) + texel(t, tables, xb, ya) * fx;
+    let bottom = texel(t, tables, xa, yb) * (1.0 - fx) + texel(t, tables, xb, yb) * fx;
+    top * (1.0 - fy) + bottom * fy
+}

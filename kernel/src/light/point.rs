@@ -1,0 +1,37 @@
+//! Point and spot lights (Mitsuba `point`, `spot`): radiant intensity from one point, falling off with
+//! the squared distance; the spot's intensity ramps linearly in angle from the beam width to the cutoff.
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
+use super::{radiance, to_local, LightSample};
+use crate::glam::Vec3;
+use crate::math::vec3;
+use crate::scene::{Light, LIGHT_SPOT};
+
+/// Mitsuba's spot profile for a unit direction in the light's frame (beam along +z).
+pub fn spot_falloff(light: &Light, local: Vec3) -> f32 {
+    let [cos_cutoff, cos_beam, cutoff, inv_transition] = light.params;
+    let cos_theta = local.z;
+    if cos_theta <= cos_cutoff {
+        0.0
+    } else if cos_theta >= cos_beam {
+        1.0
+    } else {
+        ((cutoff - cos_theta.clamp(-1.0, 1.0).acos()) * inv_transition).clamp(0.0, 1.0)
+    }
+}
+
+pub fn sample(light: &Light, p: Vec3) -> LightSample {
+    let d = vec3([light.position[0], light.position[1], light.position[2]]) - p;
+    let dist2 = d.length_squared();
+    if dist2 <= 0.0 {
+        return LightSample::none();
+    }
+    let dist = dist2.sqrt();
+    let wi = d / dist;
+    let falloff = if light.kind == LIGHT_SPOT { spot_falloff(light, to_local(light, -wi)) } else { 1.0 };
+    if falloff <= 0.0 {
+        return LightSample::none();
+    }
+    LightSample { wi, dist, radiance: radiance(light) * (falloff / dist2), pdf: 1.0, delta: true }
+}

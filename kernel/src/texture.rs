@@ -1,0 +1,95 @@
+//! Textures (Mitsuba `bitmap` and `checkerboard`), evaluated at a surface's texture coordinates.
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
+use crate::glam::{Vec2, Vec3};
+use crate::math::vec3;
+use crate::scene::{Texture, NONE, TEXTURE_CHECKERBOARD, TEXTURE_NEAREST, TEXTURE_WRAP_CLAMP, TEXTURE_WRAP_MIRROR, TEXTURE_WRAP_SHIFT};
+use crate::spectrum::Rgb;
+
+/// `constant` where `texture` is `NONE`, else the texture's value at `uv`.
+#[inline]
+pub fn eval_or(textures: &[Texture], tables: &[f32], texture: u32, constant: Rgb, uv: Vec2) -> Rgb {
+    if texture == NONE {
+        constant
+    } else {
+        eval(&textures[texture as usize], tables, uv)
+    }
+}
+
+pub fn eval(t: &Texture, tables: &[f32], uv: Vec2) -> Rgb {
+    let uv = apply_to_uv(t, uv);
+    if t.kind == TEXTURE_CHECKERBOARD {
+        checkerboard(t, uv)
+    } else if t.flags & TEXTURE_NEAREST != 0 {
+        bitmap_nearest(t, tables, uv)
+    } else {
+        bitmap_bilinear(t, tables, uv)
+    }
+}
+
+#[inline]
+fn apply_to_uv(t: &Texture, uv: Vec2) -> Vec2 {
+    let (r0, r1) = (t.to_uv[0], t.to_uv[1]);
+    Vec2::new(r0[0] * uv.x + r0[1] * uv.y + r0[2], r1[0] * uv.x + r1[1] * uv.y + r1[2])
+}
+
+/// Mitsuba's checkerboard: `color0` where the fractional parts of u and v are on the same side of ½.
+fn checkerboard(t: &Texture, uv: Vec2) -> Rgb {
+    let fu = uv.x - uv.x.floor();
+    let fv = uv.y - uv.y.floor();
+    if (fu > 0.5) == (fv > 0.5) {
+        vec3([t.color0[0], t.color0[1], t.color0[2]])
+    } else {
+        vec3([t.color1[0], t.color1[1], t.color1[2]])
+    }
+}
+
+/// Maps an integer texel coordinate into `[0, size)` by the texture's wrap mode.
+#[inline]
+fn wrap(i: i32, size: u32, flags: u32) -> u32 {
+    let n = size as i32;
+    let mode = (flags >> TEXTURE_WRAP_SHIFT) & 3;
+    let w = if mode == TEXTURE_WRAP_CLAMP {
+        i.clamp(0, n - 1)
+    } else if mode == TEXTURE_WRAP_MIRROR {
+        let period = i.rem_euclid(2 * n);
+        if period < n {
+            period
+        } else {
+            2 * n - 1 - period
+        }
+    } else {
+        i.rem_euclid(n)
+    };
+    w as u32
+}
+
+/// Linear RGB of texel (x, y), row 0 at the image's top (v = 0).
+#[inline]
+pub fn texel(t: &Texture, tables: &[f32], x: u32, y: u32) -> Rgb {
+    let base = (t.offset + 3 * (y * t.width + x)) as usize;
+    Vec3::new(tables[base], tables[base + 1], tables[base + 2])
+}
+
+fn bitmap_nearest(t: &Texture, tables: &[f32], uv: Vec2) -> Rgb {
+    let x = wrap((uv.x * t.width as f32).floor() as i32, t.width, t.flags);
+    let y = wrap((uv.y * t.height as f32).floor() as i32, t.height, t.flags);
+    texel(t, tables, x, y)
+}
+
+/// Bilinear interpolation between texel centres (texel x is centred on u = (x + ½) / width).
+fn bitmap_bilinear(t: &Texture, tables: &[f32], uv: Vec2) -> Rgb {
+    let px = uv.x * t.width as f32 - 0.5;
+    let py = uv.y * t.height as f32 - 0.5;
+    let (x0f, y0f) = (px.floor(), py.floor());
+    let (fx, fy) = (px - x0f, py - y0f);
+    let (x0, y0) = (x0f as i32, y0f as i32);
+    let xa = wrap(x0, t.width, t.flags);
+    let xb = wrap(x0 + 1, t.width, t.flags);
+    let ya = wrap(y0, t.height, t.flags);
+    let yb = wrap(y0 + 1, t.height, t.flags);
+    let top = texel(t, tables, xa, ya) * (1.0 - fx) + texel(t, tables, xb, ya) * fx;
+    let bottom = texel(t, tables, xa, yb) * (1.0 - fx) + texel(t, tables, xb, yb) * fx;
+    top * (1.0 - fy) + bottom * fy
+}
