@@ -47,18 +47,54 @@ fn arr(v: Vec3) -> [f32; 3] {
     v.to_array()
 }
 
-/// Lights with their power (for selection), before normalisation.
+/// Lights with their power and the emitter (shape or emitter element) each belongs to, for selection.
 #[derive(Default)]
 struct LightList {
     lights: Vec<Light>,
     powers: Vec<f32>,
+    emitters: Vec<u32>,
+    emitter_count: u32,
 }
 
+/// Share of the selection probability spread evenly over emitters; the rest follows power. Power
+/// alone starves an emitter that is weak overall but dominant somewhere (a spot light beside a sky,
+/// a small lamp beside a large one: Veach's MIS scene) of samples, and that region's noise explodes.
+const UNIFORM_SELECTION_SHARE: f64 = 0.5;
+
 impl LightList {
+    /// Starts a new emitter: the lights pushed until the next call belong to it.
+    fn begin_emitter(&mut self) {
+        self.emitter_count += 1;
+    }
+
     fn push(&mut self, light: Light, power: f32) -> u32 {
         self.lights.push(light);
         self.powers.push(if power.is_finite() { power.max(0.0) } else { 0.0 });
+        self.emitters.push(self.emitter_count - 1);
         self.lights.len() as u32 - 1
+    }
+
+    /// Selection weights: a mixture of power-proportional selection and a uniform choice of emitter
+    /// followed by power-proportional selection among its lights (the triangles of a mesh emitter).
+    fn selection_weights(&self) -> Vec<f64> {
+        let total: f64 = self.powers.iter().map(|&p| p as f64).sum();
+        let mut per_emitter = vec![0.0f64; self.emitter_count as usize];
+        let mut lights_per_emitter = vec![0u32; self.emitter_count as usize];
+        for (&p, &e) in self.powers.iter().zip(&self.emitters) {
+            per_emitter[e as usize] += p as f64;
+            lights_per_emitter[e as usize] += 1;
+        }
+        let n = self.emitter_count.max(1) as f64;
+        self.powers
+            .iter()
+            .zip(&self.emitters)
+            .map(|(&p, &e)| {
+                let by_power = if total > 0.0 { p as f64 / total } else { 0.0 };
+                let group = per_emitter[e as usize];
+                let within = if group > 0.0 { p as f64 / group } else { 1.0 / lights_per_emitter[e as usize] as f64 };
+                (1.0 - UNIFORM_SELECTION_SHARE) * by_power + UNIFORM_SELECTION_SHARE * within / n
+            })
+            .collect()
     }
 }
 
@@ -70,6 +106,9 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
     let mut prims = Vec::new();
     let mut attributes = Vec::new();
     for shape in &scene.shapes {
+        if shape.emission.is_some() {
+            lights.begin_emitter();
+        }
         let flags_base = if shape.flip_normals { PRIM_FLAG_FLIP } else { 0 };
         let mut push = |mut prim: Primitive, attr: TriangleAttributes, area: f32, light_kind: u32| {
             prim.light = NONE;
@@ -278,6 +317,7 @@ fn emitter_lights(scene: &Scene, textures: &[Texture], tables: &mut Vec<f32>, li
                 disk_area * scale * integral
             }
         };
+        lights.begin_emitter();
         let index = lights.push(light, power);
         if matches!(e, Emitter::Constant { .. } | Emitter::Envmap { .. }) {
             env_light = index;
@@ -360,8 +400,8 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let mut textures = place_textures(scene, &mut tables);
     let env_light = emitter_lights(scene, &textures, &mut tables, &mut light_list, bounding_sphere(&nodes, has_prims));
 
-    let LightList { mut lights, powers } = light_list;
-    let light_cdf = cdf_of(&powers.iter().map(|&p| p as f64).collect::<Vec<_>>());
+    let light_cdf = cdf_of(&light_list.selection_weights());
+    let mut lights = light_list.lights;
     for (l, i) in lights.iter_mut().zip(0..) {
         l.pmf = light_cdf[i] - if i == 0 { 0.0 } else { light_cdf[i - 1] };
     }

@@ -45,7 +45,7 @@ pub fn load(path: &Path) -> Result<Scene> {
     }
     let mut with_normals = mesh.clone();
     with_normals.ensure_normals();
-    let mesh::Triangles { triangles, normals, .. } = with_normals.transformed(glam::Mat4::IDENTITY);
+    let mesh::Triangles { triangles, normals, uvs } = with_normals.transformed(glam::Mat4::IDENTITY);
     // One shape per material, so that emission stays per shape.
     let mut shapes = Vec::new();
     let kept: Vec<usize> = (0..mesh.indices.len() / 3)
@@ -65,7 +65,7 @@ pub fn load(path: &Path) -> Result<Scene> {
             geometry: Geometry::Triangles {
                 triangles: select.iter().map(|&i| triangles[i]).collect(),
                 normals: normals.as_ref().map(|n| select.iter().map(|&i| n[i]).collect()),
-                uvs: None,
+                uvs: uvs.as_ref().map(|u| select.iter().map(|&i| u[i]).collect()),
             },
             material: slot as u32,
             emission: *emission,

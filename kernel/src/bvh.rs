@@ -36,7 +36,8 @@ pub struct Accel<'a> {
 
 impl<'a> Accel<'a> {
     /// Closest hit along the ray, or `None`. With `any_hit`, returns the first hit found (shadow rays).
-    pub fn trace(&self, ray: &Ray, any_hit: bool) -> Option<Hit> {
+    /// Primitive `skip` (or none, with `NONE`) is ignored.
+    pub fn trace(&self, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> {
         let inv_dir = Vec3::ONE / ray.dir;
         let mut stack = [0u32; STACK_SIZE];
         let mut top = 0usize;
@@ -55,6 +56,10 @@ impl<'a> Accel<'a> {
                 let mut i = node.first;
                 let end = node.first + node.prim_count;
                 while i < end {
+                    if i == skip {
+                        i += 1;
+                        continue;
+                    }
                     if let Some((t, uv)) = shape::intersect(&self.prims[i as usize], ray, best_t) {
                         best_t = t;
                         best_prim = i;
@@ -102,9 +107,12 @@ impl<'a> Accel<'a> {
         }
     }
 
-    /// Whether anything blocks the open segment of the ray.
+    /// Whether anything but primitive `target` (the emitter a shadow ray aims at, or `NONE`) blocks the
+    /// open segment of the ray. Ignoring the target makes the test independent of how exactly the
+    /// sampled distance to it was computed: near-tangent rays to a sphere light, say, are
+    /// ill-conditioned in distance, and a shortened segment could still reach the light itself.
     #[inline]
-    pub fn occluded(&self, ray: &Ray) -> bool {
-        self.trace(ray, true).is_some()
+    pub fn occluded(&self, ray: &Ray, target: u32) -> bool {
+        self.trace(ray, true, target).is_some()
     }
 }

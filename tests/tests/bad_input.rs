@@ -65,7 +65,7 @@ fn undefined_parameter_is_named() {
 fn unsupported_elements_warn_and_the_rest_loads() {
     let path = write_scene(
         "unsupported.xml",
-        &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<emitter type=\"constant\"/>\n<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n<shape type=\"teapot\"/>\n</scene>\n"),
+        &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<emitter type=\"projector\"/>\n<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n<shape type=\"teapot\"/>\n</scene>\n"),
     );
     let scene = caustic::load_scene(&path, &[]).expect("loads with warnings");
     assert_eq!(scene.shapes.len(), 1, "the supported sphere is kept");

@@ -35,6 +35,8 @@ pub(crate) struct Loader {
     shapes: Vec<crate::scene::Shape>,
     emitters: Vec<crate::scene::Emitter>,
     textures: Vec<crate::scene::SceneTexture>,
+    /// Named area emitters (`id`) defined at the top level, for shapes that `<ref>` them.
+    named_area_emitters: HashMap<String, [f32; 3]>,
     /// Named textures (`id`), as indices into `textures`.
     named_textures: HashMap<String, u32>,
     sensor: Option<crate::scene::Sensor>,
@@ -54,6 +56,7 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
         emitters: Vec::new(),
         textures: Vec::new(),
         named_textures: HashMap::new(),
+        named_area_emitters: HashMap::new(),
         sensor: None,
         integrator: None,
         warnings: Vec::new(),
@@ -103,6 +106,7 @@ impl Loader {
     }
 
     fn load_scene_children(&mut self, path: &Path, doc: &roxmltree::Document, root: roxmltree::Node) -> Result<()> {
+        self.register_named_area_emitters(path, doc, root)?;
         for node in root.children().filter(|n| n.is_element()) {
             let loc = Loc::of(path, doc, node);
             match node.tag_name().name() {
@@ -145,7 +149,9 @@ impl Loader {
                 }
                 "emitter" => {
                     let props = self.props(path, doc, node)?;
-                    self.load_emitter(&props)?;
+                    if !(props.kind == "area" && node.attribute("id").is_some()) {
+                        self.load_emitter(&props)?;
+                    }
                 }
                 "sensor" => {
                     let props = self.props(path, doc, node)?;
@@ -157,6 +163,21 @@ impl Loader {
                 }
                 other => {
                     self.warn(&format!("{loc}: <{other}> is not supported yet; ignored"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Top-level named area emitters, registered before the shapes that `<ref>` them load: Mitsuba
+    /// resolves references across the whole file, so a shape may name an emitter defined below it.
+    fn register_named_area_emitters(&mut self, path: &Path, doc: &roxmltree::Document, root: roxmltree::Node) -> Result<()> {
+        let named = root.children().filter(|n| n.is_element() && n.tag_name().name() == "emitter" && n.attribute("type") == Some("area"));
+        for node in named {
+            if let Some(id) = node.attribute("id") {
+                let props = self.props(path, doc, node)?;
+                if let Some(radiance) = self.load_shape_emitter(&props)? {
+                    self.named_area_emitters.insert(id.to_string(), radiance);
                 }
             }
         }

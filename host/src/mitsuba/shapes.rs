@@ -58,12 +58,7 @@ impl Loader {
                 return Ok(());
             }
         }
-        let material = self.shape_material(props)?;
-        let mut emission = None;
-        for e in props.nested("emitter") {
-            let ep = self.props(&props.path, props.doc, e.node)?;
-            emission = self.load_shape_emitter(&ep)?;
-        }
+        let (material, emission) = self.shape_bsdf_and_emitter(props)?;
         self.warn_unused(props);
         self.shapes.push(Shape { origin: props.loc.to_string(), geometry, material, emission, flip_normals });
         Ok(())
@@ -96,20 +91,37 @@ impl Loader {
         Ok(mesh)
     }
 
-    /// The shape's nested `<bsdf>` or `<ref>`; Mitsuba's default is a diffuse BSDF.
-    fn shape_material(&mut self, props: &Props) -> Result<u32> {
-        let mut entries = props.nested("bsdf");
-        entries.extend(props.nested("ref"));
-        match entries.first() {
-            Some(e) => {
-                let p = self.props(&props.path, props.doc, e.node)?;
-                self.load_bsdf(&p)
-            }
-            None => {
-                self.materials.push(Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() });
-                Ok(self.materials.len() as u32 - 1)
+    /// The shape's BSDF and area emission, nested or referenced (`<ref>` may name either). Mitsuba's
+    /// default BSDF is diffuse: grey for ordinary shapes, black for emitters.
+    fn shape_bsdf_and_emitter(&mut self, props: &Props) -> Result<(u32, Option<[f32; 3]>)> {
+        let mut material = None;
+        let mut emission = None;
+        for e in props.nested("bsdf") {
+            let p = self.props(&props.path, props.doc, e.node)?;
+            material = Some(self.load_bsdf(&p)?);
+        }
+        for e in props.nested("emitter") {
+            let p = self.props(&props.path, props.doc, e.node)?;
+            emission = self.load_shape_emitter(&p)?;
+        }
+        for e in props.nested("ref") {
+            let p = self.props(&props.path, props.doc, e.node)?;
+            let id = p.doc_attr_id()?;
+            if let Some(&radiance) = self.named_area_emitters.get(&id) {
+                emission = Some(radiance);
+            } else {
+                material = Some(self.load_bsdf(&p)?);
             }
         }
+        let material = match material {
+            Some(m) => m,
+            None => {
+                let grey = if emission.is_some() { 0.0 } else { 0.5 };
+                self.materials.push(Material { kind: BSDF_DIFFUSE, reflectance: [grey, grey, grey, 0.0], ..Default::default() });
+                self.materials.len() as u32 - 1
+            }
+        };
+        Ok((material, emission))
     }
 }
 
@@ -134,7 +146,7 @@ fn flat_geometry(mesh: Mesh, to_world: Mat4) -> Geometry {
 /// transform would turn the tessellation's winding (and so its geometric normal) inside out, so the
 /// winding is reversed to match.
 fn tessellated_geometry(mut mesh: Mesh, to_world: Mat4) -> Geometry {
-    if false && Mat3::from_mat4(to_world).determinant() < 0.0 {
+    if Mat3::from_mat4(to_world).determinant() < 0.0 {
         mesh.reverse_winding();
     }
     triangle_geometry(mesh.transformed(to_world))

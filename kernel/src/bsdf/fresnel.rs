@@ -1,8 +1,6 @@
 //! Fresnel reflectance of dielectric and conductor interfaces, and mirror/refracted directions, with
 //! Mitsuba 3's conventions: a cosine below zero means the direction lies inside (on the `-z` side),
 //! where the relative index of refraction is inverted.
-#[cfg(target_arch = "spirv")]
-use spirv_std::num_traits::Float;
 
 use crate::glam::Vec3;
 use crate::math::safe_sqrt;
@@ -66,7 +64,8 @@ pub fn fresnel_conductor(cos_theta_i: f32, eta: f32, k: f32) -> f32 {
     let term3 = a2_plus_b2 * c2 + s4;
     let term4 = term2 * s2;
     let r_p = r_s * ratio_or(term3 - term4, term3 + term4, 1.0);
-    0.5 * (r_s + r_p)
+    // Rounding can leave a vanishing reflectance (k = 0, eta ≈ 1) a hair below zero.
+    (0.5 * (r_s + r_p)).max(0.0)
 }
 
 /// `num / den`, or `limit` where the denominator vanishes (then so does the numerator).

@@ -13,7 +13,7 @@ pub mod rough_dielectric;
 pub mod rough_plastic;
 pub mod thin_dielectric;
 
-use crate::scene::{Material, Texture, BSDF_CONDUCTOR, BSDF_DIELECTRIC, BSDF_PHONG, BSDF_THIN_DIELECTRIC, MATERIAL_TWO_SIDED};
+use crate::scene::*;
 use crate::texture;
 use crate::spectrum::Rgb;
 use crate::glam::{Vec2, Vec3};
@@ -65,23 +65,47 @@ impl<'a> Bsdf<'a> {
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        match self.material.kind {
+        let (m, r, s, t) = (&self.material, self.reflectance, self.specular, self.tables);
+        match m.kind {
             BSDF_PHONG => self.phong().eval(wo, wi),
+            BSDF_CONDUCTOR => conductor::Conductor::from_material(m, r, s, t).eval(wo, wi),
+            BSDF_ROUGH_CONDUCTOR => rough_conductor::RoughConductor::from_material(m, r, s, t).eval(wo, wi),
+            BSDF_DIELECTRIC => dielectric::Dielectric::from_material(m, r, s, t).eval(wo, wi),
+            BSDF_THIN_DIELECTRIC => thin_dielectric::ThinDielectric::from_material(m, r, s, t).eval(wo, wi),
+            BSDF_ROUGH_DIELECTRIC => rough_dielectric::RoughDielectric::from_material(m, r, s, t).eval(wo, wi),
+            BSDF_PLASTIC => plastic::Plastic::from_material(m, r, s, t).eval(wo, wi),
+            BSDF_ROUGH_PLASTIC => rough_plastic::RoughPlastic::from_material(m, r, s, t).eval(wo, wi),
             _ => self.diffuse().eval(wo, wi),
         }
     }
 
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        match self.material.kind {
+        let (m, r, s, t) = (&self.material, self.reflectance, self.specular, self.tables);
+        match m.kind {
             BSDF_PHONG => self.phong().pdf(wo, wi),
+            BSDF_CONDUCTOR => conductor::Conductor::from_material(m, r, s, t).pdf(wo, wi),
+            BSDF_ROUGH_CONDUCTOR => rough_conductor::RoughConductor::from_material(m, r, s, t).pdf(wo, wi),
+            BSDF_DIELECTRIC => dielectric::Dielectric::from_material(m, r, s, t).pdf(wo, wi),
+            BSDF_THIN_DIELECTRIC => thin_dielectric::ThinDielectric::from_material(m, r, s, t).pdf(wo, wi),
+            BSDF_ROUGH_DIELECTRIC => rough_dielectric::RoughDielectric::from_material(m, r, s, t).pdf(wo, wi),
+            BSDF_PLASTIC => plastic::Plastic::from_material(m, r, s, t).pdf(wo, wi),
+            BSDF_ROUGH_PLASTIC => rough_plastic::RoughPlastic::from_material(m, r, s, t).pdf(wo, wi),
             _ => self.diffuse().pdf(wo, wi),
         }
     }
 
     /// `u_lobe` picks a lobe of multi-lobe models; `u` warps to a direction.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
-        match self.material.kind {
+        let (m, r, s, t) = (&self.material, self.reflectance, self.specular, self.tables);
+        match m.kind {
             BSDF_PHONG => self.phong().sample(wo, u_lobe, u),
+            BSDF_CONDUCTOR => conductor::Conductor::from_material(m, r, s, t).sample(wo, u_lobe, u),
+            BSDF_ROUGH_CONDUCTOR => rough_conductor::RoughConductor::from_material(m, r, s, t).sample(wo, u_lobe, u),
+            BSDF_DIELECTRIC => dielectric::Dielectric::from_material(m, r, s, t).sample(wo, u_lobe, u),
+            BSDF_THIN_DIELECTRIC => thin_dielectric::ThinDielectric::from_material(m, r, s, t).sample(wo, u_lobe, u),
+            BSDF_ROUGH_DIELECTRIC => rough_dielectric::RoughDielectric::from_material(m, r, s, t).sample(wo, u_lobe, u),
+            BSDF_PLASTIC => plastic::Plastic::from_material(m, r, s, t).sample(wo, u_lobe, u),
+            BSDF_ROUGH_PLASTIC => rough_plastic::RoughPlastic::from_material(m, r, s, t).sample(wo, u_lobe, u),
             _ => self.diffuse().sample(wo, u),
         }
     }
@@ -110,6 +134,11 @@ impl<'a> Bsdf<'a> {
 #[cfg(not(target_arch = "spirv"))]
 pub fn precompute(m: &mut Material) -> Option<std::vec::Vec<f32>> {
     match m.kind {
+        BSDF_PLASTIC => {
+            plastic::precompute(m);
+            None
+        }
+        BSDF_ROUGH_PLASTIC => Some(rough_plastic::precompute(m)),
         _ => None,
     }
 }

@@ -2,7 +2,7 @@
 //! mirrors `F(θo)` (a Dirac delta); the rest enters, scatters diffusely with the internal
 //! inter-reflections summed in closed form (internal diffuse Fresnel reflectance `Fdr`), and leaves
 //! through `1 - F(θi)`, compressed by `1/η²`. One-sided.
-use super::fresnel::{fresnel, fresnel_diffuse_reflectance, reflect};
+use super::fresnel::{fresnel, reflect};
 use super::BsdfSample;
 use crate::glam::{Vec2, Vec3};
 use crate::math::INV_PI;
@@ -34,7 +34,7 @@ pub struct Plastic {
 /// `specular_reflectance` (constant values: texture means are the host's fallback there).
 #[cfg(not(target_arch = "spirv"))]
 pub fn precompute(m: &mut Material) {
-    m.params[PARAM_FDR_INT] = fresnel_diffuse_reflectance(1.0 / m.eta);
+    m.params[PARAM_FDR_INT] = super::fresnel::fresnel_diffuse_reflectance(1.0 / m.eta);
     m.params[PARAM_SPECULAR_WEIGHT] = specular_sampling_weight(m.reflectance, m.specular_reflectance);
 }
 

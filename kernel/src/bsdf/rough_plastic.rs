@@ -58,7 +58,7 @@ impl<'a> RoughPlastic<'a> {
     }
 
     /// The coating's transmittance at `cos_theta` ∈ (0, 1], interpolated linearly in the table.
-    fn transmittance(&self, cos_theta: f32) -> f32 {
+    pub fn transmittance(&self, cos_theta: f32) -> f32 {
         let x = cos_theta * (TRANSMITTANCE_RES - 1) as f32;
         let i = (x as u32).min(TRANSMITTANCE_RES - 2);
         let v0 = self.tables[(self.table + i) as usize];
@@ -68,7 +68,7 @@ impl<'a> RoughPlastic<'a> {
 
     /// Probability of the glossy lobe for a viewer whose transmittance into the coating is `t_o`.
     #[inline]
-    fn specular_probability(&self, t_o: f32) -> f32 {
+    pub fn specular_probability(&self, t_o: f32) -> f32 {
         let ps = (1.0 - t_o) * self.specular_weight;
         let pd = t_o * (1.0 - self.specular_weight);
         if ps + pd > 0.0 {

@@ -1,6 +1,8 @@
 //! Thin dielectric sheet (Mitsuba `thindielectric`): a slab of negligible thickness whose
 //! inter-reflections are summed in closed form. Light is either mirrored or passes straight through
-//! (no refraction, so `eta = 1`); both lobes are Dirac deltas, on either side alike.
+//! (no refraction, so `eta = 1`); both lobes are Dirac deltas, on either side alike. Transmission is
+//! Mitsuba's `Null` lobe (the ray continues unchanged).
+
 use super::fresnel::{fresnel, reflect};
 use super::BsdfSample;
 use crate::glam::{Vec2, Vec3};

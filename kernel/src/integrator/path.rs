@@ -44,7 +44,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     loop {
         sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
         let visible_emitter = !(depth == 0 && params.hide_emitters != 0);
-        let hit = match accel.trace(&ray, false) {
+        let hit = match accel.trace(&ray, false, NONE) {
             Some(h) => h,
             None => {
                 if visible_emitter {
@@ -90,12 +90,9 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         if bs.pdf <= 0.0 {
             break;
         }
+        // No test of `wi` against the geometric normal: Mitsuba's integrators have none, and the
+        // images must agree (the ray offset below still starts on the side `wi` leaves by).
         let wi = frame.to_world(bs.wi);
-        // A direction the shading normal puts on one side and the geometric normal on the other would
-        // leak light through the surface.
-        if wi.dot(ng) * bs.wi.z <= 0.0 {
-            break;
-        }
         throughput *= bs.weight;
         eta_scale *= bs.eta * bs.eta;
         prev = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta };
@@ -131,7 +128,7 @@ fn next_event(scene: &SceneView, params: &FrameParams, accel: &Accel, bsdf: &Bsd
         return Rgb::ZERO;
     }
     let shadow = Ray { origin: offset_origin(sp, ng, ls.wi), dir: ls.wi, t_min: 0.0, t_max: ls.dist * (1.0 - SHADOW_EPSILON) };
-    if accel.occluded(&shadow) {
+    if accel.occluded(&shadow, ls.prim) {
         return Rgb::ZERO;
     }
     let weight = if ls.delta { 1.0 } else { power_heuristic(ls.pdf, bsdf.pdf(wo, wi)) };

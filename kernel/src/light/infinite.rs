@@ -8,7 +8,7 @@ use super::{beyond_scene, radiance, to_local, to_world, LightSample};
 use crate::glam::{Vec2, Vec3};
 use crate::math::{INV_2PI, INV_4PI, INV_PI, PI};
 use crate::sampling::{sample_cdf, square_to_uniform_sphere};
-use crate::scene::{Light, SceneView, Texture, LIGHT_ENVMAP};
+use crate::scene::{NONE, Light, SceneView, Texture, LIGHT_ENVMAP};
 use crate::spectrum::Rgb;
 use crate::texture::texel;
 
@@ -40,7 +40,7 @@ pub fn pdf(light: &Light, scene: &SceneView, dir: Vec3) -> f32 {
 
 pub fn sample_constant(light: &Light, p: Vec3, u: Vec2) -> LightSample {
     let wi = square_to_uniform_sphere(u);
-    LightSample { wi, dist: beyond_scene(light, p), radiance: radiance(light), pdf: INV_4PI, delta: false }
+    LightSample { wi, dist: beyond_scene(light, p), radiance: radiance(light), pdf: INV_4PI, delta: false, prim: NONE }
 }
 
 pub fn sample_envmap(light: &Light, scene: &SceneView, p: Vec3, u: Vec2) -> LightSample {
@@ -63,7 +63,7 @@ pub fn sample_envmap(light: &Light, scene: &SceneView, p: Vec3, u: Vec2) -> Ligh
     }
     let wi = to_world(light, local);
     let radiance = envmap_radiance(&t, scene.tables, uv) * radiance(light);
-    LightSample { wi, dist: beyond_scene(light, p), radiance, pdf, delta: false }
+    LightSample { wi, dist: beyond_scene(light, p), radiance, pdf, delta: false, prim: NONE }
 }
 
 /// Mitsuba's lat-long parametrisation: u from the azimuth about +y (0 at -z), v = θ / π from +y.

@@ -12,7 +12,7 @@ pub mod sphere;
 use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
 use crate::sampling::sample_cdf;
-use crate::scene::{FrameParams, Light, Primitive, SceneView, LIGHT_CONSTANT, LIGHT_DIRECTIONAL, LIGHT_ENVMAP, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, LIGHT_TRIANGLE};
+use crate::scene::{FrameParams, Light, Primitive, SceneView, NONE, LIGHT_CONSTANT, LIGHT_DIRECTIONAL, LIGHT_ENVMAP, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, LIGHT_TRIANGLE};
 use crate::spectrum::Rgb;
 
 /// A direction towards a point on an emitter, with what arrives along it.
@@ -29,11 +29,13 @@ pub struct LightSample {
     pub pdf: f32,
     /// Point, spot and directional emitters: BSDF sampling cannot hit them, so no MIS weight.
     pub delta: bool,
+    /// The emitting primitive (which shadow rays ignore), or `NONE`.
+    pub prim: u32,
 }
 
 impl LightSample {
     pub fn none() -> Self {
-        LightSample { wi: Vec3::Z, dist: 0.0, radiance: Rgb::ZERO, pdf: 0.0, delta: false }
+        LightSample { wi: Vec3::Z, dist: 0.0, radiance: Rgb::ZERO, pdf: 0.0, delta: false, prim: NONE }
     }
 }
 
@@ -108,7 +110,7 @@ pub(crate) fn from_area_sample(light: &Light, p: Vec3, q: Vec3, n: Vec3, area: f
     if pdf <= 0.0 {
         return LightSample::none();
     }
-    LightSample { wi, dist, radiance: emitted(light, n, -wi), pdf, delta: false }
+    LightSample { wi, dist, radiance: emitted(light, n, -wi), pdf, delta: false, prim: light.prim }
 }
 
 /// Solid-angle density at `p` of uniform area sampling that produced `hit_p` (normal `hit_n`).

@@ -6,7 +6,7 @@ use spirv_std::num_traits::Float;
 use super::{radiance, to_local, LightSample};
 use crate::glam::Vec3;
 use crate::math::vec3;
-use crate::scene::{Light, LIGHT_SPOT};
+use crate::scene::{NONE, Light, LIGHT_SPOT};
 
 /// Mitsuba's spot profile for a unit direction in the light's frame (beam along +z).
 pub fn spot_falloff(light: &Light, local: Vec3) -> f32 {
@@ -33,5 +33,5 @@ pub fn sample(light: &Light, p: Vec3) -> LightSample {
     if falloff <= 0.0 {
         return LightSample::none();
     }
-    LightSample { wi, dist, radiance: radiance(light) * (falloff / dist2), pdf: 1.0, delta: true }
+    LightSample { wi, dist, radiance: radiance(light) * (falloff / dist2), pdf: 1.0, delta: true, prim: NONE }
 }

@@ -46,7 +46,7 @@ pub fn sample(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample 
     // emits towards `p` unless its normals are flipped. (Deciding this from the sampled point's normal
     // fails for tiny spheres far away, where that point carries more error than the radius.)
     let radiance = if orientation(prim) > 0.0 { super::radiance(light) } else { Rgb::ZERO };
-    LightSample { wi, dist, radiance, pdf: uniform_cone_pdf(one_minus_cos_max), delta: false }
+    LightSample { wi, dist, radiance, pdf: uniform_cone_pdf(one_minus_cos_max), delta: false, prim: light.prim }
 }
 
 fn sample_from_inside(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample {
