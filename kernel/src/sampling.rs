@@ -2,7 +2,7 @@
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
-use crate::math::{is_finite, safe_sqrt, INV_PI, PI};
+use crate::math::{safe_sqrt, INV_PI, PI};
 use crate::glam::{Vec2, Vec3};
 
 /// Uniform point on the unit disk by Shirley–Chiu's concentric map (keeps strata compact).
@@ -78,8 +78,11 @@ pub fn power_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
     if pdf_a <= 0.0 {
         return 0.0;
     }
-    if !is_finite(pdf_b) || pdf_b <= 0.0 {
-        return if pdf_b > 0.0 { 0.0 } else { 1.0 };
+    if pdf_b <= 0.0 {
+        return 1.0;
+    }
+    if pdf_b > f32::MAX {
+        return 0.0;
     }
     let r = pdf_b / pdf_a;
     1.0 / (1.0 + r * r)

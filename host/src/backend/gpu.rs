@@ -63,7 +63,12 @@ impl GpuBackend {
         .context("cannot open the GPU device")?;
 
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let words: Vec<u32> = bytemuck::pod_collect_to_vec(KERNEL_SPV);
+        // CAUSTIC_KERNEL_SPV runs another build of the kernel (driver investigations, A/B timings).
+        let override_spv = match std::env::var_os("CAUSTIC_KERNEL_SPV") {
+            Some(path) => Some(std::fs::read(&path).with_context(|| format!("cannot read CAUSTIC_KERNEL_SPV={}", path.to_string_lossy()))?),
+            None => None,
+        };
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(override_spv.as_deref().unwrap_or(KERNEL_SPV));
         // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are bounds-checked
         // in the source; dropping naga's duplicate runtime checks is what makes this path fast.
         let module = unsafe {

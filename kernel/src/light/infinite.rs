@@ -24,18 +24,24 @@ pub fn eval(light: &Light, scene: &SceneView, dir: Vec3) -> Rgb {
 
 /// Solid-angle density of `sample_*` producing `dir`, without the selection probability.
 pub fn pdf(light: &Light, scene: &SceneView, dir: Vec3) -> f32 {
-    if light.kind != LIGHT_ENVMAP {
-        return INV_4PI;
+    if light.kind == LIGHT_ENVMAP {
+        envmap_pdf(light, scene, dir)
+    } else {
+        INV_4PI
     }
+}
+
+fn envmap_pdf(light: &Light, scene: &SceneView, dir: Vec3) -> f32 {
     let t = scene.textures[light.prim as usize];
     let local = to_local(light, dir);
     let sin_theta = (local.x * local.x + local.z * local.z).sqrt();
-    if sin_theta <= 0.0 {
-        return 0.0;
+    let (col, row) = envmap_cell(&t, direction_to_uv(local));
+    let pdf = cell_pmf(&t, scene.tables, light.table, col, row) * cell_count(&t) / (2.0 * PI * PI * sin_theta.max(1e-20));
+    if sin_theta > 0.0 {
+        pdf
+    } else {
+        0.0
     }
-    let uv = direction_to_uv(local);
-    let (col, row) = envmap_cell(&t, uv);
-    cell_pmf(&t, scene.tables, light.table, col, row) * cell_count(&t) / (2.0 * PI * PI * sin_theta)
 }
 
 pub fn sample_constant(light: &Light, p: Vec3, u: Vec2) -> LightSample {
