@@ -83,3 +83,16 @@ fn defaults_and_overrides() {
     let scene = caustic::load_scene(&path, &[("res".into(), "12".into())]).unwrap();
     assert_eq!((scene.sensor.width, scene.sensor.height), (12, 12));
 }
+
+#[test]
+fn moment_renders_its_nested_integrator() {
+    let path = write_scene(
+        "moment.xml",
+        &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<integrator type=\"moment\"><integrator type=\"path\"><integer name=\"max_depth\" value=\"3\"/></integrator></integrator>\n</scene>\n"),
+    );
+    let scene = caustic::load_scene(&path, &[]).expect("loads");
+    assert_eq!(scene.integrator.max_depth, 3, "the nested path integrator's settings apply");
+    let bad = write_scene("moment_empty.xml", &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<integrator type=\"moment\"/>\n</scene>\n"));
+    let e = format!("{:#}", caustic::load_scene(&bad, &[]).unwrap_err());
+    assert!(e.contains("moment_empty.xml:3") && e.contains("nested"), "{e}");
+}

@@ -1,4 +1,4 @@
-//! Integrator plugins: `path`, and `direct` (rendered by the path tracer limited to direct lighting,
+//! Integrator plugins: `path`, `moment` (its nested integrator; caustic always tracks the variance), and `direct` (rendered by the path tracer limited to direct lighting,
 //! which has the same expectation).
 use super::props::Props;
 use super::Loader;
@@ -23,6 +23,17 @@ impl Loader {
                 props.integer("emitter_samples", 1)?;
                 props.integer("bsdf_samples", 1)?;
                 Integrator { max_depth: 2, rr_depth: 5, hide_emitters: props.boolean("hide_emitters", false)? }
+            }
+            "moment" => {
+                // Mitsuba's moment integrator renders its nested integrator and adds the second moment
+                // as an extra output; caustic always tracks it (`render --variance` writes it).
+                let nested = props.nested("integrator");
+                let Some(inner) = nested.first() else { bail!("{}: moment needs a nested <integrator>", props.loc) };
+                if nested.len() > 1 {
+                    self.warn(&format!("{}: moment with several nested integrators renders only the first", props.loc));
+                }
+                let inner = self.props(&props.path, props.doc, inner.node)?;
+                self.load_integrator(&inner)?
             }
             other => {
                 self.warn(&format!("{}: integrator '{other}' is not supported yet; using path", props.loc));
