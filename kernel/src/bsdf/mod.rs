@@ -38,6 +38,26 @@ impl BsdfSample {
     }
 }
 
+/// Builds the model of `$bsdf`'s record kind and calls the method on it: one `match` (rust-gpu needs
+/// the models as plain structs, not a data-carrying enum) shared by `eval`, `pdf` and `sample`. Lambert,
+/// the fallback kind, takes its own argument list (its sampling has no lobe choice).
+macro_rules! dispatch {
+    ($bsdf:ident, diffuse => $d:ident($($da:expr),*), other => $f:ident($($a:expr),*)) => {{
+        let (m, r, s, t) = (&$bsdf.material, $bsdf.reflectance, $bsdf.specular, $bsdf.tables);
+        match m.kind {
+            BSDF_PHONG => $bsdf.phong().$f($($a),*),
+            BSDF_CONDUCTOR => conductor::Conductor::from_material(m, r, s, t).$f($($a),*),
+            BSDF_ROUGH_CONDUCTOR => rough_conductor::RoughConductor::from_material(m, r, s, t).$f($($a),*),
+            BSDF_DIELECTRIC => dielectric::Dielectric::from_material(m, r, s, t).$f($($a),*),
+            BSDF_THIN_DIELECTRIC => thin_dielectric::ThinDielectric::from_material(m, r, s, t).$f($($a),*),
+            BSDF_ROUGH_DIELECTRIC => rough_dielectric::RoughDielectric::from_material(m, r, s, t).$f($($a),*),
+            BSDF_PLASTIC => plastic::Plastic::from_material(m, r, s, t).$f($($a),*),
+            BSDF_ROUGH_PLASTIC => rough_plastic::RoughPlastic::from_material(m, r, s, t).$f($($a),*),
+            _ => $bsdf.diffuse().$d($($da),*),
+        }
+    }};
+}
+
 /// A surface's BSDF: the material record with its textures evaluated at the hit, dispatched on the
 /// record's `kind` with `match`. (The models are built per call from the record rather than held in a
 /// data-carrying enum: rust-gpu 0.11 cannot cast between variants of different layouts.)
@@ -65,49 +85,16 @@ impl<'a> Bsdf<'a> {
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        let (m, r, s, t) = (&self.material, self.reflectance, self.specular, self.tables);
-        match m.kind {
-            BSDF_PHONG => self.phong().eval(wo, wi),
-            BSDF_CONDUCTOR => conductor::Conductor::from_material(m, r, s, t).eval(wo, wi),
-            BSDF_ROUGH_CONDUCTOR => rough_conductor::RoughConductor::from_material(m, r, s, t).eval(wo, wi),
-            BSDF_DIELECTRIC => dielectric::Dielectric::from_material(m, r, s, t).eval(wo, wi),
-            BSDF_THIN_DIELECTRIC => thin_dielectric::ThinDielectric::from_material(m, r, s, t).eval(wo, wi),
-            BSDF_ROUGH_DIELECTRIC => rough_dielectric::RoughDielectric::from_material(m, r, s, t).eval(wo, wi),
-            BSDF_PLASTIC => plastic::Plastic::from_material(m, r, s, t).eval(wo, wi),
-            BSDF_ROUGH_PLASTIC => rough_plastic::RoughPlastic::from_material(m, r, s, t).eval(wo, wi),
-            _ => self.diffuse().eval(wo, wi),
-        }
+        dispatch!(self, diffuse => eval(wo, wi), other => eval(wo, wi))
     }
 
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let (m, r, s, t) = (&self.material, self.reflectance, self.specular, self.tables);
-        match m.kind {
-            BSDF_PHONG => self.phong().pdf(wo, wi),
-            BSDF_CONDUCTOR => conductor::Conductor::from_material(m, r, s, t).pdf(wo, wi),
-            BSDF_ROUGH_CONDUCTOR => rough_conductor::RoughConductor::from_material(m, r, s, t).pdf(wo, wi),
-            BSDF_DIELECTRIC => dielectric::Dielectric::from_material(m, r, s, t).pdf(wo, wi),
-            BSDF_THIN_DIELECTRIC => thin_dielectric::ThinDielectric::from_material(m, r, s, t).pdf(wo, wi),
-            BSDF_ROUGH_DIELECTRIC => rough_dielectric::RoughDielectric::from_material(m, r, s, t).pdf(wo, wi),
-            BSDF_PLASTIC => plastic::Plastic::from_material(m, r, s, t).pdf(wo, wi),
-            BSDF_ROUGH_PLASTIC => rough_plastic::RoughPlastic::from_material(m, r, s, t).pdf(wo, wi),
-            _ => self.diffuse().pdf(wo, wi),
-        }
+        dispatch!(self, diffuse => pdf(wo, wi), other => pdf(wo, wi))
     }
 
     /// `u_lobe` picks a lobe of multi-lobe models; `u` warps to a direction.
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
-        let (m, r, s, t) = (&self.material, self.reflectance, self.specular, self.tables);
-        match m.kind {
-            BSDF_PHONG => self.phong().sample(wo, u_lobe, u),
-            BSDF_CONDUCTOR => conductor::Conductor::from_material(m, r, s, t).sample(wo, u_lobe, u),
-            BSDF_ROUGH_CONDUCTOR => rough_conductor::RoughConductor::from_material(m, r, s, t).sample(wo, u_lobe, u),
-            BSDF_DIELECTRIC => dielectric::Dielectric::from_material(m, r, s, t).sample(wo, u_lobe, u),
-            BSDF_THIN_DIELECTRIC => thin_dielectric::ThinDielectric::from_material(m, r, s, t).sample(wo, u_lobe, u),
-            BSDF_ROUGH_DIELECTRIC => rough_dielectric::RoughDielectric::from_material(m, r, s, t).sample(wo, u_lobe, u),
-            BSDF_PLASTIC => plastic::Plastic::from_material(m, r, s, t).sample(wo, u_lobe, u),
-            BSDF_ROUGH_PLASTIC => rough_plastic::RoughPlastic::from_material(m, r, s, t).sample(wo, u_lobe, u),
-            _ => self.diffuse().sample(wo, u),
-        }
+        dispatch!(self, diffuse => sample(wo, u), other => sample(wo, u_lobe, u))
     }
 
     /// Whether next-event estimation can contribute (false for purely specular models).

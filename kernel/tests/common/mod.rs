@@ -21,22 +21,26 @@ fn bin_of(d: Vec3) -> usize {
     ct.min(THETA_BINS - 1) * PHI_BINS + p.min(PHI_BINS - 1)
 }
 
+/// One adaptive Simpson step on [a, b] given f at a, the midpoint and b and the whole-interval estimate:
+/// splits until the halves agree with the whole to `15·eps` or `depth` runs out (Richardson-corrected).
+#[allow(clippy::too_many_arguments)]
+fn simpson_refine(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fm: f64, fb: f64, whole: f64, eps: f64, depth: u32) -> f64 {
+    let m = 0.5 * (a + b);
+    let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
+    let (flm, frm) = (f(lm), f(rm));
+    let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
+    let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
+    if depth == 0 || (left + right - whole).abs() <= 15.0 * eps {
+        return left + right + (left + right - whole) / 15.0;
+    }
+    simpson_refine(f, a, m, fa, flm, fm, left, eps * 0.5, depth - 1) + simpson_refine(f, m, b, fm, frm, fb, right, eps * 0.5, depth - 1)
+}
+
 /// Adaptive Simpson quadrature of `f` over [a, b] (absolute tolerance `eps`, bounded depth).
 fn adaptive_simpson(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, eps: f64) -> f64 {
-    fn recurse(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fm: f64, fb: f64, whole: f64, eps: f64, depth: u32) -> f64 {
-        let m = 0.5 * (a + b);
-        let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
-        let (flm, frm) = (f(lm), f(rm));
-        let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
-        let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
-        if depth == 0 || (left + right - whole).abs() <= 15.0 * eps {
-            return left + right + (left + right - whole) / 15.0;
-        }
-        recurse(f, a, m, fa, flm, fm, left, eps * 0.5, depth - 1) + recurse(f, m, b, fm, frm, fb, right, eps * 0.5, depth - 1)
-    }
     let (fa, fm, fb) = (f(a), f(0.5 * (a + b)), f(b));
     let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
-    recurse(f, a, b, fa, fm, fb, whole, eps, 12)
+    simpson_refine(f, a, b, fa, fm, fb, whole, eps, 12)
 }
 
 /// Expected probability of each bin: the solid-angle density integrated over the bin by nested
@@ -175,24 +179,12 @@ impl Grid {
 /// interval is not missed by the first nodes), to a relative tolerance `rel` of a first composite
 /// estimate, or the absolute floor `abs`.
 fn simpson_min_depth(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, rel: f64, abs: f64, min_depth: u32) -> f64 {
-    #[allow(clippy::too_many_arguments)]
-    fn recurse(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fm: f64, fb: f64, whole: f64, eps: f64, depth: u32) -> f64 {
-        let m = 0.5 * (a + b);
-        let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
-        let (flm, frm) = (f(lm), f(rm));
-        let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
-        let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
-        if depth == 0 || (left + right - whole).abs() <= 15.0 * eps {
-            return left + right + (left + right - whole) / 15.0;
-        }
-        recurse(f, a, m, fa, flm, fm, left, eps * 0.5, depth - 1) + recurse(f, m, b, fm, frm, fb, right, eps * 0.5, depth - 1)
-    }
     let n = 1usize << min_depth;
     let h = (b - a) / n as f64;
     let nodes: Vec<f64> = (0..=2 * n).map(|k| f(a + 0.5 * h * k as f64)).collect();
     let pieces: Vec<f64> = (0..n).map(|k| h / 6.0 * (nodes[2 * k] + 4.0 * nodes[2 * k + 1] + nodes[2 * k + 2])).collect();
     let eps = (rel * pieces.iter().sum::<f64>().abs()).max(abs) / n as f64;
-    (0..n).map(|k| recurse(f, a + h * k as f64, a + h * (k + 1) as f64, nodes[2 * k], nodes[2 * k + 1], nodes[2 * k + 2], pieces[k], eps, 12)).sum()
+    (0..n).map(|k| simpson_refine(f, a + h * k as f64, a + h * (k + 1) as f64, nodes[2 * k], nodes[2 * k + 1], nodes[2 * k + 2], pieces[k], eps, 12)).sum()
 }
 
 /// Integral of `f` over each bin of `grid` (nested adaptive quadrature in 1 - cos α and φ).
