@@ -1,7 +1,7 @@
 //! Scene description → the kernel's buffers: primitives in BVH order, BVH2 nodes (built by `obvhs`),
 //! per-triangle attributes, materials, textures, lights with power-proportional selection, and the
 //! table buffer (sampling distributions, texels, precomputed BSDF tables).
-use crate::scene::{Emitter, Filter, Geometry, Projection, SamplerKind, Scene};
+use crate::scene::{Emitter, Filter, Geometry, IntegratorKind, Projection, SamplerKind, Scene};
 use anyhow::{bail, Result};
 use caustic_kernel::bvh::STACK_SIZE;
 use caustic_kernel::camera::{Camera, CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, CAMERA_THIN_LENS};
@@ -418,6 +418,10 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
 
     let s = &scene.sensor;
     let crop = s.crop.unwrap_or(crate::scene::Crop { x: 0, y: 0, width: s.width, height: s.height });
+    let (integrator_kind, emitter_samples, bsdf_samples) = match scene.integrator.kind {
+        IntegratorKind::Path => (INTEGRATOR_PATH, 1, 1),
+        IntegratorKind::Direct { emitter_samples, bsdf_samples } => (INTEGRATOR_DIRECT, emitter_samples, bsdf_samples),
+    };
     let params = FrameParams {
         width: crop.width,
         height: crop.height,
@@ -436,6 +440,9 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         crop_y: crop.y,
         full_width: s.width,
         full_height: s.height,
+        integrator: integrator_kind,
+        emitter_samples,
+        bsdf_samples,
         camera: camera(scene),
         ..Default::default()
     };

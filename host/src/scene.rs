@@ -80,6 +80,7 @@ pub struct Sensor {
 
 #[derive(Clone, Debug)]
 pub struct Integrator {
+    pub kind: IntegratorKind,
     /// Mitsuba `max_depth`; -1 = unbounded.
     pub max_depth: i32,
     pub rr_depth: u32,
@@ -88,8 +89,16 @@ pub struct Integrator {
 
 impl Default for Integrator {
     fn default() -> Self {
-        Integrator { max_depth: -1, rr_depth: 5, hide_emitters: false }
+        Integrator { kind: IntegratorKind::Path, max_depth: -1, rr_depth: 5, hide_emitters: false }
     }
+}
+
+/// Which estimator renders the image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegratorKind {
+    Path,
+    /// Direct illumination with this many light and BSDF samples per shading point.
+    Direct { emitter_samples: u32, bsdf_samples: u32 },
 }
 
 #[derive(Clone, Debug)]

@@ -70,6 +70,8 @@ pub const BSDF_THIN_DIELECTRIC: u32 = 5;
 pub const BSDF_ROUGH_DIELECTRIC: u32 = 6;
 pub const BSDF_PLASTIC: u32 = 7;
 pub const BSDF_ROUGH_PLASTIC: u32 = 8;
+/// "Ray Tracing in One Weekend"'s fuzzy metal; `alpha_u` holds the fuzz.
+pub const BSDF_FUZZY_METAL: u32 = 9;
 
 /// Material flag: both sides of the surface scatter (Mitsuba's `twosided`).
 pub const MATERIAL_TWO_SIDED: u32 = 1;
@@ -86,7 +88,8 @@ pub const MATERIAL_NONLINEAR: u32 = 4;
 pub struct Material {
     pub kind: u32,
     pub flags: u32,
-    /// Microfacet roughness along the shading frame's tangent and bitangent.
+    /// Microfacet roughness along the shading frame's tangent and bitangent; the fuzz of
+    /// `BSDF_FUZZY_METAL`.
     pub alpha_u: f32,
     pub alpha_v: f32,
     /// Relative index of refraction (interior over exterior) of dielectrics and plastics; the Phong
@@ -196,6 +199,9 @@ pub struct Texture {
     pub color1: [f32; 4],
 }
 
+pub const INTEGRATOR_PATH: u32 = 0;
+pub const INTEGRATOR_DIRECT: u32 = 1;
+
 pub const SAMPLER_INDEPENDENT: u32 = 0;
 pub const SAMPLER_STRATIFIED: u32 = 1;
 
@@ -237,6 +243,13 @@ pub struct FrameParams {
     pub crop_y: u32,
     pub full_width: u32,
     pub full_height: u32,
+
+    /// `INTEGRATOR_PATH` or `INTEGRATOR_DIRECT`.
+    pub integrator: u32,
+    /// Light and BSDF samples per shading point of the direct integrator.
+    pub emitter_samples: u32,
+    pub bsdf_samples: u32,
+    pub _pad: u32,
 
     pub camera: crate::camera::Camera,
 }

@@ -49,6 +49,9 @@ fn absurd_parameters_are_rejected() {
         ("nan", r#"<sensor type="perspective"><float name="fov" value="nan"/></sensor>"#),
         ("max_depth", r#"<integrator type="path"><integer name="max_depth" value="-7"/></integrator>"#),
         ("reflectance", r#"<bsdf type="diffuse"><rgb name="reflectance" value="1, -2, 3"/></bsdf>"#),
+        ("direct", r#"<integrator type="direct"><integer name="emitter_samples" value="0"/><integer name="bsdf_samples" value="0"/></integrator>"#),
+        ("direct_negative", r#"<integrator type="direct"><integer name="bsdf_samples" value="-1"/></integrator>"#),
+        ("fuzz", r#"<bsdf type="fuzzymetal"><float name="fuzz" value="1.5"/></bsdf>"#),
     ] {
         let e = load_err(&format!("absurd-{what}.xml"), &format!("<scene version=\"3.0.0\">\n{body}\n</scene>\n"));
         assert!(e.contains(&format!("absurd-{what}.xml:2")), "{what}: {e}");

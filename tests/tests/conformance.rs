@@ -54,6 +54,11 @@ impl Outcome {
 
 /// Renders the central `fraction` × `fraction` window of a scene with about `budget` samples.
 fn check(scene: &Listed, choice: BackendChoice, fraction: f32, budget: u64) -> Outcome {
+    check_edited(scene, choice, fraction, budget, |_| {})
+}
+
+/// `check`, with the loaded scene changed by `edit` first (to a variant with the same expectation).
+fn check_edited(scene: &Listed, choice: BackendChoice, fraction: f32, budget: u64, edit: impl Fn(&mut caustic::scene::Scene)) -> Outcome {
     // Like Mitsuba's own reference renders, pass the sample count (some scenes use $spp before their
     // includes give it a default); the render below sets the budget's count anyway.
     let mut s = caustic::load_scene(&mitsuba_scene(&scene.file), &defines(&[("spp", "16")])).unwrap_or_else(|e| panic!("{} does not load: {e:#}", scene.name));
@@ -61,6 +66,7 @@ fn check(scene: &Listed, choice: BackendChoice, fraction: f32, budget: u64) -> O
     let (cw, ch) = (((w as f32 * fraction) as u32).max(1), ((h as f32 * fraction) as u32).max(1));
     let crop = Crop { x: (w - cw) / 2, y: (h - ch) / 2, width: cw, height: ch };
     s.sensor.crop = Some(crop);
+    edit(&mut s);
     let pixels = cw * ch;
     let spp = (budget / pixels as u64).clamp(4, 4096) as u32;
     let start = Instant::now();
@@ -110,4 +116,27 @@ const GPU_SUBSET: [&str; 8] = [
 fn a_representative_subset_matches_mitsuba_on_the_gpu() {
     let scenes: Vec<Listed> = listed_scenes().into_iter().filter(|s| GPU_SUBSET.contains(&s.name.as_str())).collect();
     run("GPU", &scenes, BackendChoice::Gpu, 0.25, budget(400_000));
+}
+
+/// Mitsuba's `direct` weights `emitter_samples` light samples against `bsdf_samples` BSDF samples;
+/// the counts change the variance, never the expectation, so every split must match the reference
+/// rendered with one of each.
+#[test]
+fn direct_sample_counts_keep_the_expectation() {
+    use caustic::scene::IntegratorKind;
+    let Some(scene) = listed_scenes().into_iter().find(|s| s.name == "integrator_direct_both") else { return };
+    let outcomes: Vec<(u32, u32, Outcome)> = [(4u32, 1u32), (1, 3), (3, 0)]
+        .into_iter()
+        .map(|(emitter_samples, bsdf_samples)| {
+            let o = check_edited(&scene, BackendChoice::Cpu, 0.25, budget(1_500_000), |s| {
+                assert!(matches!(s.integrator.kind, IntegratorKind::Direct { .. }), "the scene uses direct");
+                s.integrator.kind = IntegratorKind::Direct { emitter_samples, bsdf_samples };
+            });
+            (emitter_samples, bsdf_samples, o)
+        })
+        .collect();
+    for (e, b, o) in &outcomes {
+        println!("direct emitter_samples={e} bsdf_samples={b}: spp {} RMSE {:.5} pass {:.4} lum z {:+.2}", o.spp, o.rmse, o.pass, o.z);
+    }
+    assert!(outcomes.iter().all(|(_, _, o)| o.ok()), "a sample split changed the direct integrator's image");
 }

@@ -1,8 +1,8 @@
-//! Integrator plugins: `path`, `moment` (its nested integrator; caustic always tracks the variance), and `direct` (rendered by the path tracer limited to direct lighting,
-//! which has the same expectation).
+//! Integrator plugins: `path`, `direct`, and `moment` (its nested integrator; caustic always tracks
+//! the variance).
 use super::props::Props;
 use super::Loader;
-use crate::scene::Integrator;
+use crate::scene::{Integrator, IntegratorKind};
 use anyhow::{bail, Result};
 
 impl Loader {
@@ -17,12 +17,23 @@ impl Loader {
                 if !(1..=1_000_000).contains(&rr_depth) {
                     bail!("{}: rr_depth must be in [1, 1000000], got {rr_depth}", props.loc);
                 }
-                Integrator { max_depth: max_depth as i32, rr_depth: rr_depth as u32, hide_emitters: props.boolean("hide_emitters", false)? }
+                Integrator { kind: IntegratorKind::Path, max_depth: max_depth as i32, rr_depth: rr_depth as u32, hide_emitters: props.boolean("hide_emitters", false)? }
             }
             "direct" => {
-                props.integer("emitter_samples", 1)?;
-                props.integer("bsdf_samples", 1)?;
-                Integrator { max_depth: 2, rr_depth: 5, hide_emitters: props.boolean("hide_emitters", false)? }
+                // As in Mitsuba, `shading_samples` is the default of both counts.
+                let shading = props.integer("shading_samples", 1)?;
+                let emitter_samples = props.integer("emitter_samples", shading)?;
+                let bsdf_samples = props.integer("bsdf_samples", shading)?;
+                for (name, n) in [("emitter_samples", emitter_samples), ("bsdf_samples", bsdf_samples)] {
+                    if !(0..=1024).contains(&n) {
+                        bail!("{}: {name} must be in [0, 1024], got {n}", props.loc);
+                    }
+                }
+                if emitter_samples + bsdf_samples == 0 {
+                    bail!("{}: direct needs at least one emitter or BSDF sample", props.loc);
+                }
+                let kind = IntegratorKind::Direct { emitter_samples: emitter_samples as u32, bsdf_samples: bsdf_samples as u32 };
+                Integrator { kind, max_depth: 2, rr_depth: 5, hide_emitters: props.boolean("hide_emitters", false)? }
             }
             "moment" => {
                 // Mitsuba's moment integrator renders its nested integrator and adds the second moment

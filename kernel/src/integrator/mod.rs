@@ -1,10 +1,15 @@
 //! Integrators and the per-pixel driver both backends call.
+pub mod direct;
+pub mod nee;
 pub mod path;
 
 use crate::film;
+use crate::frame::Frame;
+use crate::glam::Vec3;
+use crate::shape::SurfacePoint;
 use crate::math::is_finite3;
 use crate::rng::Sampler;
-use crate::scene::FrameParams;
+use crate::scene::{FrameParams, INTEGRATOR_DIRECT};
 pub use crate::scene::SceneView;
 use crate::spectrum::Rgb;
 
@@ -33,7 +38,7 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
         let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
         let u_lens = sampler.next_2d();
         let ray = params.camera.generate_ray(film_pos, u_lens);
-        let l = path::li(scene, params, ray, &mut sampler);
+        let l = if params.integrator == INTEGRATOR_DIRECT { direct::li(scene, params, ray, &mut sampler) } else { path::li(scene, params, ray, &mut sampler) };
         if is_finite3(l) {
             sums.sum += l;
             sums.sum_sq += l * l;
@@ -57,4 +62,18 @@ pub fn accumulate(accum: &mut [f32], pixel: u32, sums: &PixelSums, sample_count:
     accum[base + 5] += sums.sum_sq.y;
     accum[base + 6] += sums.sum_sq.z;
     accum[base + 7] += sums.invalid as f32;
+}
+
+/// The local shading frame at `sp` for a ray arriving along `dir`, the geometric normal on the same
+/// side as the frame's, and the outgoing direction in the frame. Two-sided materials seen from behind
+/// are shaded as if from the front.
+pub fn shading_frame(two_sided: bool, sp: &SurfacePoint, dir: Vec3) -> (Frame, Vec3, Vec3) {
+    let (mut ns, mut ng) = (sp.ns, sp.ng);
+    if two_sided && ng.dot(dir) > 0.0 {
+        ns = -ns;
+        ng = -ng;
+    }
+    let frame = Frame::from_normal(ns);
+    let wo = frame.to_local(-dir);
+    (frame, ng, wo)
 }

@@ -1,0 +1,75 @@
+//! Direct illumination (Mitsuba's `direct`): emission seen by the camera plus light arriving at the
+//! first surface straight from an emitter, estimated with `emitter_samples` light samples and
+//! `bsdf_samples` BSDF samples per pixel sample, combined by the power heuristic.
+use super::nee::{area_emission, environment, first_hit_past_emitters, next_event, PreviousVertex, StrategyCounts};
+use super::path::DIM_FIRST_BOUNCE;
+use super::shading_frame;
+use crate::bsdf::Bsdf;
+use crate::bvh::Accel;
+use crate::camera::Ray;
+use crate::rng::Sampler;
+use crate::scene::{FrameParams, SceneView, NONE};
+use crate::shape::{offset_origin, surface_point};
+use crate::spectrum::Rgb;
+
+/// Radiance arriving along `camera_ray` after at most one bounce.
+pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mut Sampler) -> Rgb {
+    let accel = Accel { nodes: scene.nodes, prims: scene.prims };
+    let counts = StrategyCounts { light: params.emitter_samples as f32, bsdf: params.bsdf_samples as f32 };
+    let camera = PreviousVertex::camera(camera_ray.origin);
+    sampler.set_dimension(DIM_FIRST_BOUNCE);
+
+    let hidden = params.hide_emitters != 0;
+    let found = if hidden { first_hit_past_emitters(scene, &accel, &camera_ray) } else { accel.trace(&camera_ray, false, NONE) };
+    let hit = match found {
+        Some(h) => h,
+        None if hidden => return Rgb::ZERO,
+        None => return environment(scene, params, camera_ray.dir, &camera, counts),
+    };
+    let prim = scene.prims[hit.prim as usize];
+    let sp = surface_point(&prim, scene.attributes, &hit, &camera_ray);
+    let mut result = Rgb::ZERO;
+    if prim.light != NONE {
+        result += area_emission(scene, &prim, &sp, camera_ray.dir, &camera, counts);
+    }
+
+    let material = scene.materials[prim.material as usize];
+    let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv);
+    let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, camera_ray.dir);
+
+    if bsdf.has_smooth_component() {
+        let mut i = 0;
+        while i < params.emitter_samples {
+            let u_select = sampler.next_1d();
+            let u_light = sampler.next_2d();
+            result += next_event(scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, counts) / counts.light;
+            i += 1;
+        }
+    }
+
+    let mut i = 0;
+    while i < params.bsdf_samples {
+        let u_lobe = sampler.next_1d();
+        let u_dir = sampler.next_2d();
+        i += 1;
+        let bs = bsdf.sample(wo, u_lobe, u_dir);
+        if bs.pdf <= 0.0 {
+            continue;
+        }
+        let wi = frame.to_world(bs.wi);
+        let ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
+        let from = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta };
+        let le = match accel.trace(&ray, false, NONE) {
+            None => environment(scene, params, wi, &from, counts),
+            Some(h) => {
+                let lit = scene.prims[h.prim as usize];
+                if lit.light == NONE {
+                    continue;
+                }
+                area_emission(scene, &lit, &surface_point(&lit, scene.attributes, &h, &ray), wi, &from, counts)
+            }
+        };
+        result += bs.weight * le / counts.bsdf;
+    }
+    result
+}

@@ -1,0 +1,108 @@
+//! Direct lighting shared by the integrators: next-event estimation (light sampling with a shadow
+//! ray) and the weight of emitters that BSDF sampling finds, combined by the power heuristic.
+//!
+//! With `n_l` light samples and `n_b` BSDF samples per vertex (Mitsuba's `direct` takes several; the
+//! path tracer one each) the heuristic compares `n_l·p_light` with `n_b·p_bsdf`, and each strategy's
+//! sum is divided by its own count by the caller.
+use crate::bsdf::Bsdf;
+use crate::bvh::Accel;
+use crate::camera::Ray;
+use crate::frame::Frame;
+use crate::glam::{Vec2, Vec3};
+use crate::light::{self, infinite};
+use crate::math::max_component;
+use crate::sampling::power_heuristic;
+use crate::scene::{FrameParams, Primitive, SceneView, NONE};
+use crate::shape::{offset_origin, Hit, SurfacePoint};
+use crate::spectrum::Rgb;
+
+/// Shadow rays stop this fraction short of the light so that the emitter itself does not occlude.
+const SHADOW_EPSILON: f32 = 1.0e-4;
+
+/// Samples each strategy takes per shading point.
+#[derive(Clone, Copy)]
+pub struct StrategyCounts {
+    pub light: f32,
+    pub bsdf: f32,
+}
+
+impl StrategyCounts {
+    pub const ONE_EACH: StrategyCounts = StrategyCounts { light: 1.0, bsdf: 1.0 };
+}
+
+/// Where a ray came from: what weighting an emitter it hits needs.
+#[derive(Clone, Copy)]
+pub struct PreviousVertex {
+    pub p: Vec3,
+    /// Solid-angle density of the BSDF sample that left it.
+    pub pdf: f32,
+    /// The camera, or a Dirac-delta BSDF lobe: emitters hit are not weighted against light sampling.
+    pub delta: bool,
+}
+
+impl PreviousVertex {
+    pub fn camera(p: Vec3) -> Self {
+        PreviousVertex { p, pdf: 0.0, delta: true }
+    }
+}
+
+/// One light sample at a surface point, weighted against BSDF sampling (delta emitters, which BSDF
+/// sampling cannot hit, take the full weight). Not divided by `counts.light`.
+#[allow(clippy::too_many_arguments)]
+pub fn next_event(scene: &SceneView, params: &FrameParams, accel: &Accel, bsdf: &Bsdf, frame: &Frame, sp: &SurfacePoint, ng: Vec3, wo: Vec3, u_select: f32, u_light: Vec2, counts: StrategyCounts) -> Rgb {
+    let ls = light::sample(scene, params, sp.p, u_select, u_light);
+    if ls.pdf <= 0.0 || max_component(ls.radiance) <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let wi = frame.to_local(ls.wi);
+    let f = bsdf.eval(wo, wi);
+    if max_component(f) <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let shadow = Ray { origin: offset_origin(sp, ng, ls.wi), dir: ls.wi, t_min: 0.0, t_max: ls.dist * (1.0 - SHADOW_EPSILON) };
+    if accel.occluded(&shadow, ls.prim) {
+        return Rgb::ZERO;
+    }
+    let weight = if ls.delta { 1.0 } else { power_heuristic(counts.light * ls.pdf, counts.bsdf * bsdf.pdf(wo, wi)) };
+    f * ls.radiance * (weight / ls.pdf)
+}
+
+/// Radiance of the area emitter on `prim` seen along `dir` at `sp`, weighted against light sampling
+/// from `prev`.
+pub fn area_emission(scene: &SceneView, prim: &Primitive, sp: &SurfacePoint, dir: Vec3, prev: &PreviousVertex, counts: StrategyCounts) -> Rgb {
+    let emitter = scene.lights[prim.light as usize];
+    let le = light::emitted(&emitter, sp.ns, -dir);
+    let weight = if prev.delta { 1.0 } else { power_heuristic(counts.bsdf * prev.pdf, counts.light * light::pdf(&emitter, prim, prev.p, sp.p, sp.ng)) };
+    le * weight
+}
+
+/// Radiance of the environment emitter (if any) along an escaping ray, weighted likewise.
+pub fn environment(scene: &SceneView, params: &FrameParams, dir: Vec3, prev: &PreviousVertex, counts: StrategyCounts) -> Rgb {
+    if params.env_light == NONE {
+        return Rgb::ZERO;
+    }
+    let env = scene.lights[params.env_light as usize];
+    let le = infinite::eval(&env, scene, dir);
+    let weight = if prev.delta { 1.0 } else { power_heuristic(counts.bsdf * prev.pdf, counts.light * infinite::pdf(&env, scene, dir) * env.pmf) };
+    le * weight
+}
+
+/// The first surface along a camera ray when directly visible emitters are hidden: Mitsuba's
+/// `hide_emitters` lets camera rays pass through area emitters to what lies behind them.
+pub fn first_hit_past_emitters(scene: &SceneView, accel: &Accel, ray: &Ray) -> Option<Hit> {
+    // Advancing `t_min` (strictly excluded) past each emitter keeps `t` relative to the camera ray;
+    // bounded so that a stack of coincident emitters cannot loop forever.
+    let mut r = *ray;
+    let mut skip = NONE;
+    let mut steps = 0;
+    while steps < 64 {
+        let hit = accel.trace(&r, false, skip)?;
+        if scene.prims[hit.prim as usize].light == NONE {
+            return Some(hit);
+        }
+        r.t_min = hit.t;
+        skip = hit.prim;
+        steps += 1;
+    }
+    None
+}
