@@ -27,12 +27,12 @@ fn gpu_and_cpu_agree_on_the_cornell_box() {
     assert!(c.luminance_z.unwrap().abs() < 4.0);
 }
 
-/// The same on a window of Mitsuba scenes that exercise every kernel feature family (emitters of
-/// every kind, textures, every BSDF model, thin lens): each model's code paths compiled to SPIR-V
-/// must compute what the native build computes.
+/// The same on a window of scenes that exercise every kernel feature family (emitters of every kind,
+/// textures, every BSDF model, thin lens, the direct integrator): each model's code paths compiled to
+/// SPIR-V must compute what the native build computes.
 #[test]
 fn gpu_and_cpu_agree_on_every_feature() {
-    for file in [
+    let mitsuba = [
         "docs/scenes/emitter_spot_no_texture.xml",
         "docs/scenes/shape_sphere_light_analytic.xml",
         "docs/scenes/integrator_direct_both.xml",
@@ -42,8 +42,12 @@ fn gpu_and_cpu_agree_on_every_feature() {
         "docs/scenes/bsdf_plastic_default.xml",
         "docs/scenes/bsdf_diffuse_textured.xml",
         "docs/scenes/sensor_thinlens.xml",
-    ] {
-        let mut scene = caustic::load_scene(&mitsuba_scene(file), &defines(&[("spp", "4")])).expect("scene loads");
+    ];
+    // caustic's own: fuzzy metal, dielectric and Lambert spheres under a constant sky.
+    let own = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/rtiow-final.xml");
+    for path in mitsuba.iter().map(|f| mitsuba_scene(f)).chain([own]) {
+        let file = path.display();
+        let mut scene = caustic::load_scene(&path, &defines(&[("spp", "4")])).expect("scene loads");
         let (w, h) = (scene.sensor.width, scene.sensor.height);
         scene.sensor.crop = Some(caustic::scene::Crop { x: w / 2 - 24, y: h / 2 - 24, width: 48, height: 48 });
         let cpu = render_scene(&scene, BackendChoice::Cpu, 4, 3);

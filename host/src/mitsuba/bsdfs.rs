@@ -51,6 +51,7 @@ impl Loader {
                 m
             }
             "phong" => self.phong(props)?,
+            "fuzzymetal" => self.fuzzy_metal(props)?,
             "conductor" | "roughconductor" => self.conductor(props)?,
             "dielectric" | "thindielectric" | "roughdielectric" => self.dielectric(props)?,
             "plastic" | "roughplastic" => self.plastic(props)?,
@@ -61,6 +62,19 @@ impl Loader {
                 Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }
             }
         })
+    }
+
+    /// caustic's own type for "Ray Tracing in One Weekend"'s metal: `reflectance` (the book's albedo,
+    /// texturable) and `fuzz` in [0, 1] (0: a mirror).
+    fn fuzzy_metal(&mut self, props: &Props) -> Result<Material> {
+        let albedo = self.color_param(props, "reflectance", SpectrumUse::Reflectance, [1.0; 3])?;
+        let fuzz = props.float("fuzz", 0.0)?;
+        if !(0.0..=1.0).contains(&fuzz) {
+            bail!("{}: fuzzymetal fuzz must be in [0, 1] (the book clamps it to 1), got {fuzz}", props.loc);
+        }
+        let mut m = Material { kind: BSDF_FUZZY_METAL, alpha_u: fuzz, ..Default::default() };
+        set_reflectance(&mut m, albedo);
+        Ok(m)
     }
 
     fn phong(&mut self, props: &Props) -> Result<Material> {

@@ -6,6 +6,7 @@ pub mod phong;
 pub mod conductor;
 pub mod dielectric;
 pub mod fresnel;
+pub mod fuzzy_metal;
 pub mod microfacet;
 pub mod plastic;
 pub mod rough_conductor;
@@ -53,6 +54,7 @@ macro_rules! dispatch {
             BSDF_ROUGH_DIELECTRIC => rough_dielectric::RoughDielectric::from_material(m, r, s, t).$f($($a),*),
             BSDF_PLASTIC => plastic::Plastic::from_material(m, r, s, t).$f($($a),*),
             BSDF_ROUGH_PLASTIC => rough_plastic::RoughPlastic::from_material(m, r, s, t).$f($($a),*),
+            BSDF_FUZZY_METAL => fuzzy_metal::FuzzyMetal::from_material(m, r, s, t).$f($($a),*),
             _ => $bsdf.diffuse().$d($($da),*),
         }
     }};
@@ -99,7 +101,11 @@ impl<'a> Bsdf<'a> {
 
     /// Whether next-event estimation can contribute (false for purely specular models).
     pub fn has_smooth_component(&self) -> bool {
-        !matches!(self.material.kind, BSDF_CONDUCTOR | BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC)
+        match self.material.kind {
+            BSDF_CONDUCTOR | BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC => false,
+            BSDF_FUZZY_METAL => !fuzzy_metal::FuzzyMetal::is_delta(self.material.alpha_u),
+            _ => true,
+        }
     }
 
     /// Whether both sides of the surface reflect like the front (Mitsuba's `twosided`).
