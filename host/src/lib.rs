@@ -1,9 +1,10 @@
 //! caustic's host: scene loading (Mitsuba 3 XML, OBJ/MTL), BVH construction, the GPU (wgpu) and CPU
-//! backends, progressive rendering, image output and comparison. No shading code lives here: all of
+//! backends, progressive rendering, image output, comparison and error-against-time curves. No shading code lives here: all of
 //! it is in `caustic-kernel`.
 pub mod backend;
 pub mod buffers;
 pub mod compare;
+pub mod convergence;
 pub mod film;
 pub mod image_io;
 pub mod mesh;

@@ -1,4 +1,4 @@
-//! The `caustic` command line: render, compare, bench.
+//! The `caustic` command line: render, compare, bench, convergence.
 use anyhow::{bail, Context, Result};
 use caustic::backend::{self, BackendChoice};
 use caustic::film::{variance_path, Film};
@@ -52,6 +52,28 @@ enum Command {
         #[arg(long)]
         error_image: Option<PathBuf>,
     },
+    /// Error against render time: render progressively and compare with a reference at 1, 2, 4, …
+    /// samples per pixel; prints a table, optionally writes CSV and an SVG plot (log–log).
+    Convergence {
+        scene: PathBuf,
+        /// Reference image (EXR) of the same size.
+        reference: PathBuf,
+        #[arg(long, value_enum, default_value = "auto")]
+        backend: BackendChoice,
+        /// Largest sample count (default: the scene's sampler).
+        #[arg(long)]
+        spp: Option<u32>,
+        #[arg(short = 'D', value_parser = parse_define)]
+        define: Vec<(String, String)>,
+        #[arg(long, default_value_t = 0)]
+        seed: u32,
+        /// Write the curve as CSV.
+        #[arg(long)]
+        csv: Option<PathBuf>,
+        /// Write a log–log plot of relative MSE against seconds (SVG).
+        #[arg(long)]
+        plot: Option<PathBuf>,
+    },
     /// Measure rendering throughput (Msamples/s) per backend.
     Bench {
         scene: PathBuf,
@@ -80,6 +102,7 @@ fn main() {
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref()),
         Command::Bench { scene, define, backend, spp } => cmd_bench(&scene, &define, &backend, spp),
+        Command::Convergence { scene, reference, backend, spp, define, seed, csv, plot } => cmd_convergence(&scene, &reference, backend, spp, &define, seed, csv.as_deref(), plot.as_deref()),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");
@@ -149,6 +172,37 @@ fn cmd_compare(image: &Path, reference: &Path, image_spp: u32, reference_spp: u3
     if let Some(path) = error_image {
         let scale = if c.pass_fraction.is_some() { c.z_critical as f32 } else { 1.0 };
         compare::save_error_image(path, a.width, a.height, &c.error_map, scale)?;
+    }
+    Ok(())
+}
+
+#[allow(clippy::too_many_arguments)]
+fn cmd_convergence(scene_path: &Path, reference: &Path, choice: BackendChoice, spp: Option<u32>, defines: &[(String, String)], seed: u32, csv: Option<&Path>, plot: Option<&Path>) -> Result<()> {
+    use caustic::convergence;
+    let scene = caustic::load_scene(scene_path, defines)?;
+    let spp = spp.unwrap_or(scene.sensor.spp);
+    let reference_film = Film::load_exr(reference)?;
+    let buffers = buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
+    let mut backend = backend::create(choice, &buffers)?;
+    // A one-sample warm-up (pipeline compilation, caches) on a backend of its own, untimed.
+    render::render(backend.as_mut(), &buffers, 1, seed.wrapping_add(1), |_| {})?;
+    let mut backend = backend::create(choice, &buffers)?;
+    let points = convergence::measure(backend.as_mut(), &buffers, &reference_film, spp, seed)?;
+    println!("{} | {}x{} | independent sampler", backend.describe(), buffers.params.width, buffers.params.height);
+    println!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
+    println!("|---|---|---|---|---|");
+    for p in &points {
+        println!("| {} | {:.4} | {:.6} | {:.6e} | {:.5} |", p.spp, p.seconds, p.rmse, p.rel_mse, p.luminance_ratio);
+    }
+    if let Some(slope) = convergence::log_log_slope(&points) {
+        println!("log-log slope of relative MSE against seconds: {slope:.3} (−1: unbiased at constant throughput)");
+    }
+    if let Some(path) = csv {
+        convergence::write_csv(path, &points)?;
+    }
+    if let Some(path) = plot {
+        let label = format!("{} ({})", scene_path.file_stem().unwrap_or_default().to_string_lossy(), backend.describe());
+        convergence::write_plot(path, &[(label, points)])?;
     }
     Ok(())
 }

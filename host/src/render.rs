@@ -19,12 +19,32 @@ pub struct RenderStats {
 
 /// Renders `spp` samples per pixel with `seed`, calling `progress(samples done)` after each pass.
 pub fn render(backend: &mut dyn Backend, buffers: &SceneBuffers, spp: u32, seed: u32, mut progress: impl FnMut(u32)) -> Result<(Film, RenderStats)> {
-    let start = Instant::now();
+    let stats = render_with_checkpoints(backend, buffers, spp, seed, &[], |done, _, _| {
+        progress(done);
+        Ok(())
+    })?;
+    let accum = backend.read_accum()?;
+    Ok((Film::from_accum(buffers.params.width, buffers.params.height, accum), stats))
+}
+
+/// The pass loop. Passes never run past a sample count listed in `checkpoints`; after every pass
+/// `after_pass(samples done, render seconds so far, backend)` runs, untimed (so a caller may read the
+/// image back at checkpoints without charging the render for it).
+pub fn render_with_checkpoints(
+    backend: &mut dyn Backend,
+    buffers: &SceneBuffers,
+    spp: u32,
+    seed: u32,
+    checkpoints: &[u32],
+    mut after_pass: impl FnMut(u32, f64, &mut dyn Backend) -> Result<()>,
+) -> Result<RenderStats> {
+    let mut rendering = Duration::ZERO;
     let mut done = 0u32;
     let mut per_pass = 1u32;
     let mut passes = 0u32;
     while done < spp {
-        let count = per_pass.min(spp - done);
+        let next_stop = checkpoints.iter().copied().filter(|&c| c > done).min().unwrap_or(spp).min(spp);
+        let count = per_pass.min(next_stop - done);
         let mut params = buffers.params;
         params.seed = seed;
         params.sample_base = done;
@@ -33,14 +53,16 @@ pub fn render(backend: &mut dyn Backend, buffers: &SceneBuffers, spp: u32, seed:
         let t = Instant::now();
         backend.pass(&params)?;
         let elapsed = t.elapsed();
+        rendering += elapsed;
         done += count;
         passes += 1;
-        progress(done);
-        // Grow (at most doubling) or shrink the pass towards the target duration.
-        let ratio = TARGET_PASS.as_secs_f64() / elapsed.as_secs_f64().max(1e-6);
-        per_pass = ((count as f64 * ratio.min(2.0)) as u32).clamp(1, MAX_SAMPLES_PER_PASS);
+        after_pass(done, rendering.as_secs_f64(), backend)?;
+        // Grow (at most doubling) or shrink the pass towards the target duration; a pass cut short by
+        // a checkpoint says little about the right size, so only full passes adjust it.
+        if count == per_pass {
+            let ratio = TARGET_PASS.as_secs_f64() / elapsed.as_secs_f64().max(1e-6);
+            per_pass = ((count as f64 * ratio.min(2.0)) as u32).clamp(1, MAX_SAMPLES_PER_PASS);
+        }
     }
-    let accum = backend.read_accum()?;
-    let film = Film::from_accum(buffers.params.width, buffers.params.height, accum);
-    Ok((film, RenderStats { spp, seconds: start.elapsed().as_secs_f64(), passes }))
+    Ok(RenderStats { spp, seconds: rendering.as_secs_f64(), passes })
 }

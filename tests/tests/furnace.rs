@@ -121,3 +121,26 @@ fn smooth_shaded_diamond_in_a_unit_environment() {
     println!("diamond furnace mean {mean:.5} ± {se:.5}");
     assert!((mean - 1.0).abs() < 4.0 * se + 5e-4, "diamond furnace mean {mean:.5} ± {se:.5}, Mitsuba 1.0000");
 }
+
+/// The furnace's exact image (1 everywhere) as the reference of `caustic convergence`: relative MSE
+/// must fall as 1/spp (an unbiased estimator), the luminance ratio tend to 1, and the render time grow.
+#[test]
+fn convergence_against_the_exact_furnace_image() {
+    use caustic::film::Film;
+    let scene = furnace(white_lambert());
+    let buffers = caustic::buffers::build(&scene).unwrap();
+    let (w, h) = (buffers.params.width, buffers.params.height);
+    let exact = Film { width: w, height: h, rgb: vec![[1.0; 3]; (w * h) as usize], variance: None, invalid_samples: 0 };
+    let mut backend = caustic::backend::create(BackendChoice::Cpu, &buffers).unwrap();
+    let points = caustic::convergence::measure(backend.as_mut(), &buffers, &exact, 256, 9).unwrap();
+    assert_eq!(points.iter().map(|p| p.spp).collect::<Vec<_>>(), vec![1, 2, 4, 8, 16, 32, 64, 128, 256]);
+    assert!(points.windows(2).all(|p| p[1].seconds > p[0].seconds), "render time must grow");
+    // Slope of log(rel MSE) against log(spp), fitted over all points.
+    let xy: Vec<(f64, f64)> = points.iter().map(|p| ((p.spp as f64).ln(), p.rel_mse.ln())).collect();
+    let n = xy.len() as f64;
+    let (mx, my) = (xy.iter().map(|p| p.0).sum::<f64>() / n, xy.iter().map(|p| p.1).sum::<f64>() / n);
+    let slope = xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>() / xy.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+    println!("furnace convergence: slope {slope:.3}, last {:?}", points.last().unwrap());
+    assert!((-1.2..-0.8).contains(&slope), "relative MSE falls as spp^{slope:.3}, not 1/spp");
+    assert!((points.last().unwrap().luminance_ratio - 1.0).abs() < 0.01);
+}

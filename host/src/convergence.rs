@@ -1,0 +1,122 @@
+//! Error against render time: one progressive render, read back at sample counts 1, 2, 4, … and
+//! compared with a reference after each. Render time counts the passes only (each synchronised with
+//! the device), not the read-backs and comparisons in between, so the curve is what a render of that
+//! length would have cost.
+use crate::backend::Backend;
+use crate::buffers::SceneBuffers;
+use crate::compare::compare;
+use crate::film::Film;
+use crate::render::render_with_checkpoints;
+use anyhow::{bail, Context, Result};
+use caustic_kernel::scene::SAMPLER_INDEPENDENT;
+use std::path::Path;
+
+/// One point of the curve.
+#[derive(Clone, Copy, Debug)]
+pub struct ConvergencePoint {
+    pub spp: u32,
+    pub seconds: f64,
+    pub rmse: f64,
+    pub rel_mse: f64,
+    pub luminance_ratio: f64,
+}
+
+/// Sample counts at which the image is compared: powers of two up to `max_spp`, and `max_spp`.
+pub fn checkpoints(max_spp: u32) -> Vec<u32> {
+    let mut c: Vec<u32> = (0..32).map(|k| 1u32 << k).take_while(|&s| s < max_spp).collect();
+    c.push(max_spp);
+    c
+}
+
+/// Renders up to `max_spp` and measures the error against `reference` at every checkpoint. The
+/// independent sampler is used whatever the scene asks: stratified strata laid out for the full
+/// count would cover only part of each pixel at the earlier checkpoints.
+pub fn measure(backend: &mut dyn Backend, buffers: &SceneBuffers, reference: &Film, max_spp: u32, seed: u32) -> Result<Vec<ConvergencePoint>> {
+    if max_spp == 0 {
+        bail!("the sample budget must be at least 1");
+    }
+    if (reference.width, reference.height) != (buffers.params.width, buffers.params.height) {
+        bail!("the reference is {}×{} but the render is {}×{}", reference.width, reference.height, buffers.params.width, buffers.params.height);
+    }
+    let mut buffers = buffers.clone();
+    buffers.params.sampler = SAMPLER_INDEPENDENT;
+    let stops = checkpoints(max_spp);
+    let mut points = Vec::with_capacity(stops.len());
+    let (width, height) = (buffers.params.width, buffers.params.height);
+    render_with_checkpoints(backend, &buffers, max_spp, seed, &stops, |done, seconds, backend| {
+        if stops.contains(&done) {
+            let film = Film::from_accum(width, height, backend.read_accum()?);
+            let c = compare(&film, reference, 0.0)?;
+            points.push(ConvergencePoint { spp: done, seconds, rmse: c.rmse, rel_mse: c.rel_mse, luminance_ratio: c.luminance_ratio });
+        }
+        Ok(())
+    })?;
+    Ok(points)
+}
+
+/// Least-squares slope of log(relative MSE) against log(seconds) over the points after the first
+/// (whose time is dominated by fixed costs): −1 for an unbiased estimator at constant throughput.
+pub fn log_log_slope(points: &[ConvergencePoint]) -> Option<f64> {
+    let xy: Vec<(f64, f64)> = points.iter().skip(1).filter(|p| p.seconds > 0.0 && p.rel_mse > 0.0).map(|p| (p.seconds.ln(), p.rel_mse.ln())).collect();
+    if xy.len() < 2 {
+        return None;
+    }
+    let n = xy.len() as f64;
+    let (mx, my) = (xy.iter().map(|p| p.0).sum::<f64>() / n, xy.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxx: f64 = xy.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// Writes the curve as CSV (`spp,seconds,rmse,rel_mse,luminance_ratio`).
+pub fn write_csv(path: &Path, points: &[ConvergencePoint]) -> Result<()> {
+    let mut text = String::from("spp,seconds,rmse,rel_mse,luminance_ratio\n");
+    for p in points {
+        text += &format!("{},{:.6},{:.8e},{:.8e},{:.6}\n", p.spp, p.seconds, p.rmse, p.rel_mse, p.luminance_ratio);
+    }
+    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// Plots relative MSE against render seconds on log–log axes (SVG), one series per labelled curve,
+/// with a dashed line of slope −1 through the first curve's last point for reference.
+pub fn write_plot(path: &Path, curves: &[(String, Vec<ConvergencePoint>)]) -> Result<()> {
+    use plotters::prelude::*;
+    let all: Vec<&ConvergencePoint> = curves.iter().flat_map(|(_, c)| c).filter(|p| p.seconds > 0.0 && p.rel_mse > 0.0).collect();
+    if all.is_empty() {
+        bail!("nothing to plot");
+    }
+    let (t0, t1) = all.iter().fold((f64::MAX, 0.0f64), |(a, b), p| (a.min(p.seconds), b.max(p.seconds)));
+    let (e0, e1) = all.iter().fold((f64::MAX, 0.0f64), |(a, b), p| (a.min(p.rel_mse), b.max(p.rel_mse)));
+    let root = SVGBackend::new(path, (800, 560)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption("relative MSE against render time", ("sans-serif", 22))
+        .margin(16)
+        .x_label_area_size(44)
+        .y_label_area_size(70)
+        .build_cartesian_2d((t0 / 1.5..t1 * 1.5).log_scale(), (e0 / 2.0..e1 * 2.0).log_scale())
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    chart.configure_mesh().x_desc("render seconds").y_desc("relative MSE").draw().map_err(|e| anyhow::anyhow!("{e}"))?;
+    let colours = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
+    for (k, (label, points)) in curves.iter().enumerate() {
+        let colour = colours[k % colours.len()];
+        let series: Vec<(f64, f64)> = points.iter().filter(|p| p.seconds > 0.0 && p.rel_mse > 0.0).map(|p| (p.seconds, p.rel_mse)).collect();
+        chart
+            .draw_series(LineSeries::new(series.clone(), colour.stroke_width(2)))
+            .map_err(|e| anyhow::anyhow!("{e}"))?
+            .label(label.as_str())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
+        chart.draw_series(series.iter().map(|&p| Circle::new(p, 3, colour.filled()))).map_err(|e| anyhow::anyhow!("{e}"))?;
+    }
+    if let Some(last) = curves[0].1.iter().rev().find(|p| p.seconds > 0.0 && p.rel_mse > 0.0) {
+        let line = [(t0, last.rel_mse * last.seconds / t0), (t1, last.rel_mse * last.seconds / t1)];
+        chart
+            .draw_series(DashedLineSeries::new(line, 6, 4, BLACK.mix(0.5).stroke_width(1)))
+            .map_err(|e| anyhow::anyhow!("{e}"))?
+            .label("slope −1")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw().map_err(|e| anyhow::anyhow!("{e}"))?;
+    root.present().map_err(|e| anyhow::anyhow!("{e}"))?;
+    Ok(())
+}
