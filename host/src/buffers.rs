@@ -136,12 +136,16 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                         }
                     }
                     let prim = Primitive { p0: arr(t[0]), kind: PRIM_TRIANGLE, p1: arr(t[1]), material: shape.material, p2: arr(t[2]), light: NONE, flags, _pad: [0; 3] };
-                    push(prim, attr, area, LIGHT_TRIANGLE);
+                    push(prim, attr, area, LIGHT_AREA);
                 }
             }
             Geometry::Sphere { center, radius } => {
                 let prim = Primitive { p0: arr(*center), kind: PRIM_SPHERE, p1: [*radius, 0.0, 0.0], material: shape.material, p2: [0.0; 3], light: NONE, flags: flags_base, _pad: [0; 3] };
                 push(prim, TriangleAttributes::default(), 4.0 * PI * radius * radius, LIGHT_SPHERE);
+            }
+            Geometry::Disk { center, u, v } => {
+                let prim = Primitive { p0: arr(*center), kind: PRIM_DISK, p1: arr(*u), material: shape.material, p2: arr(*v), light: NONE, flags: flags_base, _pad: [0; 3] };
+                push(prim, TriangleAttributes::default(), PI * u.cross(*v).length(), LIGHT_AREA);
             }
         }
     }
@@ -152,6 +156,11 @@ fn bounds(p: &Primitive) -> Aabb {
     if p.kind == PRIM_SPHERE {
         let c = Vec3A::from(p.p0);
         let r = Vec3A::splat(p.p1[0]);
+        Aabb::new(c - r, c + r)
+    } else if p.kind == PRIM_DISK {
+        // The ellipse c + a·u + b·v reaches ±sqrt(u_i² + v_i²) along each axis.
+        let (c, u, v) = (Vec3A::from(p.p0), Vec3A::from(p.p1), Vec3A::from(p.p2));
+        let r = (u * u + v * v).sqrt();
         Aabb::new(c - r, c + r)
     } else {
         let (a, b, c) = (Vec3A::from(p.p0), Vec3A::from(p.p1), Vec3A::from(p.p2));
@@ -179,7 +188,7 @@ fn build_bvh(prims: &mut Vec<Primitive>, attributes: &mut Vec<TriangleAttributes
     }
     *prims = order.iter().map(|&i| prims[i as usize]).collect();
     *attributes = order.iter().map(|&i| attributes[i as usize]).collect();
-    for l in lights.iter_mut().filter(|l| matches!(l.kind, LIGHT_TRIANGLE | LIGHT_SPHERE)) {
+    for l in lights.iter_mut().filter(|l| matches!(l.kind, LIGHT_AREA | LIGHT_SPHERE)) {
         l.prim = new_index[l.prim as usize];
     }
     let nodes: Vec<BvhNode> = bvh

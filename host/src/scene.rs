@@ -106,6 +106,8 @@ pub enum Geometry {
     /// World-space triangles, with optional per-corner shading normals.
     Triangles { triangles: Vec<[Vec3; 3]>, normals: Option<Vec<[Vec3; 3]>>, uvs: Option<Vec<[Vec2; 3]>> },
     Sphere { center: Vec3, radius: f32 },
+    /// Mitsuba's analytic disk: `center + a·u + b·v` for `a² + b² ≤ 1`, facing `u × v`.
+    Disk { center: Vec3, u: Vec3, v: Vec3 },
 }
 
 #[derive(Clone, Debug)]

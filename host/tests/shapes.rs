@@ -322,11 +322,13 @@ fn disk_and_cylinder_areas_match_the_analytic_shapes() {
         "<point name=\"p1\" x=\"1\" y=\"2\" z=\"0\"/></shape>\n",
     ))
     .unwrap();
-    // The inscribed polygons fall short of the true areas by less than 1e-5 (see mesh::primitives).
-    let disk = area(soup(&scene.shapes[0]).triangles);
+    // The disk is analytic; the cylinder's inscribed polygon falls short of the true area by less
+    // than 1e-5 (see mesh::primitives).
+    let Geometry::Disk { center, u, v } = scene.shapes[0].geometry else { panic!("the disk is analytic") };
+    assert_eq!((center, u, v), (Vec3::Z, Vec3::X * 2.0, Vec3::Y * 2.0));
+    assert!((caustic_kernel::shape::disk::area(u, v) as f64 - 4.0 * std::f64::consts::PI).abs() < 1e-5);
     let cylinder = area(soup(&scene.shapes[1]).triangles);
-    let (true_disk, true_cylinder) = (4.0 * std::f64::consts::PI, 2.0 * std::f64::consts::PI * 0.5 * 2.0);
-    assert!(disk < true_disk && disk > true_disk * (1.0 - 1e-5), "disk area {disk}, expected {true_disk}");
+    let true_cylinder = 2.0 * std::f64::consts::PI * 0.5 * 2.0;
     assert!(cylinder < true_cylinder && cylinder > true_cylinder * (1.0 - 1e-5), "cylinder area {cylinder}, expected {true_cylinder}");
     assert!(primitives::SEGMENTS >= 512);
 }
@@ -385,24 +387,33 @@ fn cylinder_normals_and_uvs_follow_mitsuba() {
     }
 }
 
+/// Rays straight down onto disks: the hit lies on the circle's interior only, its uv is Mitsuba's
+/// (r, φ/2π) in the disk's own coordinates, and the disk faces +z — mirrored too, since Mitsuba's
+/// normal is the inverse transpose of +z.
 #[test]
-fn disk_uvs_are_radius_and_angle() {
+fn disk_hits_uvs_and_normals_follow_mitsuba() {
+    use caustic_kernel::camera::Ray;
+    use caustic_kernel::shape::{intersect, surface_point, Hit};
     let dir = temp_dir("disk");
-    let scene = load_scene_with(&dir, "<shape type=\"disk\"/>\n<shape type=\"disk\"><transform name=\"to_world\"><scale x=\"-1\"/></transform></shape>").unwrap();
-    let s = soup(&scene.shapes[0]);
-    assert!(s.normals.is_none(), "a disk is flat");
-    for (t, uv) in s.triangles.iter().zip(s.uvs.unwrap()) {
-        assert!((t[1] - t[0]).cross(t[2] - t[0]).z > 0.0, "the disk faces +z");
-        let centre = (t[0] + t[1] + t[2]) / 3.0;
-        let phi = centre.y.atan2(centre.x).rem_euclid(std::f32::consts::TAU);
-        for k in 0..3 {
-            assert!((uv[k].x - t[k].length()).abs() < 1e-6, "u = r");
-            assert!((uv[k].y - phi / std::f32::consts::TAU).abs() < 1.0 / primitives::SEGMENTS as f32, "v = φ/2π");
+    let scene = load_scene_with(&dir, "<shape type=\"disk\"/>\n<shape type=\"disk\"><transform name=\"to_world\"><scale x=\"-1\"/><translate z=\"-3\"/></transform></shape>").unwrap();
+    let buffers = caustic::buffers::build(&scene).unwrap();
+    for (k, z) in [(0usize, 0.0f32), (1, -3.0)] {
+        let prim = buffers.prims.iter().find(|p| (p.p0[2] - z).abs() < 1e-6).expect("both disks are primitives");
+        let mirror = if k == 1 { -1.0 } else { 1.0 };
+        for (x, y) in [(0.5f32, 0.0f32), (0.0, 0.7), (-0.3, -0.4), (0.99, 0.1), (1.01, 0.0), (0.8, 0.8)] {
+            let ray = Ray { origin: Vec3::new(x, y, z + 1.0), dir: -Vec3::Z, t_min: 0.0, t_max: f32::MAX };
+            let hit = intersect(prim, &ray, f32::MAX);
+            let r = (x * x + y * y).sqrt();
+            assert_eq!(hit.is_some(), r <= 1.0, "disk {k}: ({x}, {y}) at r = {r}");
+            let Some((t, ab)) = hit else { continue };
+            assert!((t - 1.0).abs() < 1e-6);
+            let sp = surface_point(prim, &buffers.attributes, &Hit { t, prim: 0, uv: ab }, &ray);
+            assert!((sp.p - Vec3::new(x, y, z)).length() < 1e-6, "hit point {}", sp.p);
+            assert!((sp.ng - Vec3::Z).length() < 1e-6, "disk {k} faces {}", sp.ng);
+            // φ runs from the disk's local x axis, which the mirror sends to −x.
+            let phi = y.atan2(mirror * x).rem_euclid(std::f32::consts::TAU) / std::f32::consts::TAU;
+            assert!((sp.uv.x - r).abs() < 1e-6 && (sp.uv.y - phi).abs() < 1e-5, "disk {k}: uv {} at ({x}, {y}), expected ({r}, {phi})", sp.uv);
         }
-    }
-    // Mirrored, the disk still faces +z, as Mitsuba's normal (the inverse transpose of +z) does.
-    for t in soup(&scene.shapes[1]).triangles {
-        assert!((t[1] - t[0]).cross(t[2] - t[0]).z > 0.0, "the mirrored disk faces +z");
     }
 }
 

@@ -20,6 +20,8 @@ pub struct BvhNode {
 
 pub const PRIM_TRIANGLE: u32 = 0;
 pub const PRIM_SPHERE: u32 = 1;
+/// An analytic disk: centre `p0`, axes `p1` (u) and `p2` (v); it faces `u × v` (flipped by `PRIM_FLAG_FLIP`).
+pub const PRIM_DISK: u32 = 2;
 
 /// Primitive flag: interpolate the per-vertex normals in `ShadingNormals`.
 pub const PRIM_FLAG_SMOOTH: u32 = 1;
@@ -136,7 +138,8 @@ impl Default for Material {
     }
 }
 
-pub const LIGHT_TRIANGLE: u32 = 0;
+/// An area emitter on a flat primitive (triangle or disk), sampled uniformly by area.
+pub const LIGHT_AREA: u32 = 0;
 pub const LIGHT_SPHERE: u32 = 1;
 pub const LIGHT_POINT: u32 = 2;
 pub const LIGHT_SPOT: u32 = 3;

@@ -1,15 +1,14 @@
 //! Mitsuba's built-in shapes as meshes in their object space, with Mitsuba's uv parameterization.
 //!
-//! `disk` and `cylinder` are analytic in Mitsuba; until the kernel intersects them analytically we
-//! tessellate them with N = `SEGMENTS` segments around. A chord spanning 2π/N of a circle of radius
-//! r lies at most r·(1 − cos(π/N)) ≈ 4.7e-6·r inside it for N = 1024, below f32 resolution at unit
-//! scale. Areas fall short by the same inscribed polygon: the disk's by the factor
-//! N·sin(2π/N)/(2π) ≈ 1 − 6.3e-6, the cylinder's by N·sin(π/N)/π ≈ 1 − 1.6e-6.
+//! `cylinder` is analytic in Mitsuba; until the kernel intersects it analytically (as it does disks
+//! and spheres) we tessellate it with N = `SEGMENTS` segments around. A chord spanning 2π/N of a
+//! circle of radius r lies at most r·(1 − cos(π/N)) ≈ 4.7e-6·r inside it for N = 1024, below f32
+//! resolution at unit scale; the area falls short by the factor N·sin(π/N)/π ≈ 1 − 1.6e-6.
 use super::Mesh;
 use glam::{Mat4, Vec2, Vec3};
 use std::f32::consts::TAU;
 
-/// Segments around the disk and the cylinder.
+/// Segments around the cylinder.
 pub const SEGMENTS: u32 = 1024;
 
 /// The angle of segment boundary `i` of `SEGMENTS`; the last boundary is the first again, exactly.
@@ -49,27 +48,6 @@ pub fn cube() -> Mesh {
         mesh.positions.extend(corners.iter().copied().map(Vec3::from_array));
         uvs.extend(FACE_UVS.iter().copied().map(Vec2::from_array));
         mesh.indices.extend([base, base + 1, base + 2, base + 3, base, base + 2]);
-    }
-    mesh.uvs = Some(uvs);
-    mesh
-}
-
-/// Mitsuba's `disk`: the unit disk in the z = 0 plane, facing +z, with uv = (r, φ/2π), φ in
-/// [0, 2π) from +x towards +y. A fan of one triangle per segment; each triangle has its own centre
-/// vertex whose v is the middle of its segment, since v is undefined at the centre itself.
-pub fn disk() -> Mesh {
-    let mut mesh = Mesh::default();
-    let mut uvs = Vec::new();
-    for i in 0..=SEGMENTS {
-        let phi = boundary_angle(i);
-        mesh.positions.push(Vec3::new(phi.cos(), phi.sin(), 0.0));
-        uvs.push(Vec2::new(1.0, i as f32 / SEGMENTS as f32));
-    }
-    for i in 0..SEGMENTS {
-        let centre = mesh.positions.len() as u32;
-        mesh.positions.push(Vec3::ZERO);
-        uvs.push(Vec2::new(0.0, (i as f32 + 0.5) / SEGMENTS as f32));
-        mesh.indices.extend([centre, i, i + 1]);
     }
     mesh.uvs = Some(uvs);
     mesh

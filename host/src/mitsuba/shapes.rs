@@ -14,14 +14,17 @@ use glam::{Mat3, Mat4, Vec3};
 impl Loader {
     pub(crate) fn load_shape(&mut self, props: &Props) -> Result<()> {
         let to_world = props.transform("to_world")?;
-        let flip_normals = props.boolean("flip_normals", false)?;
+        let mut flip_normals = props.boolean("flip_normals", false)?;
         let face_normals = props.boolean("face_normals", false)?;
         let geometry = match props.kind.as_str() {
             "obj" | "ply" | "serialized" => mesh_geometry(self.load_mesh_file(props)?, to_world, face_normals),
             // Mitsuba's rectangle and cube are flat, whatever face_normals says.
             "rectangle" => flat_geometry(primitives::rectangle(), to_world),
             "cube" => flat_geometry(primitives::cube(), to_world),
-            "disk" => tessellated_geometry(primitives::disk(), to_world),
+            "disk" => {
+                flip_normals ^= Mat3::from_mat4(to_world).determinant() < 0.0;
+                disk_geometry(to_world, props)?
+            }
             "cylinder" => {
                 let radius = props.float("radius", 1.0)?;
                 let (p0, p1) = (props.point("p0", Vec3::ZERO)?, props.point("p1", Vec3::Z)?);
@@ -139,6 +142,20 @@ fn mesh_geometry(mut mesh: Mesh, to_world: Mat4, face_normals: bool) -> Geometry
 
 fn flat_geometry(mesh: Mesh, to_world: Mat4) -> Geometry {
     triangle_geometry(mesh.transformed(to_world))
+}
+
+/// Mitsuba's disk, intersected analytically: the images of the local centre and x, y axes. Its
+/// normal is the local +z through the inverse transpose of `to_world`, i.e. `u × v` flipped when
+/// `to_world` mirrors (the caller folds that into the shape's `flip_normals`), so that the disk's uv
+/// keep running from `u` towards `v` as Mitsuba's do.
+fn disk_geometry(to_world: Mat4, props: &Props) -> Result<Geometry> {
+    let center = to_world.transform_point3(Vec3::ZERO);
+    let (u, v) = (to_world.transform_vector3(Vec3::X), to_world.transform_vector3(Vec3::Y));
+    let area = u.cross(v).length();
+    if !(area.is_finite() && area > 0.0) || !center.is_finite() {
+        bail!("{}: the disk's to_world collapses or is not finite", props.loc);
+    }
+    Ok(Geometry::Disk { center, u, v })
 }
 
 /// A tessellated analytic shape. Mitsuba's disk and cylinder take their normal from the local one

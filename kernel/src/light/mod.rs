@@ -12,7 +12,7 @@ pub mod sphere;
 use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
 use crate::sampling::sample_cdf;
-use crate::scene::{FrameParams, Light, Primitive, SceneView, NONE, LIGHT_CONSTANT, LIGHT_DIRECTIONAL, LIGHT_ENVMAP, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, LIGHT_TRIANGLE};
+use crate::scene::{FrameParams, Light, Primitive, SceneView, NONE, LIGHT_CONSTANT, LIGHT_DIRECTIONAL, LIGHT_ENVMAP, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, LIGHT_AREA};
 use crate::spectrum::Rgb;
 
 /// A direction towards a point on an emitter, with what arrives along it.
@@ -131,7 +131,7 @@ pub fn sample(scene: &SceneView, params: &FrameParams, p: Vec3, u_select: f32, u
     let chosen = sample_cdf(scene.tables, params.light_cdf_offset, params.light_count, u_select);
     let light = scene.lights[chosen.index as usize];
     let mut s = match light.kind {
-        LIGHT_TRIANGLE => area::sample(&light, &scene.prims[light.prim as usize], p, u),
+        LIGHT_AREA => area::sample(&light, &scene.prims[light.prim as usize], p, u),
         LIGHT_SPHERE => sphere::sample(&light, &scene.prims[light.prim as usize], p, u),
         LIGHT_POINT | LIGHT_SPOT => point::sample(&light, p),
         LIGHT_DIRECTIONAL => directional::sample(&light, p),

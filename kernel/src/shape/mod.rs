@@ -1,10 +1,11 @@
 //! Geometric primitives: ray intersection and the surface record of a hit.
+pub mod disk;
 pub mod sphere;
 pub mod triangle;
 
 use crate::camera::Ray;
 use crate::math::vec3;
-use crate::scene::{Primitive, TriangleAttributes, PRIM_FLAG_FLIP, PRIM_FLAG_SMOOTH, PRIM_SPHERE};
+use crate::scene::{Primitive, TriangleAttributes, PRIM_DISK, PRIM_FLAG_FLIP, PRIM_FLAG_SMOOTH, PRIM_SPHERE};
 use crate::glam::{Vec2, Vec3};
 
 /// The nearest hit found so far: distance, primitive and its parametric coordinates
@@ -21,6 +22,8 @@ pub struct Hit {
 pub fn intersect(prim: &Primitive, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
     if prim.kind == PRIM_SPHERE {
         sphere::intersect(vec3(prim.p0), prim.p1[0], ray, t_max)
+    } else if prim.kind == PRIM_DISK {
+        disk::intersect(vec3(prim.p0), vec3(prim.p1), vec3(prim.p2), ray, t_max)
     } else {
         triangle::intersect(vec3(prim.p0), vec3(prim.p1), vec3(prim.p2), ray, t_max)
     }
@@ -51,6 +54,12 @@ pub fn surface_point(prim: &Primitive, attributes: &[TriangleAttributes], hit: &
         let error_scale = prim.p1[0];
         let uv = sphere::uv((p - centre) / prim.p1[0]);
         return SurfacePoint { p, ng: n, ns: n, error_scale, uv };
+    }
+    if prim.kind == PRIM_DISK {
+        let (c, u, v) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
+        let n = u.cross(v).normalize() * flip;
+        let error_scale = c.abs().max_element().max(u.abs().max_element()).max(v.abs().max_element());
+        return SurfacePoint { p: disk::point(c, u, v, hit.uv), ng: n, ns: n, error_scale, uv: disk::uv(hit.uv) };
     }
     let (p0, p1, p2) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
     let b0 = 1.0 - hit.uv.x - hit.uv.y;
