@@ -4,6 +4,7 @@
 use crate::scene::{Emitter, Filter, Geometry, IntegratorKind, Projection, SamplerKind, Scene};
 use anyhow::{bail, Result};
 use caustic_kernel::bvh::STACK_SIZE;
+use caustic_kernel::features;
 use caustic_kernel::camera::{Camera, CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, CAMERA_THIN_LENS};
 use caustic_kernel::scene::*;
 use caustic_kernel::spectrum::luminance;
@@ -27,6 +28,9 @@ pub struct SceneBuffers {
     pub tables: Vec<f32>,
     /// `FrameParams` with everything but the per-dispatch fields filled in.
     pub params: FrameParams,
+    /// What the scene uses (`caustic_kernel::features`); the kernel skips, and on the GPU compiles
+    /// out, everything else.
+    pub features: u32,
 }
 
 impl SceneBuffers {
@@ -39,6 +43,7 @@ impl SceneBuffers {
             lights: &self.lights,
             textures: &self.textures,
             tables: &self.tables,
+            features: self.features,
         }
     }
 }
@@ -463,6 +468,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         camera: camera(scene),
         ..Default::default()
     };
+    let features = scene_features(&materials, &lights, !textures.is_empty(), integrator_kind);
     if materials.is_empty() {
         materials.push(Material::default());
     }
@@ -476,5 +482,28 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     if textures.is_empty() {
         textures.push(Texture::default());
     }
-    Ok(SceneBuffers { nodes, prims, attributes, materials, lights, textures, tables, params })
+    Ok(SceneBuffers { nodes, prims, attributes, materials, lights, textures, tables, params, features })
+}
+
+/// The kernel paths a scene can reach: its BSDF models, emitter kinds, textures and integrator.
+/// `CAUSTIC_SPECIALIZE=0` keeps every path (for A/B timings of the specialization itself).
+fn scene_features(materials: &[Material], lights: &[Light], textures: bool, integrator: u32) -> u32 {
+    if std::env::var("CAUSTIC_SPECIALIZE").is_ok_and(|v| v == "0") {
+        return features::ALL;
+    }
+    // Lambert is also the fallback of the dispatch, so its path is always there.
+    let mut f = features::bsdf(BSDF_DIFFUSE);
+    for m in materials {
+        f |= features::bsdf(m.kind);
+    }
+    for l in lights {
+        f |= features::light(l.kind);
+    }
+    if textures {
+        f |= features::TEXTURES;
+    }
+    if integrator == INTEGRATOR_DIRECT {
+        f |= features::DIRECT_INTEGRATOR;
+    }
+    f
 }

@@ -21,11 +21,13 @@ pub fn render(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] tables: &[f32],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] accum: &mut [f32],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] textures: &[Texture],
+    // The scene's `features` mask, fixed when the pipeline is created (default: everything).
+    #[spirv(spec_constant(id = 0, default = 4294967295))] features: u32,
 ) {
     if id.x >= params.width || id.y >= params.height {
         return;
     }
-    let scene = SceneView { nodes, prims, attributes, materials, lights, textures, tables };
+    let scene = SceneView { nodes, prims, attributes, materials, lights, textures, tables, features };
     let pixel = id.y * params.width + id.x;
     let sums = render_pixel(&scene, params, pixel);
     accumulate(accum, pixel, &sums, params.sample_count);

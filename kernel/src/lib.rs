@@ -12,6 +12,7 @@
 pub mod bsdf;
 pub mod bvh;
 pub mod camera;
+pub mod features;
 pub mod film;
 pub mod frame;
 pub mod integrator;

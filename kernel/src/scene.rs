@@ -269,4 +269,6 @@ pub struct SceneView<'a> {
     /// Concatenated tables: 1D distributions (light selection CDF, filter CDF, envmap CDFs), bitmap
     /// texels, precomputed BSDF tables; located by `FrameParams`, `Texture`, `Light` and `Material`.
     pub tables: &'a [f32],
+    /// What the scene uses (`features`): unused paths are skipped (on the GPU, compiled out).
+    pub features: u32,
 }

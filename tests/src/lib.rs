@@ -30,7 +30,12 @@ pub fn defines(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
 
 /// Renders `scene` with `spp` samples and `seed` on `choice`; panics with the error if it fails.
 pub fn render_scene(scene: &Scene, choice: BackendChoice, spp: u32, seed: u32) -> Film {
-    let buffers = buffers::build(scene).expect("scene builds");
+    render_buffers(&buffers::build(scene).expect("scene builds"), choice, spp, seed)
+}
+
+/// `render_scene` for scene buffers built (and perhaps altered) by the caller.
+pub fn render_buffers(buffers: &buffers::SceneBuffers, choice: BackendChoice, spp: u32, seed: u32) -> Film {
+    let buffers = buffers.clone();
     let mut backend = backend::create(choice, &buffers).expect("backend starts (for the GPU: is a Vulkan driver such as lavapipe installed?)");
     let (film, stats) = render::render(backend.as_mut(), &buffers, spp, seed, |_| {}).expect("render succeeds");
     eprintln!("rendered on {} in {:.2} s", backend.describe(), stats.seconds);

@@ -82,7 +82,8 @@ impl GpuBackend {
             layout: None,
             module: &module,
             entry_point: Some(ENTRY_POINT),
-            compilation_options: Default::default(),
+            // The scene's feature mask specialises the kernel (spec constant 0): unused paths fold away.
+            compilation_options: wgpu::PipelineCompilationOptions { constants: &[("0", buffers.features as f64)], ..Default::default() },
             cache: None,
         });
         if let Some(e) = pollster::block_on(scope.pop()) {

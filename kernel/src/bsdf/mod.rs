@@ -14,6 +14,7 @@ pub mod rough_dielectric;
 pub mod rough_plastic;
 pub mod thin_dielectric;
 
+use crate::features;
 use crate::scene::*;
 use crate::texture;
 use crate::spectrum::Rgb;
@@ -46,15 +47,15 @@ macro_rules! dispatch {
     ($bsdf:ident, diffuse => $d:ident($($da:expr),*), other => $f:ident($($a:expr),*)) => {{
         let (m, r, s, t) = (&$bsdf.material, $bsdf.reflectance, $bsdf.specular, $bsdf.tables);
         match m.kind {
-            BSDF_PHONG => $bsdf.phong().$f($($a),*),
-            BSDF_CONDUCTOR => conductor::Conductor::from_material(m, r, s, t).$f($($a),*),
-            BSDF_ROUGH_CONDUCTOR => rough_conductor::RoughConductor::from_material(m, r, s, t).$f($($a),*),
-            BSDF_DIELECTRIC => dielectric::Dielectric::from_material(m, r, s, t).$f($($a),*),
-            BSDF_THIN_DIELECTRIC => thin_dielectric::ThinDielectric::from_material(m, r, s, t).$f($($a),*),
-            BSDF_ROUGH_DIELECTRIC => rough_dielectric::RoughDielectric::from_material(m, r, s, t).$f($($a),*),
-            BSDF_PLASTIC => plastic::Plastic::from_material(m, r, s, t).$f($($a),*),
-            BSDF_ROUGH_PLASTIC => rough_plastic::RoughPlastic::from_material(m, r, s, t).$f($($a),*),
-            BSDF_FUZZY_METAL => fuzzy_metal::FuzzyMetal::from_material(m, r, s, t).$f($($a),*),
+            BSDF_PHONG if features::has($bsdf.features, features::bsdf(BSDF_PHONG)) => $bsdf.phong().$f($($a),*),
+            BSDF_CONDUCTOR if features::has($bsdf.features, features::bsdf(BSDF_CONDUCTOR)) => conductor::Conductor::from_material(m, r, s, t).$f($($a),*),
+            BSDF_ROUGH_CONDUCTOR if features::has($bsdf.features, features::bsdf(BSDF_ROUGH_CONDUCTOR)) => rough_conductor::RoughConductor::from_material(m, r, s, t).$f($($a),*),
+            BSDF_DIELECTRIC if features::has($bsdf.features, features::bsdf(BSDF_DIELECTRIC)) => dielectric::Dielectric::from_material(m, r, s, t).$f($($a),*),
+            BSDF_THIN_DIELECTRIC if features::has($bsdf.features, features::bsdf(BSDF_THIN_DIELECTRIC)) => thin_dielectric::ThinDielectric::from_material(m, r, s, t).$f($($a),*),
+            BSDF_ROUGH_DIELECTRIC if features::has($bsdf.features, features::bsdf(BSDF_ROUGH_DIELECTRIC)) => rough_dielectric::RoughDielectric::from_material(m, r, s, t).$f($($a),*),
+            BSDF_PLASTIC if features::has($bsdf.features, features::bsdf(BSDF_PLASTIC)) => plastic::Plastic::from_material(m, r, s, t).$f($($a),*),
+            BSDF_ROUGH_PLASTIC if features::has($bsdf.features, features::bsdf(BSDF_ROUGH_PLASTIC)) => rough_plastic::RoughPlastic::from_material(m, r, s, t).$f($($a),*),
+            BSDF_FUZZY_METAL if features::has($bsdf.features, features::bsdf(BSDF_FUZZY_METAL)) => fuzzy_metal::FuzzyMetal::from_material(m, r, s, t).$f($($a),*),
             _ => $bsdf.diffuse().$d($($da),*),
         }
     }};
@@ -71,19 +72,24 @@ pub struct Bsdf<'a> {
     pub specular: Rgb,
     /// Precomputed tables some models read (rough plastic).
     pub tables: &'a [f32],
+    /// The scene's `features`: models it does not use are never dispatched to.
+    pub features: u32,
 }
 
 impl<'a> Bsdf<'a> {
-    /// The BSDF of `m` at texture coordinates `uv`.
-    pub fn new(m: &Material, textures: &[Texture], tables: &'a [f32], uv: Vec2) -> Bsdf<'a> {
-        let reflectance = texture::eval_or(textures, tables, m.reflectance_texture, vec3_of(m.reflectance), uv);
-        let specular = texture::eval_or(textures, tables, m.specular_texture, vec3_of(m.specular_reflectance), uv);
-        Bsdf { material: *m, reflectance, specular, tables }
+    /// The BSDF of `m` at texture coordinates `uv` in a scene using `features`.
+    pub fn new(m: &Material, textures: &[Texture], tables: &'a [f32], uv: Vec2, features: u32) -> Bsdf<'a> {
+        let (mut reflectance, mut specular) = (vec3_of(m.reflectance), vec3_of(m.specular_reflectance));
+        if features::has(features, features::TEXTURES) {
+            reflectance = texture::eval_or(textures, tables, m.reflectance_texture, reflectance, uv);
+            specular = texture::eval_or(textures, tables, m.specular_texture, specular, uv);
+        }
+        Bsdf { material: *m, reflectance, specular, tables, features }
     }
 
     /// A BSDF without textures (tests, tools).
     pub fn from_material(m: &Material, tables: &'a [f32]) -> Bsdf<'a> {
-        Bsdf { material: *m, reflectance: vec3_of(m.reflectance), specular: vec3_of(m.specular_reflectance), tables }
+        Bsdf { material: *m, reflectance: vec3_of(m.reflectance), specular: vec3_of(m.specular_reflectance), tables, features: features::ALL }
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {

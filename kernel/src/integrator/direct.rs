@@ -34,7 +34,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     }
 
     let material = scene.materials[prim.material as usize];
-    let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv);
+    let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features);
     let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, camera_ray.dir);
 
     if bsdf.has_smooth_component() {

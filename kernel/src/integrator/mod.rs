@@ -3,6 +3,7 @@ pub mod direct;
 pub mod nee;
 pub mod path;
 
+use crate::features;
 use crate::film;
 use crate::frame::Frame;
 use crate::glam::Vec3;
@@ -38,7 +39,7 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
         let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
         let u_lens = sampler.next_2d();
         let ray = params.camera.generate_ray(film_pos, u_lens);
-        let l = if params.integrator == INTEGRATOR_DIRECT { direct::li(scene, params, ray, &mut sampler) } else { path::li(scene, params, ray, &mut sampler) };
+        let l = if params.integrator == INTEGRATOR_DIRECT && features::has(scene.features, features::DIRECT_INTEGRATOR) { direct::li(scene, params, ray, &mut sampler) } else { path::li(scene, params, ray, &mut sampler) };
         if is_finite3(l) {
             sums.sum += l;
             sums.sum_sq += l * l;

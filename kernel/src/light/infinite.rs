@@ -8,13 +8,14 @@ use super::{beyond_scene, radiance, to_local, to_world, LightSample};
 use crate::glam::{Vec2, Vec3};
 use crate::math::{INV_2PI, INV_4PI, INV_PI, PI};
 use crate::sampling::{sample_cdf, square_to_uniform_sphere};
+use crate::features;
 use crate::scene::{NONE, Light, SceneView, Texture, LIGHT_ENVMAP};
 use crate::spectrum::Rgb;
 use crate::texture::texel;
 
 /// Radiance arriving from direction `dir` (the direction a ray escaping the scene travels).
 pub fn eval(light: &Light, scene: &SceneView, dir: Vec3) -> Rgb {
-    if light.kind == LIGHT_ENVMAP {
+    if light.kind == LIGHT_ENVMAP && features::has(scene.features, features::light(LIGHT_ENVMAP)) {
         let t = scene.textures[light.prim as usize];
         envmap_radiance(&t, scene.tables, direction_to_uv(to_local(light, dir))) * radiance(light)
     } else {
@@ -24,7 +25,7 @@ pub fn eval(light: &Light, scene: &SceneView, dir: Vec3) -> Rgb {
 
 /// Solid-angle density of `sample_*` producing `dir`, without the selection probability.
 pub fn pdf(light: &Light, scene: &SceneView, dir: Vec3) -> f32 {
-    if light.kind == LIGHT_ENVMAP {
+    if light.kind == LIGHT_ENVMAP && features::has(scene.features, features::light(LIGHT_ENVMAP)) {
         envmap_pdf(light, scene, dir)
     } else {
         INV_4PI

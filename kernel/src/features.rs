@@ -1,0 +1,35 @@
+//! Per-scene specialization: one bit per optional code path (each BSDF model, each emitter kind,
+//! textures, the direct integrator). The host sets the bits of what a scene uses; on the GPU the mask
+//! is a specialization constant, so the driver compiles the kernel with the unused paths folded away
+//! (fewer registers, higher occupancy) and a scene pays nothing for features it does not use. On the
+//! CPU it is an ordinary value: the same branches are taken, so both backends still run one kernel.
+//! A cleared bit only ever removes a path the scene cannot reach.
+use crate::scene::{LIGHT_ENVMAP, BSDF_FUZZY_METAL};
+
+/// Every path compiled in: the specialization constant's default.
+pub const ALL: u32 = u32::MAX;
+
+/// The bit of BSDF model `kind` (`BSDF_*`, bits 0–11).
+#[inline]
+pub const fn bsdf(kind: u32) -> u32 {
+    1 << kind
+}
+
+/// The bit of emitter kind `kind` (`LIGHT_*`, bits 12–19).
+#[inline]
+pub const fn light(kind: u32) -> u32 {
+    1 << (12 + kind)
+}
+
+/// Bitmap and checkerboard textures on BSDF parameters.
+pub const TEXTURES: u32 = 1 << 20;
+/// Mitsuba's `direct` integrator.
+pub const DIRECT_INTEGRATOR: u32 = 1 << 21;
+
+// The kinds must fit their bit ranges.
+const _: () = assert!(BSDF_FUZZY_METAL < 12 && LIGHT_ENVMAP < 8);
+
+#[inline]
+pub fn has(features: u32, bits: u32) -> bool {
+    features & bits != 0
+}
