@@ -17,18 +17,8 @@ struct Cli {
 enum Command {
     /// Render a scene (Mitsuba 3 XML or OBJ/MTL) to an image.
     Render {
-        scene: PathBuf,
-        #[arg(long, value_enum, default_value = "auto")]
-        backend: BackendChoice,
-        /// Samples per pixel (default: the scene's sampler).
-        #[arg(long)]
-        spp: Option<u32>,
-        /// Scene parameter overrides, `-D name=value` (Mitsuba's `$name`).
-        #[arg(short = 'D', value_parser = parse_define)]
-        define: Vec<(String, String)>,
-        /// Random seed; different seeds give statistically independent images.
-        #[arg(long, default_value_t = 0)]
-        seed: u32,
+        #[command(flatten)]
+        run: RunArgs,
         /// Output image: .exr (linear float), .png or .ppm (sRGB). Default: SCENE's name with .exr.
         #[arg(short, long)]
         output: Option<PathBuf>,
@@ -55,18 +45,10 @@ enum Command {
     /// Error against render time: render progressively and compare with a reference at 1, 2, 4, …
     /// samples per pixel; prints a table, optionally writes CSV and an SVG plot (log–log).
     Convergence {
-        scene: PathBuf,
+        #[command(flatten)]
+        run: RunArgs,
         /// Reference image (EXR) of the same size.
         reference: PathBuf,
-        #[arg(long, value_enum, default_value = "auto")]
-        backend: BackendChoice,
-        /// Largest sample count (default: the scene's sampler).
-        #[arg(long)]
-        spp: Option<u32>,
-        #[arg(short = 'D', value_parser = parse_define)]
-        define: Vec<(String, String)>,
-        #[arg(long, default_value_t = 0)]
-        seed: u32,
         /// Write the curve as CSV.
         #[arg(long)]
         csv: Option<PathBuf>,
@@ -86,6 +68,24 @@ enum Command {
     },
 }
 
+/// What `render` and `convergence` share: the scene and how to render it.
+#[derive(clap::Args)]
+struct RunArgs {
+    /// The scene: Mitsuba 3 XML or OBJ (with its MTL).
+    scene: PathBuf,
+    #[arg(long, value_enum, default_value = "auto")]
+    backend: BackendChoice,
+    /// Samples per pixel (for `convergence`, the largest count; default: the scene's sampler).
+    #[arg(long)]
+    spp: Option<u32>,
+    /// Scene parameter overrides, `-D name=value` (Mitsuba's `$name`).
+    #[arg(short = 'D', value_parser = parse_define)]
+    define: Vec<(String, String)>,
+    /// Random seed; different seeds give statistically independent images.
+    #[arg(long, default_value_t = 0)]
+    seed: u32,
+}
+
 fn parse_define(s: &str) -> Result<(String, String), String> {
     match s.split_once('=') {
         Some((k, v)) if !k.is_empty() => Ok((k.to_string(), v.to_string())),
@@ -96,13 +96,13 @@ fn parse_define(s: &str) -> Result<(String, String), String> {
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Render { scene, backend, spp, define, seed, output, variance, quiet } => {
-            let output = output.unwrap_or_else(|| PathBuf::from(scene.file_stem().unwrap_or_default()).with_extension("exr"));
-            cmd_render(&scene, backend, spp, &define, seed, &output, variance, quiet)
+        Command::Render { run, output, variance, quiet } => {
+            let output = output.unwrap_or_else(|| PathBuf::from(run.scene.file_stem().unwrap_or_default()).with_extension("exr"));
+            cmd_render(&run, &output, variance, quiet)
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref()),
         Command::Bench { scene, define, backend, spp } => cmd_bench(&scene, &define, &backend, spp),
-        Command::Convergence { scene, reference, backend, spp, define, seed, csv, plot } => cmd_convergence(&scene, &reference, backend, spp, &define, seed, csv.as_deref(), plot.as_deref()),
+        Command::Convergence { run, reference, csv, plot } => cmd_convergence(&run, &reference, csv.as_deref(), plot.as_deref()),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");
@@ -110,8 +110,9 @@ fn main() {
     }
 }
 
-#[allow(clippy::too_many_arguments)]
-fn cmd_render(scene_path: &Path, choice: BackendChoice, spp: Option<u32>, defines: &[(String, String)], seed: u32, output: &Path, variance: bool, quiet: bool) -> Result<()> {
+fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool) -> Result<()> {
+    let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed } = run;
+    let (choice, seed) = (*choice, *seed);
     caustic::film::check_output_path(output)?;
     let scene = caustic::load_scene(scene_path, defines)?;
     let spp = spp.unwrap_or(scene.sensor.spp);
@@ -176,9 +177,10 @@ fn cmd_compare(image: &Path, reference: &Path, image_spp: u32, reference_spp: u3
     Ok(())
 }
 
-#[allow(clippy::too_many_arguments)]
-fn cmd_convergence(scene_path: &Path, reference: &Path, choice: BackendChoice, spp: Option<u32>, defines: &[(String, String)], seed: u32, csv: Option<&Path>, plot: Option<&Path>) -> Result<()> {
+fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Option<&Path>) -> Result<()> {
     use caustic::convergence;
+    let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed } = run;
+    let (choice, seed) = (*choice, *seed);
     let scene = caustic::load_scene(scene_path, defines)?;
     let spp = spp.unwrap_or(scene.sensor.spp);
     let reference_film = Film::load_exr(reference)?;

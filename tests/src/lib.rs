@@ -28,6 +28,18 @@ pub fn defines(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
     pairs.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect()
 }
 
+/// Loads a Mitsuba scene given as text (written to a temporary file named after `tag`, then removed);
+/// panics with the error if it does not load.
+pub fn load_xml(xml: &str, tag: &str) -> Scene {
+    let dir = std::env::temp_dir().join(format!("caustic-test-{}-{tag}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temporary folder");
+    let path = dir.join("scene.xml");
+    std::fs::write(&path, xml).expect("scene written");
+    let scene = caustic::load_scene(&path, &[]);
+    std::fs::remove_dir_all(&dir).ok();
+    scene.unwrap_or_else(|e| panic!("{tag}: the scene does not load: {e:#}"))
+}
+
 /// Renders `scene` with `spp` samples and `seed` on `choice`; panics with the error if it fails.
 pub fn render_scene(scene: &Scene, choice: BackendChoice, spp: u32, seed: u32) -> Film {
     render_buffers(&buffers::build(scene).expect("scene builds"), choice, spp, seed)

@@ -108,12 +108,7 @@ fn smooth_shaded_diamond_in_a_unit_environment() {
 </scene>"#,
         common.display()
     );
-    let dir = std::env::temp_dir().join(format!("caustic-furnace-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("diamond-furnace.xml");
-    std::fs::write(&path, xml).unwrap();
-    let scene = caustic::load_scene(&path, &[]).expect("furnace scene loads");
-    std::fs::remove_dir_all(&dir).ok();
+    let scene = caustic_tests::load_xml(&xml, "diamond-furnace");
     let film = render_scene(&scene, BackendChoice::Cpu, 32, 6);
     let n = film.rgb.len() as f64;
     let mean = film.rgb.iter().map(|p| p[1] as f64).sum::<f64>() / n;

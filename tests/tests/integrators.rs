@@ -2,7 +2,6 @@
 //! `hide_emitters` lets camera rays pass through area emitters, on both integrators.
 use caustic::backend::BackendChoice;
 use caustic_tests::*;
-use std::path::PathBuf;
 
 /// A wall lit by a point light, and a rectangle emitting towards +z only: at `emitter_z` 2 it sits
 /// between the camera (z = 5) and the wall, lighting nothing the camera sees; at 6 it is behind the
@@ -29,13 +28,7 @@ fn wall_scene(integrator: &str, hide: bool, emitter_z: f32) -> String {
 }
 
 fn render(xml: &str, tag: &str) -> caustic::film::Film {
-    let dir: PathBuf = std::env::temp_dir().join(format!("caustic-integrators-{}-{tag}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, xml).unwrap();
-    let scene = caustic::load_scene(&path, &[]);
-    std::fs::remove_dir_all(&dir).ok();
-    render_scene(&scene.expect("scene loads"), BackendChoice::Cpu, 8, 1)
+    render_scene(&load_xml(xml, tag), BackendChoice::Cpu, 8, 1)
 }
 
 fn centre(film: &caustic::film::Film) -> [f32; 3] {
@@ -82,14 +75,8 @@ fn light_and_bsdf_sampling_agree_on_every_emitter_shape() {
     {shape}<emitter type="area"><rgb name="radiance" value="4"/></emitter></shape>
 </scene>"#
             );
-            let tag = format!("{name}-{emitter_samples}-{bsdf_samples}");
-            let dir: PathBuf = std::env::temp_dir().join(format!("caustic-integrators-{}-{tag}", std::process::id()));
-            std::fs::create_dir_all(&dir).unwrap();
-            let path = dir.join("scene.xml");
-            std::fs::write(&path, xml).unwrap();
-            let scene = caustic::load_scene(&path, &[]);
-            std::fs::remove_dir_all(&dir).ok();
-            render_scene(&scene.expect("scene loads"), BackendChoice::Cpu, 2048, 7 + emitter_samples)
+            let scene = load_xml(&xml, &format!("{name}-{emitter_samples}-{bsdf_samples}"));
+            render_scene(&scene, BackendChoice::Cpu, 2048, 7 + emitter_samples)
         };
         let light_only = render_with(3, 0);
         let bsdf_only = render_with(0, 3);
