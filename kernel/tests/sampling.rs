@@ -110,54 +110,43 @@ fn sphere_light_from_inside() {
     );
 }
 
-/// Triangle area sampling, seen as directions from a point (area density converted to solid angle).
-#[test]
-fn triangle_light_directions() {
-    let (p0, p1, p2) = (Vec3::new(-1.0, -0.5, 2.0), Vec3::new(1.5, -0.2, 1.0), Vec3::new(0.2, 1.5, 1.5));
-    // Winding chosen so that the emitting side faces the origin.
-    let prim = Primitive { p0: p0.to_array(), p1: p2.to_array(), p2: p1.to_array(), kind: PRIM_TRIANGLE, ..Default::default() };
+/// χ² of area sampling on `prim` (emitting towards the origin along `normal`), seen as directions
+/// from the origin: the area density converted to solid angle is the expected one.
+fn area_light_chi2(name: &str, prim: Primitive, normal: Vec3) {
     let l = Light { kind: LIGHT_AREA, prim: 0, pmf: 1.0, radiance: [1.0; 4], ..Default::default() };
     let frame = Frame::from_normal(Vec3::Z);
     chi2_directions(
-        "triangle light",
+        name,
         |_, u| {
             let s = light::area::sample(&l, &prim, Vec3::ZERO, u);
             (s.pdf > 0.0).then_some(frame.to_local(s.wi))
         },
         |wi| {
             let ray = caustic_kernel::camera::Ray { origin: Vec3::ZERO, dir: wi, t_min: 0.0, t_max: f32::MAX };
-            match caustic_kernel::shape::triangle::intersect(p0, p2, p1, &ray, f32::MAX) {
-                Some((t, _)) => light::area::pdf(&prim, Vec3::ZERO, wi * t, (p2 - p0).cross(p1 - p0).normalize()) as f64,
+            match caustic_kernel::shape::intersect(&prim, &ray, f32::MAX) {
+                Some((t, _)) => light::area::pdf(&prim, Vec3::ZERO, wi * t, normal) as f64,
                 None => 0.0,
             }
         },
     );
 }
 
-/// Disk area sampling (an ellipse, tilted: an uneven affine image of the unit disk), seen as
-/// directions from a point.
+#[test]
+fn triangle_light_directions() {
+    let (p0, p1, p2) = (Vec3::new(-1.0, -0.5, 2.0), Vec3::new(1.5, -0.2, 1.0), Vec3::new(0.2, 1.5, 1.5));
+    // Winding chosen so that the emitting side faces the origin.
+    let prim = Primitive { p0: p0.to_array(), p1: p2.to_array(), p2: p1.to_array(), kind: PRIM_TRIANGLE, ..Default::default() };
+    area_light_chi2("triangle light", prim, (p2 - p0).cross(p1 - p0).normalize());
+}
+
+/// A tilted ellipse: an uneven affine image of the unit disk.
 #[test]
 fn disk_light_directions() {
     let (c, u, v) = (Vec3::new(0.3, -0.2, 2.0), Vec3::new(1.2, 0.0, 0.4), Vec3::new(0.1, 0.6, -0.2));
     // u × v points away from the origin; the flag turns the emitting side towards it.
-    let prim = Primitive { p0: c.to_array(), p1: u.to_array(), p2: v.to_array(), kind: PRIM_DISK, flags: PRIM_FLAG_FLIP, ..Default::default() };
     assert!(u.cross(v).dot(c) > 0.0);
-    let l = Light { kind: LIGHT_AREA, prim: 0, pmf: 1.0, radiance: [1.0; 4], ..Default::default() };
-    let frame = Frame::from_normal(Vec3::Z);
-    chi2_directions(
-        "disk light",
-        |_, s| {
-            let ls = light::area::sample(&l, &prim, Vec3::ZERO, s);
-            (ls.pdf > 0.0).then_some(frame.to_local(ls.wi))
-        },
-        |wi| {
-            let ray = caustic_kernel::camera::Ray { origin: Vec3::ZERO, dir: wi, t_min: 0.0, t_max: f32::MAX };
-            match caustic_kernel::shape::disk::intersect(c, u, v, &ray, f32::MAX) {
-                Some((t, _)) => light::area::pdf(&prim, Vec3::ZERO, wi * t, -u.cross(v).normalize()) as f64,
-                None => 0.0,
-            }
-        },
-    );
+    let prim = Primitive { p0: c.to_array(), p1: u.to_array(), p2: v.to_array(), kind: PRIM_DISK, flags: PRIM_FLAG_FLIP, ..Default::default() };
+    area_light_chi2("disk light", prim, -u.cross(v).normalize());
 }
 
 /// Uniform barycentrics: χ² over a grid of the (b1, b2) unit triangle.
