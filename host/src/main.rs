@@ -86,6 +86,17 @@ struct RunArgs {
     seed: u32,
 }
 
+/// `println!` that ends the program quietly when stdout is closed (`caustic compare … | head`), as
+/// command-line tools do, instead of panicking.
+macro_rules! say {
+    ($($t:tt)*) => {{
+        use std::io::Write;
+        if writeln!(std::io::stdout(), $($t)*).is_err() {
+            std::process::exit(0);
+        }
+    }};
+}
+
 fn parse_define(s: &str) -> Result<(String, String), String> {
     match s.split_once('=') {
         Some((k, v)) if !k.is_empty() => Ok((k.to_string(), v.to_string())),
@@ -139,7 +150,7 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool) -> Resu
     }
     let (w, h) = (film.width, film.height);
     let msps = w as f64 * h as f64 * spp as f64 / stats.seconds / 1e6;
-    println!("{} | {w}x{h} | {spp} spp | {:.2} s | {msps:.2} Msamples/s | {}", backend.describe(), stats.seconds, output.display());
+    say!("{} | {w}x{h} | {spp} spp | {:.2} s | {msps:.2} Msamples/s | {}", backend.describe(), stats.seconds, output.display());
     Ok(())
 }
 
@@ -160,15 +171,15 @@ fn cmd_compare(image: &Path, reference: &Path, image_spp: u32, reference_spp: u3
     let b = Film::load_exr(reference)?;
     let ratio = if image_spp > 0 && reference_spp > 0 { image_spp as f64 / reference_spp as f64 } else { 0.0 };
     let c = compare::compare(&a, &b, ratio)?;
-    println!("RMSE                 {:.6}", c.rmse);
-    println!("relative MSE         {:.6}", c.rel_mse);
-    println!("mean luminance ratio {:.5}", c.luminance_ratio);
+    say!("RMSE                 {:.6}", c.rmse);
+    say!("relative MSE         {:.6}", c.rel_mse);
+    say!("mean luminance ratio {:.5}", c.luminance_ratio);
     match c.pass_fraction {
-        Some(f) => println!("z-test pass fraction {:.5} (|z| ≤ {:.2}, Šidák-corrected 1%)", f, c.z_critical),
-        None => println!("z-test               n/a (no {} beside the image)", variance_path(image).display()),
+        Some(f) => say!("z-test pass fraction {:.5} (|z| ≤ {:.2}, Šidák-corrected 1%)", f, c.z_critical),
+        None => say!("z-test               n/a (no {} beside the image)", variance_path(image).display()),
     }
     if let Some(z) = c.luminance_z {
-        println!("mean luminance z     {z:+.2} (standard errors)");
+        say!("mean luminance z     {z:+.2} (standard errors)");
     }
     if let Some(path) = error_image {
         let scale = if c.pass_fraction.is_some() { c.z_critical as f32 } else { 1.0 };
@@ -190,14 +201,14 @@ fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Op
     render::render(backend.as_mut(), &buffers, 1, seed.wrapping_add(1), |_| {})?;
     let mut backend = backend::create(choice, &buffers)?;
     let points = convergence::measure(backend.as_mut(), &buffers, &reference_film, spp, seed)?;
-    println!("{} | {}x{} | independent sampler", backend.describe(), buffers.params.width, buffers.params.height);
-    println!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
-    println!("|---|---|---|---|---|");
+    say!("{} | {}x{} | independent sampler", backend.describe(), buffers.params.width, buffers.params.height);
+    say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
+    say!("|---|---|---|---|---|");
     for p in &points {
-        println!("| {} | {:.4} | {:.6} | {:.6e} | {:.5} |", p.spp, p.seconds, p.rmse, p.rel_mse, p.luminance_ratio);
+        say!("| {} | {:.4} | {:.6} | {:.6e} | {:.5} |", p.spp, p.seconds, p.rmse, p.rel_mse, p.luminance_ratio);
     }
     if let Some(slope) = convergence::log_log_slope(&points) {
-        println!("log-log slope of relative MSE against seconds: {slope:.3} (−1: unbiased at constant throughput)");
+        say!("log-log slope of relative MSE against seconds: {slope:.3} (−1: unbiased at constant throughput)");
     }
     if let Some(path) = csv {
         convergence::write_csv(path, &points)?;
@@ -218,13 +229,13 @@ fn cmd_bench(scene_path: &Path, defines: &[(String, String)], which: &str, spp: 
         "gpu" => vec![BackendChoice::Gpu],
         other => bail!("--backend must be all, cpu or gpu, not '{other}'"),
     };
-    println!("| backend | resolution | spp | seconds | Msamples/s |");
-    println!("|---|---|---|---|---|");
+    say!("| backend | resolution | spp | seconds | Msamples/s |");
+    say!("|---|---|---|---|---|");
     for choice in choices {
         let mut backend = match backend::create(choice, &buffers) {
             Ok(b) => b,
             Err(e) => {
-                println!("| {choice:?} | unavailable: {e:#} | | | |");
+                say!("| {choice:?} | unavailable: {e:#} | | | |");
                 continue;
             }
         };
@@ -233,7 +244,7 @@ fn cmd_bench(scene_path: &Path, defines: &[(String, String)], which: &str, spp: 
         let mut backend = backend::create(choice, &buffers)?;
         let (film, stats) = render::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
         let msps = film.width as f64 * film.height as f64 * spp as f64 / stats.seconds / 1e6;
-        println!("| {} | {}x{} | {spp} | {:.3} | {msps:.2} |", backend.describe(), film.width, film.height, stats.seconds);
+        say!("| {} | {}x{} | {spp} | {:.3} | {msps:.2} |", backend.describe(), film.width, film.height, stats.seconds);
     }
     Ok(())
 }

@@ -36,3 +36,37 @@ fn unknown_output_format_fails_before_rendering() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && err.contains(".tiff"), "{err}");
 }
+
+/// `convergence` against a reference rendered by caustic itself: a table row per power of two, a CSV
+/// with the same rows, an SVG plot; and `compare` into a closed pipe ends quietly, without a panic.
+#[test]
+fn convergence_writes_its_curve_and_closed_stdout_is_not_a_panic() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-conv-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let reference = dir.join("ref.exr");
+    let out = caustic(&["render", scene, "--backend", "cpu", "--spp", "64", "-D", "res=16", "-o", reference.to_str().unwrap(), "-q"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let (csv, svg) = (dir.join("curve.csv"), dir.join("curve.svg"));
+    let out = caustic(&["convergence", scene, reference.to_str().unwrap(), "--backend", "cpu", "--spp", "8", "-D", "res=16", "--csv", csv.to_str().unwrap(), "--plot", svg.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let table = String::from_utf8_lossy(&out.stdout);
+    for spp in ["| 1 |", "| 2 |", "| 4 |", "| 8 |"] {
+        assert!(table.contains(spp), "{table}");
+    }
+    let rows = std::fs::read_to_string(&csv).unwrap();
+    assert_eq!(rows.lines().count(), 5, "{rows}");
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+
+    let mut child = Command::new(env!("CARGO_BIN_EXE_caustic"))
+        .args(["compare", reference.to_str().unwrap(), reference.to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("runs");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
