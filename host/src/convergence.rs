@@ -43,13 +43,13 @@ pub fn measure(backend: &mut dyn Backend, buffers: &SceneBuffers, reference: &Fi
     let stops = checkpoints(max_spp);
     let mut points = Vec::with_capacity(stops.len());
     let (width, height) = (buffers.params.width, buffers.params.height);
-    render_with_checkpoints(backend, &buffers, max_spp, seed, &stops, |done, seconds, backend| {
+    render_with_checkpoints(backend, &buffers, 0, max_spp, seed, &stops, |done, seconds, backend| {
         if stops.contains(&done) {
             let film = Film::from_accum(width, height, backend.read_accum()?);
             let c = compare(&film, reference, 0.0)?;
             points.push(ConvergencePoint { spp: done, seconds, rmse: c.rmse, rel_mse: c.rel_mse, luminance_ratio: c.luminance_ratio });
         }
-        Ok(())
+        Ok(std::ops::ControlFlow::Continue(()))
     })?;
     Ok(points)
 }

@@ -3,6 +3,7 @@
 //! it is in `caustic-kernel`.
 pub mod backend;
 pub mod buffers;
+pub mod checkpoint;
 pub mod compare;
 pub mod convergence;
 pub mod film;

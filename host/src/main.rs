@@ -28,6 +28,13 @@ enum Command {
         /// No progress bar.
         #[arg(long, short)]
         quiet: bool,
+        /// Checkpoint file: resume from it if it exists (same scene, seed and spp), write it while
+        /// rendering, delete it once the image is saved.
+        #[arg(long)]
+        checkpoint: Option<PathBuf>,
+        /// Seconds between checkpoint writes (0: after every pass).
+        #[arg(long, default_value_t = 60.0)]
+        checkpoint_every: f64,
     },
     /// Compare an EXR render with a reference EXR.
     Compare {
@@ -107,9 +114,10 @@ fn parse_define(s: &str) -> Result<(String, String), String> {
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Render { run, output, variance, quiet } => {
+        Command::Render { run, output, variance, quiet, checkpoint, checkpoint_every } => {
             let output = output.unwrap_or_else(|| PathBuf::from(run.scene.file_stem().unwrap_or_default()).with_extension("exr"));
-            cmd_render(&run, &output, variance, quiet)
+            let checkpoint = checkpoint.map(|path| (path, std::time::Duration::from_secs_f64(checkpoint_every.max(0.0))));
+            cmd_render(&run, &output, variance, quiet, checkpoint.as_ref())
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref()),
         Command::Bench { scene, define, backend, spp } => cmd_bench(&scene, &define, &backend, spp),
@@ -121,7 +129,7 @@ fn main() {
     }
 }
 
-fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool) -> Result<()> {
+fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpoint: Option<&(PathBuf, std::time::Duration)>) -> Result<()> {
     let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed } = run;
     let (choice, seed) = (*choice, *seed);
     caustic::film::check_output_path(output)?;
@@ -132,10 +140,28 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool) -> Resu
     }
     let buffers = buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
     let mut backend = backend::create(choice, &buffers)?;
+    let start = match checkpoint {
+        Some((path, _)) => resume(path, backend.as_mut(), &buffers, seed, spp)?,
+        None => 0,
+    };
     let bar = if quiet { indicatif::ProgressBar::hidden() } else { indicatif::ProgressBar::new(spp as u64) };
     bar.set_style(indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} spp ({eta} left)").unwrap().progress_chars("=> "));
-    let (mut film, stats) = render::render(backend.as_mut(), &buffers, spp, seed, |done| bar.set_position(done as u64))?;
+    bar.set_position(start as u64);
+    let fingerprint = caustic::checkpoint::fingerprint(&buffers, seed, spp);
+    let mut last_save = std::time::Instant::now();
+    let stats = render::render_with_checkpoints(backend.as_mut(), &buffers, start, spp, seed, &[], |done, _, backend| {
+        bar.set_position(done as u64);
+        if let Some((path, every)) = checkpoint {
+            if done < spp && last_save.elapsed() >= *every {
+                let c = caustic::checkpoint::Checkpoint { scene: fingerprint, seed, spp_total: spp, spp_done: done, accum: backend.read_accum()? };
+                c.save(path)?;
+                last_save = std::time::Instant::now();
+            }
+        }
+        Ok(std::ops::ControlFlow::Continue(()))
+    })?;
     bar.finish_and_clear();
+    let mut film = Film::from_accum(buffers.params.width, buffers.params.height, backend.read_accum()?);
     sanitize(&mut film);
     if let Err(e) = film.save(output) {
         // Keep the finished render: write it where it can be written, then report the failure.
@@ -148,10 +174,30 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool) -> Resu
     if variance {
         film.save_variance(&variance_path(output))?;
     }
+    if let Some((path, _)) = checkpoint {
+        // The image is safe on disk: the checkpoint has served.
+        std::fs::remove_file(path).ok();
+    }
     let (w, h) = (film.width, film.height);
-    let msps = w as f64 * h as f64 * spp as f64 / stats.seconds / 1e6;
-    say!("{} | {w}x{h} | {spp} spp | {:.2} s | {msps:.2} Msamples/s | {}", backend.describe(), stats.seconds, output.display());
+    let msps = w as f64 * h as f64 * (spp - start) as f64 / stats.seconds.max(1e-9) / 1e6;
+    let resumed = if start > 0 { format!(" (resumed at {start})") } else { String::new() };
+    say!("{} | {w}x{h} | {spp} spp{resumed} | {:.2} s | {msps:.2} Msamples/s | {}", backend.describe(), stats.seconds, output.display());
     Ok(())
+}
+
+/// Loads `path` into the backend if it exists and was written for this scene, seed and sample
+/// count; returns the samples per pixel it holds (0 without a checkpoint).
+fn resume(path: &Path, backend: &mut dyn backend::Backend, buffers: &buffers::SceneBuffers, seed: u32, spp: u32) -> Result<u32> {
+    if !path.exists() {
+        return Ok(0);
+    }
+    let c = caustic::checkpoint::Checkpoint::load(path)?;
+    if c.scene != caustic::checkpoint::fingerprint(buffers, seed, spp) || c.spp_done > spp {
+        bail!("{} was written for another scene, seed or sample count; remove it to start afresh", path.display());
+    }
+    backend.write_accum(&c.accum)?;
+    eprintln!("resuming from {} ({} of {spp} spp done)", path.display(), c.spp_done);
+    Ok(c.spp_done)
 }
 
 /// Guarantees a finite image. The kernel already drops non-finite samples; report them.

@@ -4,6 +4,7 @@ use crate::backend::Backend;
 use crate::buffers::SceneBuffers;
 use crate::film::Film;
 use anyhow::Result;
+use std::ops::ControlFlow::{self, Continue};
 use std::time::{Duration, Instant};
 
 /// How long one pass should take: long enough to amortise dispatch overhead, short enough that no
@@ -19,27 +20,31 @@ pub struct RenderStats {
 
 /// Renders `spp` samples per pixel with `seed`, calling `progress(samples done)` after each pass.
 pub fn render(backend: &mut dyn Backend, buffers: &SceneBuffers, spp: u32, seed: u32, mut progress: impl FnMut(u32)) -> Result<(Film, RenderStats)> {
-    let stats = render_with_checkpoints(backend, buffers, spp, seed, &[], |done, _, _| {
+    let stats = render_with_checkpoints(backend, buffers, 0, spp, seed, &[], |done, _, _| {
         progress(done);
-        Ok(())
+        Ok(Continue(()))
     })?;
     let accum = backend.read_accum()?;
     Ok((Film::from_accum(buffers.params.width, buffers.params.height, accum), stats))
 }
 
-/// The pass loop. Passes never run past a sample count listed in `checkpoints`; after every pass
-/// `after_pass(samples done, render seconds so far, backend)` runs, untimed (so a caller may read the
-/// image back at checkpoints without charging the render for it).
+/// The pass loop, from sample `start` (a resumed render's accumulation buffer already holds the
+/// samples before it: the counter-based random numbers make the continuation exactly what an
+/// uninterrupted render would have drawn). Passes never run past a sample count listed in
+/// `checkpoints`; after every pass `after_pass(samples done, render seconds so far, backend)` runs,
+/// untimed (so a caller may read the image back at checkpoints without charging the render for it),
+/// and may stop the render early with `Break` (the samples done so far stay in the backend).
 pub fn render_with_checkpoints(
     backend: &mut dyn Backend,
     buffers: &SceneBuffers,
+    start: u32,
     spp: u32,
     seed: u32,
     checkpoints: &[u32],
-    mut after_pass: impl FnMut(u32, f64, &mut dyn Backend) -> Result<()>,
+    mut after_pass: impl FnMut(u32, f64, &mut dyn Backend) -> Result<ControlFlow<()>>,
 ) -> Result<RenderStats> {
     let mut rendering = Duration::ZERO;
-    let mut done = 0u32;
+    let mut done = start;
     let mut per_pass = 1u32;
     let mut passes = 0u32;
     while done < spp {
@@ -56,7 +61,9 @@ pub fn render_with_checkpoints(
         rendering += elapsed;
         done += count;
         passes += 1;
-        after_pass(done, rendering.as_secs_f64(), backend)?;
+        if after_pass(done, rendering.as_secs_f64(), backend)?.is_break() {
+            break;
+        }
         // Grow (at most doubling) or shrink the pass towards the target duration; a pass cut short by
         // a checkpoint says little about the right size, so only full passes adjust it.
         if count == per_pass {

@@ -1,4 +1,5 @@
 //! The command line: errors exit non-zero with a message and no panic; a render writes a finite image.
+use std::ops::ControlFlow::{Break, Continue};
 use std::process::Command;
 
 fn caustic(args: &[&str]) -> std::process::Output {
@@ -68,5 +69,55 @@ fn convergence_writes_its_curve_and_closed_stdout_is_not_a_panic() {
     let out = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!err.contains("panicked"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A render interrupted after 4 of 8 spp (its checkpoint written through the library) and resumed by
+/// `render --checkpoint` gives the uninterrupted image (up to the rounding of differently split
+/// passes) and removes the checkpoint; a checkpoint of other settings or a damaged one is refused
+/// with a message, not a panic.
+#[test]
+fn checkpointed_renders_resume_where_they_stopped() {
+    use caustic::checkpoint::{fingerprint, Checkpoint};
+    let dir = std::env::temp_dir().join(format!("caustic-cli-ckpt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene_path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let defines = vec![("res".to_string(), "16".to_string())];
+    let buffers = caustic::buffers::build(&caustic::load_scene(std::path::Path::new(scene_path), &defines).unwrap()).unwrap();
+    let (seed, spp) = (3u32, 8u32);
+    let mut backend = caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers).unwrap();
+    // Interrupted at 4 of the 8 spp (passes stop at the listed count).
+    caustic::render::render_with_checkpoints(backend.as_mut(), &buffers, 0, spp, seed, &[4], |done, _, _| Ok(if done == 4 { Break(()) } else { Continue(()) })).unwrap();
+    let half = Checkpoint { scene: fingerprint(&buffers, seed, spp), seed, spp_total: spp, spp_done: 4, accum: backend.read_accum().unwrap() };
+    let ckpt = dir.join("render.ckpt");
+    half.save(&ckpt).unwrap();
+    assert_eq!(Checkpoint::load(&ckpt).unwrap(), half);
+
+    let (resumed, whole) = (dir.join("resumed.exr"), dir.join("whole.exr"));
+    let args = |out: &std::path::Path| vec!["render".to_string(), scene_path.to_string(), "--backend".into(), "cpu".into(), "--spp".into(), "8".into(), "--seed".into(), "3".into(), "-D".into(), "res=16".into(), "-q".into(), "-o".into(), out.to_str().unwrap().to_string()];
+    let mut with_ckpt = args(&resumed);
+    with_ckpt.extend(["--checkpoint".to_string(), ckpt.to_str().unwrap().to_string()]);
+    let out = caustic(&with_ckpt.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("resumed at 4"), "{}", String::from_utf8_lossy(&out.stdout));
+    assert!(!ckpt.exists(), "the checkpoint outlived the finished render");
+    let out = caustic(&args(&whole).iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(out.status.success());
+    let (a, b) = (caustic::film::Film::load_exr(&resumed).unwrap(), caustic::film::Film::load_exr(&whole).unwrap());
+    for (p, q) in a.rgb.iter().zip(&b.rgb) {
+        for c in 0..3 {
+            assert!((p[c] - q[c]).abs() <= 1e-5 * (1.0 + q[c].abs()), "resumed {p:?} vs uninterrupted {q:?}");
+        }
+    }
+
+    // Another seed's checkpoint, and a damaged file.
+    Checkpoint { seed: 9, scene: fingerprint(&buffers, 9, spp), ..half.clone() }.save(&ckpt).unwrap();
+    let out = caustic(&with_ckpt.iter().map(String::as_str).collect::<Vec<_>>());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("another scene, seed or sample count") && !err.contains("panicked"), "{err}");
+    std::fs::write(&ckpt, b"CAUSTCK1 but short").unwrap();
+    let out = caustic(&with_ckpt.iter().map(String::as_str).collect::<Vec<_>>());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("render.ckpt") && !err.contains("panicked"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -30,4 +30,10 @@ impl Backend for CpuBackend {
     fn read_accum(&mut self) -> Result<Vec<f32>> {
         Ok(self.accum.clone())
     }
+
+    fn write_accum(&mut self, accum: &[f32]) -> Result<()> {
+        anyhow::ensure!(accum.len() == self.accum.len(), "accumulation buffer of {} floats, expected {}", accum.len(), self.accum.len());
+        self.accum.copy_from_slice(accum);
+        Ok(())
+    }
 }

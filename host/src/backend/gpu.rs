@@ -110,7 +110,7 @@ impl GpuBackend {
         let accum_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("accum"),
             size: accum_size,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let entries: Vec<wgpu::BindGroupEntry> = [&params_buffer, &nodes, &prims, &attributes, &materials, &lights, &tables, &accum_buffer, &textures]
@@ -144,6 +144,13 @@ impl Backend for GpuBackend {
             pass.dispatch_workgroups(self.width.div_ceil(TILE), self.height.div_ceil(TILE), 1);
         }
         self.queue.submit([encoder.finish()]);
+        self.wait()
+    }
+
+    fn write_accum(&mut self, accum: &[f32]) -> Result<()> {
+        anyhow::ensure!(accum.len() as u64 * 4 == self.accum_size, "accumulation buffer of {} floats, expected {}", accum.len(), self.accum_size / 4);
+        self.queue.write_buffer(&self.accum_buffer, 0, bytemuck::cast_slice(accum));
+        self.queue.submit([]);
         self.wait()
     }
 

@@ -13,6 +13,8 @@ pub trait Backend {
     fn pass(&mut self, params: &FrameParams) -> Result<()>;
     /// A copy of the accumulation buffer.
     fn read_accum(&mut self) -> Result<Vec<f32>>;
+    /// Replaces the accumulation buffer (resuming from a checkpoint); `accum` has its exact size.
+    fn write_accum(&mut self, accum: &[f32]) -> Result<()>;
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
