@@ -35,6 +35,9 @@ enum Command {
         /// Seconds between checkpoint writes (0: after every pass).
         #[arg(long, default_value_t = 60.0)]
         checkpoint_every: f64,
+        /// Stream the image to the tev viewer listening at HOST:PORT (tev's default: 127.0.0.1:14158).
+        #[arg(long)]
+        tev: Option<String>,
     },
     /// Compare an EXR render with a reference EXR.
     Compare {
@@ -114,10 +117,10 @@ fn parse_define(s: &str) -> Result<(String, String), String> {
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Render { run, output, variance, quiet, checkpoint, checkpoint_every } => {
+        Command::Render { run, output, variance, quiet, checkpoint, checkpoint_every, tev } => {
             let output = output.unwrap_or_else(|| PathBuf::from(run.scene.file_stem().unwrap_or_default()).with_extension("exr"));
             let checkpoint = checkpoint.map(|path| (path, std::time::Duration::from_secs_f64(checkpoint_every.max(0.0))));
-            cmd_render(&run, &output, variance, quiet, checkpoint.as_ref())
+            cmd_render(&run, &output, variance, quiet, checkpoint.as_ref(), tev.as_deref())
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref()),
         Command::Bench { scene, define, backend, spp } => cmd_bench(&scene, &define, &backend, spp),
@@ -129,7 +132,10 @@ fn main() {
     }
 }
 
-fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpoint: Option<&(PathBuf, std::time::Duration)>) -> Result<()> {
+/// How often the image goes to tev: often enough to watch, rarely enough that read-backs cost little.
+const TEV_INTERVAL: std::time::Duration = std::time::Duration::from_millis(500);
+
+fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpoint: Option<&(PathBuf, std::time::Duration)>, tev: Option<&str>) -> Result<()> {
     let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed } = run;
     let (choice, seed) = (*choice, *seed);
     caustic::film::check_output_path(output)?;
@@ -148,9 +154,27 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpo
     bar.set_style(indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} spp ({eta} left)").unwrap().progress_chars("=> "));
     bar.set_position(start as u64);
     let fingerprint = caustic::checkpoint::fingerprint(&buffers, seed, spp);
+    let (width, height) = (buffers.params.width, buffers.params.height);
+    let name = output.file_name().unwrap_or_default().to_string_lossy().to_string();
+    let mut viewer = match tev.map(|address| caustic::tev::TevStream::connect(address, &name, width, height)).transpose() {
+        Ok(v) => v,
+        Err(e) => {
+            eprintln!("warning: {e:#}; rendering without the viewer");
+            None
+        }
+    };
     let mut last_save = std::time::Instant::now();
+    let mut last_view = std::time::Instant::now();
     let stats = render::render_with_checkpoints(backend.as_mut(), &buffers, start, spp, seed, &[], |done, _, backend| {
         bar.set_position(done as u64);
+        if viewer.is_some() && (last_view.elapsed() >= TEV_INTERVAL || done == spp) {
+            let film = Film::from_accum(width, height, backend.read_accum()?);
+            if let Err(e) = viewer.as_mut().unwrap().update(&film) {
+                eprintln!("warning: {e:#}; no more updates to the viewer");
+                viewer = None;
+            }
+            last_view = std::time::Instant::now();
+        }
         if let Some((path, every)) = checkpoint {
             if done < spp && last_save.elapsed() >= *every {
                 let c = caustic::checkpoint::Checkpoint { scene: fingerprint, seed, spp_total: spp, spp_done: done, accum: backend.read_accum()? };

@@ -121,3 +121,44 @@ fn checkpointed_renders_resume_where_they_stopped() {
     assert!(!out.status.success() && err.contains("render.ckpt") && !err.contains("panicked"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `render --tev` speaks tev's protocol to whatever listens: a stand-in server records the packets
+/// (each starts with its little-endian length); the image is created, then updated with all of its
+/// pixels at least once. With nothing listening the render still succeeds, with a warning.
+#[test]
+fn render_streams_to_tev() {
+    use std::io::Read;
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let address = listener.local_addr().unwrap().to_string();
+    let server = std::thread::spawn(move || {
+        let (mut socket, _) = listener.accept().unwrap();
+        let mut bytes = Vec::new();
+        socket.read_to_end(&mut bytes).unwrap();
+        bytes
+    });
+    let dir = std::env::temp_dir().join(format!("caustic-cli-tev-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out_path = dir.join("tev.exr");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let out = caustic(&["render", scene, "--backend", "cpu", "--spp", "4", "-D", "res=8", "-o", out_path.to_str().unwrap(), "-q", "--tev", &address]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let bytes = server.join().unwrap();
+    let mut packets = Vec::new();
+    let mut at = 0;
+    while at + 4 <= bytes.len() {
+        let length = u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+        assert!(length >= 5 && at + length <= bytes.len(), "malformed packet at byte {at}");
+        packets.push(length);
+        at += length;
+    }
+    assert_eq!(at, bytes.len(), "trailing bytes");
+    assert!(packets.len() >= 2, "{packets:?}");
+    assert!(packets[1..].iter().any(|&l| l > 8 * 8 * 3 * 4), "no update carries the whole image: {packets:?}");
+
+    // Nobody listening: the render goes on.
+    let closed = { std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().to_string() };
+    let out = caustic(&["render", scene, "--backend", "cpu", "--spp", "1", "-D", "res=8", "-o", out_path.to_str().unwrap(), "-q", "--tev", &closed]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && err.contains("without the viewer"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
