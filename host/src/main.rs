@@ -178,7 +178,10 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpo
         if let Some((path, every)) = checkpoint {
             if done < spp && last_save.elapsed() >= *every {
                 let c = caustic::checkpoint::Checkpoint { scene: fingerprint, seed, spp_total: spp, spp_done: done, accum: backend.read_accum()? };
-                c.save(path)?;
+                // A checkpoint that cannot be written must not cost the render itself.
+                if let Err(e) = c.save(path) {
+                    eprintln!("warning: {e:#}; the render goes on");
+                }
                 last_save = std::time::Instant::now();
             }
         }
