@@ -146,14 +146,15 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpo
     }
     let buffers = buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
     let mut backend = backend::create(choice, &buffers)?;
-    let start = match checkpoint {
-        Some((path, _)) => resume(path, backend.as_mut(), &buffers, seed, spp)?,
-        None => 0,
+    // Hashing every scene buffer is only worth it when there is a checkpoint to match.
+    let fingerprint = checkpoint.map(|_| caustic::checkpoint::fingerprint(&buffers, seed, spp));
+    let start = match (checkpoint, fingerprint) {
+        (Some((path, _)), Some(fingerprint)) => resume(path, backend.as_mut(), fingerprint, spp)?,
+        _ => 0,
     };
     let bar = if quiet { indicatif::ProgressBar::hidden() } else { indicatif::ProgressBar::new(spp as u64) };
     bar.set_style(indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} spp ({eta} left)").unwrap().progress_chars("=> "));
     bar.set_position(start as u64);
-    let fingerprint = caustic::checkpoint::fingerprint(&buffers, seed, spp);
     let (width, height) = (buffers.params.width, buffers.params.height);
     let name = output.file_name().unwrap_or_default().to_string_lossy().to_string();
     let mut viewer = match tev.map(|address| caustic::tev::TevStream::connect(address, &name, width, height)).transpose() {
@@ -175,7 +176,7 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpo
             }
             last_view = std::time::Instant::now();
         }
-        if let Some((path, every)) = checkpoint {
+        if let (Some((path, every)), Some(fingerprint)) = (checkpoint, fingerprint) {
             if done < spp && last_save.elapsed() >= *every {
                 let c = caustic::checkpoint::Checkpoint { scene: fingerprint, seed, spp_total: spp, spp_done: done, accum: backend.read_accum()? };
                 // A checkpoint that cannot be written must not cost the render itself.
@@ -212,14 +213,14 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpo
     Ok(())
 }
 
-/// Loads `path` into the backend if it exists and was written for this scene, seed and sample
-/// count; returns the samples per pixel it holds (0 without a checkpoint).
-fn resume(path: &Path, backend: &mut dyn backend::Backend, buffers: &buffers::SceneBuffers, seed: u32, spp: u32) -> Result<u32> {
+/// Loads `path` into the backend if it exists and carries this render's `fingerprint` (scene, seed
+/// and sample count); returns the samples per pixel it holds (0 without a checkpoint).
+fn resume(path: &Path, backend: &mut dyn backend::Backend, fingerprint: u64, spp: u32) -> Result<u32> {
     if !path.exists() {
         return Ok(0);
     }
     let c = caustic::checkpoint::Checkpoint::load(path)?;
-    if c.scene != caustic::checkpoint::fingerprint(buffers, seed, spp) || c.spp_done > spp {
+    if c.scene != fingerprint || c.spp_done > spp {
         bail!("{} was written for another scene, seed or sample count; remove it to start afresh", path.display());
     }
     backend.write_accum(&c.accum)?;
