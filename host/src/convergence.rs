@@ -57,7 +57,13 @@ pub fn measure(backend: &mut dyn Backend, buffers: &SceneBuffers, reference: &Fi
 /// Least-squares slope of log(relative MSE) against log(seconds) over the points after the first
 /// (whose time is dominated by fixed costs): −1 for an unbiased estimator at constant throughput.
 pub fn log_log_slope(points: &[ConvergencePoint]) -> Option<f64> {
-    let xy: Vec<(f64, f64)> = points.iter().skip(1).filter(|p| p.seconds > 0.0 && p.rel_mse > 0.0).map(|p| (p.seconds.ln(), p.rel_mse.ln())).collect();
+    least_squares_log_slope(points.iter().skip(1).map(|p| (p.seconds, p.rel_mse)))
+}
+
+/// Least-squares slope of log y against log x over the pairs with both positive (`None` with fewer
+/// than two, or all at one x).
+pub fn least_squares_log_slope(pairs: impl Iterator<Item = (f64, f64)>) -> Option<f64> {
+    let xy: Vec<(f64, f64)> = pairs.filter(|&(x, y)| x > 0.0 && y > 0.0).map(|(x, y)| (x.ln(), y.ln())).collect();
     if xy.len() < 2 {
         return None;
     }

@@ -131,10 +131,7 @@ fn convergence_against_the_exact_furnace_image() {
     assert_eq!(points.iter().map(|p| p.spp).collect::<Vec<_>>(), vec![1, 2, 4, 8, 16, 32, 64, 128, 256]);
     assert!(points.windows(2).all(|p| p[1].seconds > p[0].seconds), "render time must grow");
     // Slope of log(rel MSE) against log(spp), fitted over all points.
-    let xy: Vec<(f64, f64)> = points.iter().map(|p| ((p.spp as f64).ln(), p.rel_mse.ln())).collect();
-    let n = xy.len() as f64;
-    let (mx, my) = (xy.iter().map(|p| p.0).sum::<f64>() / n, xy.iter().map(|p| p.1).sum::<f64>() / n);
-    let slope = xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>() / xy.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+    let slope = caustic::convergence::least_squares_log_slope(points.iter().map(|p| (p.spp as f64, p.rel_mse))).expect("nine points");
     println!("furnace convergence: slope {slope:.3}, last {:?}", points.last().unwrap());
     assert!((-1.2..-0.8).contains(&slope), "relative MSE falls as spp^{slope:.3}, not 1/spp");
     assert!((points.last().unwrap().luminance_ratio - 1.0).abs() < 0.01);
