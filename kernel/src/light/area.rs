@@ -5,16 +5,20 @@ use crate::math::vec3;
 use crate::scene::{Light, Primitive, PRIM_DISK, PRIM_FLAG_FLIP};
 use crate::shape::{disk, triangle};
 
-/// The emitting side's unit normal and the area.
-fn normal_and_area(prim: &Primitive) -> (Vec3, f32) {
+/// The primitive's unnormalised normal (edge cross product, or `u × v` for a disk) and its area.
+fn cross_and_area(prim: &Primitive) -> (Vec3, f32) {
     let (p0, p1, p2) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
-    let (c, area) = if prim.kind == PRIM_DISK {
-        let c = p1.cross(p2);
-        (c, disk::area(p1, p2))
+    if prim.kind == PRIM_DISK {
+        (p1.cross(p2), disk::area(p1, p2))
     } else {
         let c = (p1 - p0).cross(p2 - p0);
         (c, 0.5 * c.length())
-    };
+    }
+}
+
+/// The emitting side's unit normal and the area.
+fn normal_and_area(prim: &Primitive) -> (Vec3, f32) {
+    let (c, area) = cross_and_area(prim);
     let n = c.normalize();
     let n = if prim.flags & PRIM_FLAG_FLIP != 0 { -n } else { n };
     (n, area)
@@ -28,5 +32,6 @@ pub fn sample(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample 
 }
 
 pub fn pdf(prim: &Primitive, p: Vec3, hit_p: Vec3, hit_n: Vec3) -> f32 {
-    area_sample_pdf(normal_and_area(prim).1, p, hit_p, hit_n)
+    // The area alone: MIS weights every emitter hit with this, so no normal is normalised for it.
+    area_sample_pdf(cross_and_area(prim).1, p, hit_p, hit_n)
 }
