@@ -4,8 +4,8 @@
 use crate::scene::{Emitter, Filter, Geometry, IntegratorKind, Projection, SamplerKind, Scene};
 use anyhow::{bail, Result};
 use caustic_kernel::bvh::STACK_SIZE;
-use caustic_kernel::features;
 use caustic_kernel::camera::{Camera, CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, CAMERA_THIN_LENS};
+use caustic_kernel::features;
 use caustic_kernel::scene::*;
 use caustic_kernel::spectrum::luminance;
 use glam::{Mat3, Vec2, Vec3, Vec3A};
@@ -96,7 +96,8 @@ impl LightList {
             .map(|(&p, &e)| {
                 let by_power = if total > 0.0 { p as f64 / total } else { 0.0 };
                 let group = per_emitter[e as usize];
-                let within = if group > 0.0 { p as f64 / group } else { 1.0 / lights_per_emitter[e as usize] as f64 };
+                let within =
+                    if group > 0.0 { p as f64 / group } else { 1.0 / lights_per_emitter[e as usize] as f64 };
                 (1.0 - UNIFORM_SELECTION_SHARE) * by_power + UNIFORM_SELECTION_SHARE * within / n
             })
             .collect()
@@ -118,7 +119,13 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
         let mut push = |mut prim: Primitive, attr: TriangleAttributes, area: f32, light_kind: u32| {
             prim.light = NONE;
             if let Some(radiance) = shape.emission {
-                let light = Light { kind: light_kind, prim: prims.len() as u32, table: NONE, radiance: rgba(radiance), ..Default::default() };
+                let light = Light {
+                    kind: light_kind,
+                    prim: prims.len() as u32,
+                    table: NONE,
+                    radiance: rgba(radiance),
+                    ..Default::default()
+                };
                 prim.light = lights.push(light, PI * area * luminance(Vec3::from(radiance)));
             }
             prims.push(prim);
@@ -131,7 +138,12 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                     let area = 0.5 * geometric.length();
                     let mut flags = flags_base;
                     let uv = uvs.as_ref().map_or(DEFAULT_UVS, |u| u[i]);
-                    let mut attr = TriangleAttributes { uv0: uv[0].to_array(), uv1: uv[1].to_array(), uv2: uv[2].to_array(), ..Default::default() };
+                    let mut attr = TriangleAttributes {
+                        uv0: uv[0].to_array(),
+                        uv1: uv[1].to_array(),
+                        uv2: uv[2].to_array(),
+                        ..Default::default()
+                    };
                     if let Some(c) = normals {
                         let gn = geometric.normalize();
                         // Flat triangles skip interpolation: a scene pays nothing for normals it does not need.
@@ -140,16 +152,43 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                             (attr.n0, attr.n1, attr.n2) = (arr(c[i][0]), arr(c[i][1]), arr(c[i][2]));
                         }
                     }
-                    let prim = Primitive { p0: arr(t[0]), kind: PRIM_TRIANGLE, p1: arr(t[1]), material: shape.material, p2: arr(t[2]), light: NONE, flags, _pad: [0; 3] };
+                    let prim = Primitive {
+                        p0: arr(t[0]),
+                        kind: PRIM_TRIANGLE,
+                        p1: arr(t[1]),
+                        material: shape.material,
+                        p2: arr(t[2]),
+                        light: NONE,
+                        flags,
+                        _pad: [0; 3],
+                    };
                     push(prim, attr, area, LIGHT_AREA);
                 }
             }
             Geometry::Sphere { center, radius } => {
-                let prim = Primitive { p0: arr(*center), kind: PRIM_SPHERE, p1: [*radius, 0.0, 0.0], material: shape.material, p2: [0.0; 3], light: NONE, flags: flags_base, _pad: [0; 3] };
+                let prim = Primitive {
+                    p0: arr(*center),
+                    kind: PRIM_SPHERE,
+                    p1: [*radius, 0.0, 0.0],
+                    material: shape.material,
+                    p2: [0.0; 3],
+                    light: NONE,
+                    flags: flags_base,
+                    _pad: [0; 3],
+                };
                 push(prim, TriangleAttributes::default(), 4.0 * PI * radius * radius, LIGHT_SPHERE);
             }
             Geometry::Disk { center, u, v } => {
-                let prim = Primitive { p0: arr(*center), kind: PRIM_DISK, p1: arr(*u), material: shape.material, p2: arr(*v), light: NONE, flags: flags_base, _pad: [0; 3] };
+                let prim = Primitive {
+                    p0: arr(*center),
+                    kind: PRIM_DISK,
+                    p1: arr(*u),
+                    material: shape.material,
+                    p2: arr(*v),
+                    light: NONE,
+                    flags: flags_base,
+                    _pad: [0; 3],
+                };
                 push(prim, TriangleAttributes::default(), PI * u.cross(*v).length(), LIGHT_AREA);
             }
         }
@@ -178,11 +217,19 @@ fn bounds(p: &Primitive) -> Aabb {
 /// material previews +20% (glass 59 → 72, diffuse 113 → 136), the PLY bunny 131 → 165; the build of
 /// a 62k-triangle mesh takes ~0.1 s. More reinsertion (0.5–1.0) bought only 2% more for 2–4× the time.
 fn bvh_build_params() -> obvhs::BvhBuildParams {
-    obvhs::BvhBuildParams { reinsertion_batch_ratio: 0.2, collapse_traversal_cost: 1.0, ..obvhs::BvhBuildParams::medium_build() }
+    obvhs::BvhBuildParams {
+        reinsertion_batch_ratio: 0.2,
+        collapse_traversal_cost: 1.0,
+        ..obvhs::BvhBuildParams::medium_build()
+    }
 }
 
 /// Builds the BVH and reorders primitives (and what refers to them) into leaf order.
-fn build_bvh(prims: &mut Vec<Primitive>, attributes: &mut Vec<TriangleAttributes>, lights: &mut [Light]) -> Result<Vec<BvhNode>> {
+fn build_bvh(
+    prims: &mut Vec<Primitive>,
+    attributes: &mut Vec<TriangleAttributes>,
+    lights: &mut [Light],
+) -> Result<Vec<BvhNode>> {
     let aabbs: Vec<Aabb> = prims.iter().map(bounds).collect();
     let mut build_time = std::time::Duration::ZERO;
     let bvh = obvhs::bvh2::builder::build_bvh2(&aabbs, bvh_build_params(), &mut build_time);
@@ -199,7 +246,12 @@ fn build_bvh(prims: &mut Vec<Primitive>, attributes: &mut Vec<TriangleAttributes
     let nodes: Vec<BvhNode> = bvh
         .nodes
         .iter()
-        .map(|n| BvhNode { min: n.aabb.min.to_array(), prim_count: n.prim_count, max: n.aabb.max.to_array(), first: n.first_index })
+        .map(|n| BvhNode {
+            min: n.aabb.min.to_array(),
+            prim_count: n.prim_count,
+            max: n.aabb.max.to_array(),
+            first: n.first_index,
+        })
         .collect();
     let depth = bvh.depth(0);
     if depth >= STACK_SIZE {
@@ -276,7 +328,8 @@ fn envmap_distribution(t: &Texture, texels: &[f32]) -> (Vec<f32>, f32) {
         let cells: Vec<f64> = (0..w)
             .map(|c| {
                 let c1 = (c + 1) % w;
-                0.25 * ((lum(c, r) + lum(c1, r)) * sin_theta(r) + (lum(c, r + 1) + lum(c1, r + 1)) * sin_theta(r + 1))
+                0.25 * ((lum(c, r) + lum(c1, r)) * sin_theta(r)
+                    + (lum(c, r + 1) + lum(c1, r + 1)) * sin_theta(r + 1))
             })
             .collect();
         marginal.push(cells.iter().sum::<f64>());
@@ -291,7 +344,13 @@ fn envmap_distribution(t: &Texture, texels: &[f32]) -> (Vec<f32>, f32) {
 }
 
 /// Light records of the emitters that are not shapes; returns the environment light's index.
-fn emitter_lights(scene: &Scene, textures: &[Texture], tables: &mut Vec<f32>, lights: &mut LightList, (centre, radius): (Vec3, f32)) -> u32 {
+fn emitter_lights(
+    scene: &Scene,
+    textures: &[Texture],
+    tables: &mut Vec<f32>,
+    lights: &mut LightList,
+    (centre, radius): (Vec3, f32),
+) -> u32 {
     let mut env_light = NONE;
     let disk_area = PI * radius * radius;
     let bsphere = [centre.x, centre.y, centre.z, radius];
@@ -305,7 +364,8 @@ fn emitter_lights(scene: &Scene, textures: &[Texture], tables: &mut Vec<f32>, li
                 4.0 * PI * luminance(Vec3::from(*intensity))
             }
             Emitter::Spot { to_world, intensity, cutoff_angle, beam_width } => {
-                let (cutoff, beam) = (cutoff_angle.to_radians(), beam_width.to_radians().min(cutoff_angle.to_radians()));
+                let (cutoff, beam) =
+                    (cutoff_angle.to_radians(), beam_width.to_radians().min(cutoff_angle.to_radians()));
                 light.kind = LIGHT_SPOT;
                 light.radiance = rgba(*intensity);
                 light.position = to_world.w_axis.truncate().extend(0.0).to_array();
@@ -420,7 +480,8 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let mut tables = filter_cdf(&scene.sensor.filter);
     let filter_cdf_offset = 0;
     let mut textures = place_textures(scene, &mut tables);
-    let env_light = emitter_lights(scene, &textures, &mut tables, &mut light_list, bounding_sphere(&nodes, has_prims));
+    let env_light =
+        emitter_lights(scene, &textures, &mut tables, &mut light_list, bounding_sphere(&nodes, has_prims));
 
     let light_cdf = cdf_of(&light_list.selection_weights());
     let mut lights = light_list.lights;
@@ -442,7 +503,9 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let crop = s.crop.unwrap_or(crate::scene::Crop { x: 0, y: 0, width: s.width, height: s.height });
     let (integrator_kind, emitter_samples, bsdf_samples) = match scene.integrator.kind {
         IntegratorKind::Path => (INTEGRATOR_PATH, 1, 1),
-        IntegratorKind::Direct { emitter_samples, bsdf_samples } => (INTEGRATOR_DIRECT, emitter_samples, bsdf_samples),
+        IntegratorKind::Direct { emitter_samples, bsdf_samples } => {
+            (INTEGRATOR_DIRECT, emitter_samples, bsdf_samples)
+        }
     };
     let params = FrameParams {
         width: crop.width,

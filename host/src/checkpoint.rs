@@ -55,20 +55,30 @@ impl Checkpoint {
             bytes.extend_from_slice(&v.to_le_bytes());
         }
         let partial = path.with_extension("partial");
-        std::fs::write(&partial, &bytes).with_context(|| format!("cannot write the checkpoint {}", partial.display()))?;
-        std::fs::rename(&partial, path).with_context(|| format!("cannot move the checkpoint into place at {}", path.display()))
+        std::fs::write(&partial, &bytes)
+            .with_context(|| format!("cannot write the checkpoint {}", partial.display()))?;
+        std::fs::rename(&partial, path)
+            .with_context(|| format!("cannot move the checkpoint into place at {}", path.display()))
     }
 
     pub fn load(path: &Path) -> Result<Checkpoint> {
-        let bytes = std::fs::read(path).with_context(|| format!("cannot read the checkpoint {}", path.display()))?;
-        let word = |at: usize| -> Option<u32> { Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?)) };
+        let bytes =
+            std::fs::read(path).with_context(|| format!("cannot read the checkpoint {}", path.display()))?;
+        let word =
+            |at: usize| -> Option<u32> { Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?)) };
         if bytes.len() < 32 || &bytes[..8] != MAGIC {
             bail!("{} is not a caustic checkpoint", path.display());
         }
         let scene = u64::from_le_bytes(bytes[8..16].try_into().unwrap());
-        let (seed, spp_total, spp_done, count) = (word(16).unwrap(), word(20).unwrap(), word(24).unwrap(), word(28).unwrap() as usize);
+        let (seed, spp_total, spp_done, count) =
+            (word(16).unwrap(), word(20).unwrap(), word(24).unwrap(), word(28).unwrap() as usize);
         if bytes.len() != 32 + count * 4 {
-            bail!("{}: truncated checkpoint ({} bytes, expected {})", path.display(), bytes.len(), 32 + count * 4);
+            bail!(
+                "{}: truncated checkpoint ({} bytes, expected {})",
+                path.display(),
+                bytes.len(),
+                32 + count * 4
+            );
         }
         let accum = bytes[32..].chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().unwrap())).collect();
         Ok(Checkpoint { scene, seed, spp_total, spp_done, accum })

@@ -39,7 +39,13 @@ pub fn luminance(c: [f32; 3]) -> f64 {
 /// reference's own variance from the render's (0 ignores it).
 pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Comparison> {
     if image.width != reference.width || image.height != reference.height {
-        bail!("image is {}×{} but the reference is {}×{}", image.width, image.height, reference.width, reference.height);
+        bail!(
+            "image is {}×{} but the reference is {}×{}",
+            image.width,
+            image.height,
+            reference.width,
+            reference.height
+        );
     }
     let n = image.rgb.len();
     let values = (n * 3) as f64;
@@ -124,10 +130,20 @@ pub fn pooled_variance(v: &[[f32; 3]], width: u32, height: u32) -> Vec<[f32; 3]>
 
 /// Writes the error map as a false-colour PNG: black (no error) through blue and red to yellow at
 /// `scale` (the z-test's critical value, or 100% relative error).
-pub fn save_error_image(path: &std::path::Path, width: u32, height: u32, errors: &[f32], scale: f32) -> Result<()> {
+pub fn save_error_image(
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+    errors: &[f32],
+    scale: f32,
+) -> Result<()> {
     let img = image::RgbImage::from_fn(width, height, |x, y| {
         let t = (errors[(y * width + x) as usize] / scale).clamp(0.0, 1.0);
-        let rgb = if t < 0.5 { [0.0, 0.0, t * 2.0] } else { [(t - 0.5) * 2.0, (t - 0.5).max(0.0) * 2.0 * (t - 0.5) * 2.0, 1.0 - (t - 0.5) * 2.0] };
+        let rgb = if t < 0.5 {
+            [0.0, 0.0, t * 2.0]
+        } else {
+            [(t - 0.5) * 2.0, (t - 0.5).max(0.0) * 2.0 * (t - 0.5) * 2.0, 1.0 - (t - 0.5) * 2.0]
+        };
         image::Rgb(rgb.map(|c| (c * 255.0) as u8))
     });
     img.save(path)?;

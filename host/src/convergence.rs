@@ -31,12 +31,24 @@ pub fn checkpoints(max_spp: u32) -> Vec<u32> {
 /// Renders up to `max_spp` and measures the error against `reference` at every checkpoint. The
 /// independent sampler is used whatever the scene asks: stratified strata laid out for the full
 /// count would cover only part of each pixel at the earlier checkpoints.
-pub fn measure(backend: &mut dyn Backend, buffers: &SceneBuffers, reference: &Film, max_spp: u32, seed: u32) -> Result<Vec<ConvergencePoint>> {
+pub fn measure(
+    backend: &mut dyn Backend,
+    buffers: &SceneBuffers,
+    reference: &Film,
+    max_spp: u32,
+    seed: u32,
+) -> Result<Vec<ConvergencePoint>> {
     if max_spp == 0 {
         bail!("the sample budget must be at least 1");
     }
     if (reference.width, reference.height) != (buffers.params.width, buffers.params.height) {
-        bail!("the reference is {}×{} but the render is {}×{}", reference.width, reference.height, buffers.params.width, buffers.params.height);
+        bail!(
+            "the reference is {}×{} but the render is {}×{}",
+            reference.width,
+            reference.height,
+            buffers.params.width,
+            buffers.params.height
+        );
     }
     let mut buffers = buffers.clone();
     buffers.params.sampler = SAMPLER_INDEPENDENT;
@@ -47,7 +59,13 @@ pub fn measure(backend: &mut dyn Backend, buffers: &SceneBuffers, reference: &Fi
         if stops.contains(&done) {
             let film = Film::from_accum(width, height, backend.read_accum()?);
             let c = compare(&film, reference, 0.0)?;
-            points.push(ConvergencePoint { spp: done, seconds, rmse: c.rmse, rel_mse: c.rel_mse, luminance_ratio: c.luminance_ratio });
+            points.push(ConvergencePoint {
+                spp: done,
+                seconds,
+                rmse: c.rmse,
+                rel_mse: c.rel_mse,
+                luminance_ratio: c.luminance_ratio,
+            });
         }
         Ok(std::ops::ControlFlow::Continue(()))
     })?;
@@ -63,7 +81,8 @@ pub fn log_log_slope(points: &[ConvergencePoint]) -> Option<f64> {
 /// Least-squares slope of log y against log x over the pairs with both positive (`None` with fewer
 /// than two, or all at one x).
 pub fn least_squares_log_slope(pairs: impl Iterator<Item = (f64, f64)>) -> Option<f64> {
-    let xy: Vec<(f64, f64)> = pairs.filter(|&(x, y)| x > 0.0 && y > 0.0).map(|(x, y)| (x.ln(), y.ln())).collect();
+    let xy: Vec<(f64, f64)> =
+        pairs.filter(|&(x, y)| x > 0.0 && y > 0.0).map(|(x, y)| (x.ln(), y.ln())).collect();
     if xy.len() < 2 {
         return None;
     }
@@ -78,7 +97,10 @@ pub fn least_squares_log_slope(pairs: impl Iterator<Item = (f64, f64)>) -> Optio
 pub fn write_csv(path: &Path, points: &[ConvergencePoint]) -> Result<()> {
     let mut text = String::from("spp,seconds,rmse,rel_mse,luminance_ratio\n");
     for p in points {
-        text += &format!("{},{:.6},{:.8e},{:.8e},{:.6}\n", p.spp, p.seconds, p.rmse, p.rel_mse, p.luminance_ratio);
+        text += &format!(
+            "{},{:.6},{:.8e},{:.8e},{:.6}\n",
+            p.spp, p.seconds, p.rmse, p.rel_mse, p.luminance_ratio
+        );
     }
     std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
 }
@@ -87,7 +109,8 @@ pub fn write_csv(path: &Path, points: &[ConvergencePoint]) -> Result<()> {
 /// with a dashed line of slope −1 through the first curve's last point for reference.
 pub fn write_plot(path: &Path, curves: &[(String, Vec<ConvergencePoint>)]) -> Result<()> {
     use plotters::prelude::*;
-    let all: Vec<&ConvergencePoint> = curves.iter().flat_map(|(_, c)| c).filter(|p| p.seconds > 0.0 && p.rel_mse > 0.0).collect();
+    let all: Vec<&ConvergencePoint> =
+        curves.iter().flat_map(|(_, c)| c).filter(|p| p.seconds > 0.0 && p.rel_mse > 0.0).collect();
     if all.is_empty() {
         bail!("nothing to plot");
     }
@@ -102,17 +125,28 @@ pub fn write_plot(path: &Path, curves: &[(String, Vec<ConvergencePoint>)]) -> Re
         .y_label_area_size(70)
         .build_cartesian_2d((t0 / 1.5..t1 * 1.5).log_scale(), (e0 / 2.0..e1 * 2.0).log_scale())
         .map_err(|e| anyhow::anyhow!("{e}"))?;
-    chart.configure_mesh().x_desc("render seconds").y_desc("relative MSE").draw().map_err(|e| anyhow::anyhow!("{e}"))?;
+    chart
+        .configure_mesh()
+        .x_desc("render seconds")
+        .y_desc("relative MSE")
+        .draw()
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
     let colours = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
     for (k, (label, points)) in curves.iter().enumerate() {
         let colour = colours[k % colours.len()];
-        let series: Vec<(f64, f64)> = points.iter().filter(|p| p.seconds > 0.0 && p.rel_mse > 0.0).map(|p| (p.seconds, p.rel_mse)).collect();
+        let series: Vec<(f64, f64)> = points
+            .iter()
+            .filter(|p| p.seconds > 0.0 && p.rel_mse > 0.0)
+            .map(|p| (p.seconds, p.rel_mse))
+            .collect();
         chart
             .draw_series(LineSeries::new(series.clone(), colour.stroke_width(2)))
             .map_err(|e| anyhow::anyhow!("{e}"))?
             .label(label.as_str())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
-        chart.draw_series(series.iter().map(|&p| Circle::new(p, 3, colour.filled()))).map_err(|e| anyhow::anyhow!("{e}"))?;
+        chart
+            .draw_series(series.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
     }
     if let Some(last) = curves[0].1.iter().rev().find(|p| p.seconds > 0.0 && p.rel_mse > 0.0) {
         let line = [(t0, last.rel_mse * last.seconds / t0), (t1, last.rel_mse * last.seconds / t1)];
@@ -122,7 +156,12 @@ pub fn write_plot(path: &Path, curves: &[(String, Vec<ConvergencePoint>)]) -> Re
             .label("slope −1")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
     }
-    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw().map_err(|e| anyhow::anyhow!("{e}"))?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
     root.present().map_err(|e| anyhow::anyhow!("{e}"))?;
     Ok(())
 }

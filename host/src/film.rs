@@ -40,9 +40,18 @@ impl Film {
         let (x, y) = (x.min(self.width), y.min(self.height));
         let (w, h) = (width.min(self.width - x), height.min(self.height - y));
         let window = |v: &Vec<[f32; 3]>| -> Vec<[f32; 3]> {
-            (y..y + h).flat_map(|row| (x..x + w).map(move |col| (row * self.width + col) as usize)).map(|i| v[i]).collect()
+            (y..y + h)
+                .flat_map(|row| (x..x + w).map(move |col| (row * self.width + col) as usize))
+                .map(|i| v[i])
+                .collect()
         };
-        Film { width: w, height: h, rgb: window(&self.rgb), variance: self.variance.as_ref().map(window), invalid_samples: self.invalid_samples }
+        Film {
+            width: w,
+            height: h,
+            rgb: window(&self.rgb),
+            variance: self.variance.as_ref().map(window),
+            invalid_samples: self.invalid_samples,
+        }
     }
 
     /// Writes `.exr` (linear float), `.png` (sRGB, clamped) or `.ppm` (sRGB, clamped, binary).
@@ -54,7 +63,8 @@ impl Film {
         match ext.as_str() {
             "exr" => write_exr(path, self.width, self.height, &self.rgb),
             "png" => {
-                let img = image::RgbImage::from_fn(self.width, self.height, |x, y| image::Rgb(self.srgb8(x, y)));
+                let img =
+                    image::RgbImage::from_fn(self.width, self.height, |x, y| image::Rgb(self.srgb8(x, y)));
                 img.save(path).with_context(|| format!("cannot write {}", path.display()))
             }
             "ppm" => {
@@ -92,7 +102,13 @@ impl Film {
         .with_context(|| format!("cannot read EXR image {}", path.display()))?;
         let size = image.layer_data.size;
         let (_, rgb) = image.layer_data.channel_data.pixels;
-        Ok(Film { width: size.width() as u32, height: size.height() as u32, rgb, variance: None, invalid_samples: 0 })
+        Ok(Film {
+            width: size.width() as u32,
+            height: size.height() as u32,
+            rgb,
+            variance: None,
+            invalid_samples: 0,
+        })
     }
 
     /// Loads an image's sibling variance file written by `render --variance`, if present.

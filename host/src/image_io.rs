@@ -99,7 +99,13 @@ fn exr_channel_role(name: &str) -> String {
 /// The first layer of an EXR: R, G, B (+ A) or Y (+ A) channels of half, float or uint samples.
 fn load_exr(path: &Path) -> Result<LinearImage> {
     use exr::prelude::*;
-    let image = read().no_deep_data().largest_resolution_level().all_channels().first_valid_layer().all_attributes().from_file(path)?;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)?;
     let layer = image.layer_data;
     let (width, height) = (layer.size.width(), layer.size.height());
     let channels = &layer.channel_data.list;
@@ -111,7 +117,9 @@ fn load_exr(path: &Path) -> Result<LinearImage> {
     let has_alpha = find("a").is_some();
     let colour_count = channels.len() - has_alpha as usize;
     let planes: Vec<Vec<f32>> = match (find("r"), find("g"), find("b"), find("y")) {
-        (Some(r), Some(g), Some(b), _) if colour_count == 3 => [r, g, b].iter().map(|c| c.sample_data.values_as_f32().collect()).collect(),
+        (Some(r), Some(g), Some(b), _) if colour_count == 3 => {
+            [r, g, b].iter().map(|c| c.sample_data.values_as_f32().collect()).collect()
+        }
         (_, _, _, Some(y)) if colour_count == 1 => vec![y.sample_data.values_as_f32().collect(); 3],
         _ => bail!("channels [{}] are neither R, G, B[, A] nor Y[, A]", names.join(", ")),
     };
@@ -192,7 +200,11 @@ mod tests {
             let path = scratch_file(name);
             image::RgbImage::from_raw(1, 1, vec![255, 128, 0]).unwrap().save(&path).unwrap();
             let linear = load_linear_rgb(&path, false).unwrap();
-            assert!(close(linear.texel(0, 0)[1], 0.215_860_53) && linear.texel(0, 0)[0] == 1.0, "{name}: {:?}", linear.rgb);
+            assert!(
+                close(linear.texel(0, 0)[1], 0.215_860_53) && linear.texel(0, 0)[0] == 1.0,
+                "{name}: {:?}",
+                linear.rgb
+            );
         }
     }
 
@@ -225,7 +237,8 @@ mod tests {
         use exr::prelude::*;
         let path = scratch_file("luminance.exr");
         let values: Vec<f16> = [0.5f32, 2.0, 0.0, 8.0].iter().map(|&v| f16::from_f32(v)).collect();
-        let channels = AnyChannels::sort(SmallVec::from_vec(vec![AnyChannel::new("Y", FlatSamples::F16(values))]));
+        let channels =
+            AnyChannels::sort(SmallVec::from_vec(vec![AnyChannel::new("Y", FlatSamples::F16(values))]));
         Image::from_channels((2, 2), channels).write().to_file(&path).unwrap();
         let linear = load_linear_rgb(&path, false).unwrap();
         assert_eq!(linear.texel(1, 0), [2.0; 3]);
@@ -253,9 +266,17 @@ mod tests {
                 continue;
             }
             let img = load_linear_rgb(&path, false).unwrap();
-            assert!(img.width >= 2 && img.height >= 2 && img.width <= 16384 && img.height <= 16384, "{name}: {}×{}", img.width, img.height);
+            assert!(
+                img.width >= 2 && img.height >= 2 && img.width <= 16384 && img.height <= 16384,
+                "{name}: {}×{}",
+                img.width,
+                img.height
+            );
             assert_eq!(img.rgb.len(), 3 * img.width as usize * img.height as usize, "{name}");
-            assert!(img.rgb.iter().all(|c| c.is_finite() && *c >= 0.0), "{name} has negative or non-finite texels");
+            assert!(
+                img.rgb.iter().all(|c| c.is_finite() && *c >= 0.0),
+                "{name} has negative or non-finite texels"
+            );
             assert!(img.rgb.iter().any(|c| *c > 0.0), "{name} is all black");
         }
     }

@@ -7,7 +7,11 @@ use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 
 #[derive(Parser)]
-#[command(name = "caustic", version, about = "A physically based renderer whose one kernel runs on the GPU and the CPU")]
+#[command(
+    name = "caustic",
+    version,
+    about = "A physically based renderer whose one kernel runs on the GPU and the CPU"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -118,13 +122,20 @@ fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render { run, output, variance, quiet, checkpoint, checkpoint_every, tev } => {
-            let output = output.unwrap_or_else(|| PathBuf::from(run.scene.file_stem().unwrap_or_default()).with_extension("exr"));
-            let checkpoint = checkpoint.map(|path| (path, std::time::Duration::from_secs_f64(checkpoint_every.max(0.0))));
+            let output = output.unwrap_or_else(|| {
+                PathBuf::from(run.scene.file_stem().unwrap_or_default()).with_extension("exr")
+            });
+            let checkpoint =
+                checkpoint.map(|path| (path, std::time::Duration::from_secs_f64(checkpoint_every.max(0.0))));
             cmd_render(&run, &output, variance, quiet, checkpoint.as_ref(), tev.as_deref())
         }
-        Command::Compare { image, reference, image_spp, reference_spp, error_image } => cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref()),
+        Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
+            cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref())
+        }
         Command::Bench { scene, define, backend, spp } => cmd_bench(&scene, &define, &backend, spp),
-        Command::Convergence { run, reference, csv, plot } => cmd_convergence(&run, &reference, csv.as_deref(), plot.as_deref()),
+        Command::Convergence { run, reference, csv, plot } => {
+            cmd_convergence(&run, &reference, csv.as_deref(), plot.as_deref())
+        }
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");
@@ -135,7 +146,14 @@ fn main() {
 /// How often the image goes to tev: often enough to watch, rarely enough that read-backs cost little.
 const TEV_INTERVAL: std::time::Duration = std::time::Duration::from_millis(500);
 
-fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpoint: Option<&(PathBuf, std::time::Duration)>, tev: Option<&str>) -> Result<()> {
+fn cmd_render(
+    run: &RunArgs,
+    output: &Path,
+    variance: bool,
+    quiet: bool,
+    checkpoint: Option<&(PathBuf, std::time::Duration)>,
+    tev: Option<&str>,
+) -> Result<()> {
     let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed } = run;
     let (choice, seed) = (*choice, *seed);
     caustic::film::check_output_path(output)?;
@@ -144,7 +162,8 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpo
     if spp == 0 {
         bail!("--spp must be at least 1");
     }
-    let buffers = buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
+    let buffers = buffers::build(&scene)
+        .with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
     let mut backend = backend::create(choice, &buffers)?;
     // Hashing every scene buffer is only worth it when there is a checkpoint to match.
     let fingerprint = checkpoint.map(|_| caustic::checkpoint::fingerprint(&buffers, seed, spp));
@@ -153,11 +172,18 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpo
         _ => 0,
     };
     let bar = if quiet { indicatif::ProgressBar::hidden() } else { indicatif::ProgressBar::new(spp as u64) };
-    bar.set_style(indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} spp ({eta} left)").unwrap().progress_chars("=> "));
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} spp ({eta} left)")
+            .unwrap()
+            .progress_chars("=> "),
+    );
     bar.set_position(start as u64);
     let (width, height) = (buffers.params.width, buffers.params.height);
     let name = output.file_name().unwrap_or_default().to_string_lossy().to_string();
-    let mut viewer = match tev.map(|address| caustic::tev::TevStream::connect(address, &name, width, height)).transpose() {
+    let mut viewer = match tev
+        .map(|address| caustic::tev::TevStream::connect(address, &name, width, height))
+        .transpose()
+    {
         Ok(v) => v,
         Err(e) => {
             eprintln!("warning: {e:#}; rendering without the viewer");
@@ -166,28 +192,42 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpo
     };
     let mut last_save = std::time::Instant::now();
     let mut last_view = std::time::Instant::now();
-    let stats = render::render_with_checkpoints(backend.as_mut(), &buffers, start, spp, seed, &[], |done, _, backend| {
-        bar.set_position(done as u64);
-        if viewer.is_some() && (last_view.elapsed() >= TEV_INTERVAL || done == spp) {
-            let film = Film::from_accum(width, height, backend.read_accum()?);
-            if let Err(e) = viewer.as_mut().unwrap().update(&film) {
-                eprintln!("warning: {e:#}; no more updates to the viewer");
-                viewer = None;
-            }
-            last_view = std::time::Instant::now();
-        }
-        if let (Some((path, every)), Some(fingerprint)) = (checkpoint, fingerprint) {
-            if done < spp && last_save.elapsed() >= *every {
-                let c = caustic::checkpoint::Checkpoint { scene: fingerprint, seed, spp_total: spp, spp_done: done, accum: backend.read_accum()? };
-                // A checkpoint that cannot be written must not cost the render itself.
-                if let Err(e) = c.save(path) {
-                    eprintln!("warning: {e:#}; the render goes on");
+    let stats = render::render_with_checkpoints(
+        backend.as_mut(),
+        &buffers,
+        start,
+        spp,
+        seed,
+        &[],
+        |done, _, backend| {
+            bar.set_position(done as u64);
+            if viewer.is_some() && (last_view.elapsed() >= TEV_INTERVAL || done == spp) {
+                let film = Film::from_accum(width, height, backend.read_accum()?);
+                if let Err(e) = viewer.as_mut().unwrap().update(&film) {
+                    eprintln!("warning: {e:#}; no more updates to the viewer");
+                    viewer = None;
                 }
-                last_save = std::time::Instant::now();
+                last_view = std::time::Instant::now();
             }
-        }
-        Ok(std::ops::ControlFlow::Continue(()))
-    })?;
+            if let (Some((path, every)), Some(fingerprint)) = (checkpoint, fingerprint) {
+                if done < spp && last_save.elapsed() >= *every {
+                    let c = caustic::checkpoint::Checkpoint {
+                        scene: fingerprint,
+                        seed,
+                        spp_total: spp,
+                        spp_done: done,
+                        accum: backend.read_accum()?,
+                    };
+                    // A checkpoint that cannot be written must not cost the render itself.
+                    if let Err(e) = c.save(path) {
+                        eprintln!("warning: {e:#}; the render goes on");
+                    }
+                    last_save = std::time::Instant::now();
+                }
+            }
+            Ok(std::ops::ControlFlow::Continue(()))
+        },
+    )?;
     bar.finish_and_clear();
     let mut film = Film::from_accum(buffers.params.width, buffers.params.height, backend.read_accum()?);
     sanitize(&mut film);
@@ -209,7 +249,12 @@ fn cmd_render(run: &RunArgs, output: &Path, variance: bool, quiet: bool, checkpo
     let (w, h) = (film.width, film.height);
     let msps = w as f64 * h as f64 * (spp - start) as f64 / stats.seconds.max(1e-9) / 1e6;
     let resumed = if start > 0 { format!(" (resumed at {start})") } else { String::new() };
-    say!("{} | {w}x{h} | {spp} spp{resumed} | {:.2} s | {msps:.2} Msamples/s | {}", backend.describe(), stats.seconds, output.display());
+    say!(
+        "{} | {w}x{h} | {spp} spp{resumed} | {:.2} s | {msps:.2} Msamples/s | {}",
+        backend.describe(),
+        stats.seconds,
+        output.display()
+    );
     Ok(())
 }
 
@@ -221,7 +266,10 @@ fn resume(path: &Path, backend: &mut dyn backend::Backend, fingerprint: u64, spp
     }
     let c = caustic::checkpoint::Checkpoint::load(path)?;
     if c.scene != fingerprint || c.spp_done > spp {
-        bail!("{} was written for another scene, seed or sample count; remove it to start afresh", path.display());
+        bail!(
+            "{} was written for another scene, seed or sample count; remove it to start afresh",
+            path.display()
+        );
     }
     backend.write_accum(&c.accum)?;
     eprintln!("resuming from {} ({} of {spp} spp done)", path.display(), c.spp_done);
@@ -240,10 +288,17 @@ fn sanitize(film: &mut Film) {
     }
 }
 
-fn cmd_compare(image: &Path, reference: &Path, image_spp: u32, reference_spp: u32, error_image: Option<&Path>) -> Result<()> {
+fn cmd_compare(
+    image: &Path,
+    reference: &Path,
+    image_spp: u32,
+    reference_spp: u32,
+    error_image: Option<&Path>,
+) -> Result<()> {
     let a = Film::load_with_variance(image)?;
     let b = Film::load_exr(reference)?;
-    let ratio = if image_spp > 0 && reference_spp > 0 { image_spp as f64 / reference_spp as f64 } else { 0.0 };
+    let ratio =
+        if image_spp > 0 && reference_spp > 0 { image_spp as f64 / reference_spp as f64 } else { 0.0 };
     let c = compare::compare(&a, &b, ratio)?;
     say!("RMSE                 {:.6}", c.rmse);
     say!("relative MSE         {:.6}", c.rel_mse);
@@ -269,7 +324,8 @@ fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Op
     let scene = caustic::load_scene(scene_path, defines)?;
     let spp = spp.unwrap_or(scene.sensor.spp);
     let reference_film = Film::load_exr(reference)?;
-    let buffers = buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
+    let buffers = buffers::build(&scene)
+        .with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
     let mut backend = backend::create(choice, &buffers)?;
     // A one-sample warm-up (pipeline compilation, caches) on a backend of its own, untimed.
     render::render(backend.as_mut(), &buffers, 1, seed.wrapping_add(1), |_| {})?;
@@ -279,16 +335,29 @@ fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Op
     say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
     say!("|---|---|---|---|---|");
     for p in &points {
-        say!("| {} | {:.4} | {:.6} | {:.6e} | {:.5} |", p.spp, p.seconds, p.rmse, p.rel_mse, p.luminance_ratio);
+        say!(
+            "| {} | {:.4} | {:.6} | {:.6e} | {:.5} |",
+            p.spp,
+            p.seconds,
+            p.rmse,
+            p.rel_mse,
+            p.luminance_ratio
+        );
     }
     if let Some(slope) = convergence::log_log_slope(&points) {
-        say!("log-log slope of relative MSE against seconds: {slope:.3} (−1: unbiased at constant throughput)");
+        say!(
+            "log-log slope of relative MSE against seconds: {slope:.3} (−1: unbiased at constant throughput)"
+        );
     }
     if let Some(path) = csv {
         convergence::write_csv(path, &points)?;
     }
     if let Some(path) = plot {
-        let label = format!("{} ({})", scene_path.file_stem().unwrap_or_default().to_string_lossy(), backend.describe());
+        let label = format!(
+            "{} ({})",
+            scene_path.file_stem().unwrap_or_default().to_string_lossy(),
+            backend.describe()
+        );
         convergence::write_plot(path, &[(label, points)])?;
     }
     Ok(())
@@ -318,7 +387,13 @@ fn cmd_bench(scene_path: &Path, defines: &[(String, String)], which: &str, spp: 
         let mut backend = backend::create(choice, &buffers)?;
         let (film, stats) = render::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
         let msps = film.width as f64 * film.height as f64 * spp as f64 / stats.seconds / 1e6;
-        say!("| {} | {}x{} | {spp} | {:.3} | {msps:.2} |", backend.describe(), film.width, film.height, stats.seconds);
+        say!(
+            "| {} | {}x{} | {spp} | {:.3} | {msps:.2} |",
+            backend.describe(),
+            film.width,
+            film.height,
+            stats.seconds
+        );
     }
     Ok(())
 }

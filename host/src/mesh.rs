@@ -52,13 +52,20 @@ impl Mesh {
         }
         let vertex_count = self.positions.len();
         if let Some((k, &i)) = self.indices.iter().enumerate().find(|(_, &i)| i as usize >= vertex_count) {
-            bail!("{}: triangle {} references vertex {i}, but the mesh has {vertex_count} vertices", path.display(), k / 3);
+            bail!(
+                "{}: triangle {} references vertex {i}, but the mesh has {vertex_count} vertices",
+                path.display(),
+                k / 3
+            );
         }
         if self.normals.as_ref().is_some_and(|n| n.len() != vertex_count) {
             bail!("{}: the normal list does not match the {vertex_count} vertices", path.display());
         }
         if self.uvs.as_ref().is_some_and(|uv| uv.len() != vertex_count) {
-            bail!("{}: the texture coordinate list does not match the {vertex_count} vertices", path.display());
+            bail!(
+                "{}: the texture coordinate list does not match the {vertex_count} vertices",
+                path.display()
+            );
         }
         if let Some(p) = self.positions.iter().find(|p| !p.is_finite()) {
             bail!("{}: the mesh has a non-finite vertex position {p}", path.display());
@@ -138,7 +145,13 @@ impl Mesh {
                 // A corner without a usable normal (zero in the file, or a cancelled sum) takes the
                 // face's own, so that shading never sees a zero or NaN normal.
                 let face_normal = face_normal.normalize();
-                out.push(corner.map(|i| if normals[i].is_finite() && normals[i] != Vec3::ZERO { normals[i] } else { face_normal }));
+                out.push(corner.map(|i| {
+                    if normals[i].is_finite() && normals[i] != Vec3::ZERO {
+                        normals[i]
+                    } else {
+                        face_normal
+                    }
+                }));
             }
             if let (Some(out), Some(uvs)) = (out.uvs.as_mut(), self.uvs.as_ref()) {
                 out.push(corner.map(|i| uvs[i]));

@@ -16,7 +16,13 @@ fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material
     let kd = m.diffuse.unwrap_or([0.5; 3]);
     let ks = m.specular.unwrap_or([0.0; 3]);
     let mut material = if ks.iter().any(|&c| c > 0.0) {
-        Material { kind: BSDF_PHONG, eta: m.shininess.unwrap_or(30.0).clamp(0.0, 1.0e6), reflectance: rgba(kd), specular_reflectance: rgba(ks), ..Default::default() }
+        Material {
+            kind: BSDF_PHONG,
+            eta: m.shininess.unwrap_or(30.0).clamp(0.0, 1.0e6),
+            reflectance: rgba(kd),
+            specular_reflectance: rgba(ks),
+            ..Default::default()
+        }
     } else {
         Material { kind: BSDF_DIFFUSE, reflectance: rgba(kd), ..Default::default() }
     };
@@ -36,7 +42,8 @@ fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material
 pub fn load(path: &Path) -> Result<Scene> {
     let (mesh, mtl) = mesh::load_obj(path, true)?;
     let mut warnings = Vec::new();
-    let mut materials = vec![Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }];
+    let mut materials =
+        vec![Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }];
     let mut emissions = vec![None];
     for m in &mtl {
         let (material, emission) = convert_material(m, &mut warnings);
@@ -56,7 +63,9 @@ pub fn load(path: &Path) -> Result<Scene> {
         })
         .collect();
     for (slot, emission) in emissions.iter().enumerate() {
-        let select: Vec<usize> = (0..kept.len()).filter(|&i| mesh.triangle_materials[kept[i]].map_or(0, |m| m + 1) == slot).collect();
+        let select: Vec<usize> = (0..kept.len())
+            .filter(|&i| mesh.triangle_materials[kept[i]].map_or(0, |m| m + 1) == slot)
+            .collect();
         if select.is_empty() {
             continue;
         }
@@ -74,7 +83,10 @@ pub fn load(path: &Path) -> Result<Scene> {
     }
 
     // Frame the model: look at its bounding box from the front (+z), slightly above.
-    let (lo, hi) = mesh.positions.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let (lo, hi) = mesh
+        .positions
+        .iter()
+        .fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), &p| (lo.min(p), hi.max(p)));
     let center = (lo + hi) * 0.5;
     let radius = ((hi - lo).length() * 0.5).max(1e-3);
     let fov_x = 40.0f32;

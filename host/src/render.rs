@@ -19,7 +19,13 @@ pub struct RenderStats {
 }
 
 /// Renders `spp` samples per pixel with `seed`, calling `progress(samples done)` after each pass.
-pub fn render(backend: &mut dyn Backend, buffers: &SceneBuffers, spp: u32, seed: u32, mut progress: impl FnMut(u32)) -> Result<(Film, RenderStats)> {
+pub fn render(
+    backend: &mut dyn Backend,
+    buffers: &SceneBuffers,
+    spp: u32,
+    seed: u32,
+    mut progress: impl FnMut(u32),
+) -> Result<(Film, RenderStats)> {
     let stats = render_with_checkpoints(backend, buffers, 0, spp, seed, &[], |done, _, _| {
         progress(done);
         Ok(Continue(()))

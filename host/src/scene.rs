@@ -46,9 +46,15 @@ pub enum SamplerKind {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Projection {
     Perspective,
-    ThinLens { aperture_radius: f32, focus_distance: f32 },
+    ThinLens {
+        aperture_radius: f32,
+        focus_distance: f32,
+    },
     /// Half extents of the view volume along local x and y.
-    Orthographic { half_width: f32, half_height: f32 },
+    Orthographic {
+        half_width: f32,
+        half_height: f32,
+    },
 }
 
 /// The part of the full image that is rendered (Mitsuba's `crop_*`).
@@ -98,16 +104,30 @@ impl Default for Integrator {
 pub enum IntegratorKind {
     Path,
     /// Direct illumination with this many light and BSDF samples per shading point.
-    Direct { emitter_samples: u32, bsdf_samples: u32 },
+    Direct {
+        emitter_samples: u32,
+        bsdf_samples: u32,
+    },
 }
 
 #[derive(Clone, Debug)]
 pub enum Geometry {
     /// World-space triangles, with optional per-corner shading normals.
-    Triangles { triangles: Vec<[Vec3; 3]>, normals: Option<Vec<[Vec3; 3]>>, uvs: Option<Vec<[Vec2; 3]>> },
-    Sphere { center: Vec3, radius: f32 },
+    Triangles {
+        triangles: Vec<[Vec3; 3]>,
+        normals: Option<Vec<[Vec3; 3]>>,
+        uvs: Option<Vec<[Vec2; 3]>>,
+    },
+    Sphere {
+        center: Vec3,
+        radius: f32,
+    },
     /// Mitsuba's analytic disk: `center + a·u + b·v` for `a² + b² ≤ 1`, facing `u × v`.
-    Disk { center: Vec3, u: Vec3, v: Vec3 },
+    Disk {
+        center: Vec3,
+        u: Vec3,
+        v: Vec3,
+    },
 }
 
 #[derive(Clone, Debug)]
@@ -125,14 +145,31 @@ pub struct Shape {
 /// An emitter not attached to a shape.
 #[derive(Clone, Debug)]
 pub enum Emitter {
-    Point { position: Vec3, intensity: [f32; 3] },
+    Point {
+        position: Vec3,
+        intensity: [f32; 3],
+    },
     /// `to_world` maps the beam axis to local +z; angles in degrees.
-    Spot { to_world: Mat4, intensity: [f32; 3], cutoff_angle: f32, beam_width: f32 },
+    Spot {
+        to_world: Mat4,
+        intensity: [f32; 3],
+        cutoff_angle: f32,
+        beam_width: f32,
+    },
     /// `direction` the light travels in.
-    Directional { direction: Vec3, irradiance: [f32; 3] },
-    Constant { radiance: [f32; 3] },
+    Directional {
+        direction: Vec3,
+        irradiance: [f32; 3],
+    },
+    Constant {
+        radiance: [f32; 3],
+    },
     /// A lat-long image (`texture` indexes `Scene::textures`), rotated by `to_world`.
-    Envmap { texture: u32, to_world: Mat3, scale: f32 },
+    Envmap {
+        texture: u32,
+        to_world: Mat3,
+        scale: f32,
+    },
 }
 
 /// A texture record with its texels (linear RGB, row-major from the top; empty for procedural

@@ -19,18 +19,32 @@ pub struct TevStream {
 impl TevStream {
     /// Connects to tev at `address` and creates the image `name` of `width` × `height`.
     pub fn connect(address: &str, name: &str, width: u32, height: u32) -> Result<TevStream> {
-        let target = address.to_socket_addrs().with_context(|| format!("--tev {address}: not a host:port"))?.next().with_context(|| format!("--tev {address}: no address"))?;
-        let socket = TcpStream::connect_timeout(&target, Duration::from_secs(3)).with_context(|| format!("cannot reach tev at {address} (is `tev` running?)"))?;
+        let target = address
+            .to_socket_addrs()
+            .with_context(|| format!("--tev {address}: not a host:port"))?
+            .next()
+            .with_context(|| format!("--tev {address}: no address"))?;
+        let socket = TcpStream::connect_timeout(&target, Duration::from_secs(3))
+            .with_context(|| format!("cannot reach tev at {address} (is `tev` running?)"))?;
         let mut client = TevClient::wrap(socket);
         // tev_client asserts on empty images; the film is never empty, but say so here too.
         anyhow::ensure!(width > 0 && height > 0, "an empty image cannot be streamed");
-        client.send(PacketCreateImage { image_name: name, grab_focus: true, width, height, channel_names: &CHANNELS }).with_context(|| format!("tev at {address} closed the connection"))?;
+        client
+            .send(PacketCreateImage {
+                image_name: name,
+                grab_focus: true,
+                width,
+                height,
+                channel_names: &CHANNELS,
+            })
+            .with_context(|| format!("tev at {address} closed the connection"))?;
         Ok(TevStream { client, name: name.to_string(), width, height })
     }
 
     /// Sends the whole image (non-finite values as 0, as in the saved image).
     pub fn update(&mut self, film: &Film) -> Result<()> {
-        let data: Vec<f32> = film.rgb.iter().flatten().map(|&c| if c.is_finite() { c } else { 0.0 }).collect();
+        let data: Vec<f32> =
+            film.rgb.iter().flatten().map(|&c| if c.is_finite() { c } else { 0.0 }).collect();
         self.client
             .send(PacketUpdateImage {
                 image_name: &self.name,

@@ -3,7 +3,11 @@ use std::ops::ControlFlow::{Break, Continue};
 use std::process::Command;
 
 fn caustic(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_caustic")).args(args).env("XDG_RUNTIME_DIR", "/tmp").output().expect("runs")
+    Command::new(env!("CARGO_BIN_EXE_caustic"))
+        .args(args)
+        .env("XDG_RUNTIME_DIR", "/tmp")
+        .output()
+        .expect("runs")
 }
 
 #[test]
@@ -21,7 +25,19 @@ fn renders_the_default_scene_on_the_cpu() {
     std::fs::create_dir_all(&dir).unwrap();
     let out_path = dir.join("cb.exr");
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
-    let out = caustic(&["render", scene, "--backend", "cpu", "--spp", "2", "-D", "res=32", "-o", out_path.to_str().unwrap(), "-q"]);
+    let out = caustic(&[
+        "render",
+        scene,
+        "--backend",
+        "cpu",
+        "--spp",
+        "2",
+        "-D",
+        "res=32",
+        "-o",
+        out_path.to_str().unwrap(),
+        "-q",
+    ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let summary = String::from_utf8_lossy(&out.stdout);
     assert!(summary.contains("32x32") && summary.contains("Msamples/s"), "{summary}");
@@ -33,7 +49,19 @@ fn renders_the_default_scene_on_the_cpu() {
 #[test]
 fn unknown_output_format_fails_before_rendering() {
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
-    let out = caustic(&["render", scene, "--backend", "cpu", "--spp", "1", "-D", "res=8", "-o", "/tmp/x.tiff", "-q"]);
+    let out = caustic(&[
+        "render",
+        scene,
+        "--backend",
+        "cpu",
+        "--spp",
+        "1",
+        "-D",
+        "res=8",
+        "-o",
+        "/tmp/x.tiff",
+        "-q",
+    ]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && err.contains(".tiff"), "{err}");
 }
@@ -46,10 +74,36 @@ fn convergence_writes_its_curve_and_closed_stdout_is_not_a_panic() {
     std::fs::create_dir_all(&dir).unwrap();
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
     let reference = dir.join("ref.exr");
-    let out = caustic(&["render", scene, "--backend", "cpu", "--spp", "64", "-D", "res=16", "-o", reference.to_str().unwrap(), "-q"]);
+    let out = caustic(&[
+        "render",
+        scene,
+        "--backend",
+        "cpu",
+        "--spp",
+        "64",
+        "-D",
+        "res=16",
+        "-o",
+        reference.to_str().unwrap(),
+        "-q",
+    ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let (csv, svg) = (dir.join("curve.csv"), dir.join("curve.svg"));
-    let out = caustic(&["convergence", scene, reference.to_str().unwrap(), "--backend", "cpu", "--spp", "8", "-D", "res=16", "--csv", csv.to_str().unwrap(), "--plot", svg.to_str().unwrap()]);
+    let out = caustic(&[
+        "convergence",
+        scene,
+        reference.to_str().unwrap(),
+        "--backend",
+        "cpu",
+        "--spp",
+        "8",
+        "-D",
+        "res=16",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--plot",
+        svg.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let table = String::from_utf8_lossy(&out.stdout);
     for spp in ["| 1 |", "| 2 |", "| 4 |", "| 8 |"] {
@@ -83,27 +137,59 @@ fn checkpointed_renders_resume_where_they_stopped() {
     std::fs::create_dir_all(&dir).unwrap();
     let scene_path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
     let defines = vec![("res".to_string(), "16".to_string())];
-    let buffers = caustic::buffers::build(&caustic::load_scene(std::path::Path::new(scene_path), &defines).unwrap()).unwrap();
+    let buffers =
+        caustic::buffers::build(&caustic::load_scene(std::path::Path::new(scene_path), &defines).unwrap())
+            .unwrap();
     let (seed, spp) = (3u32, 8u32);
     let mut backend = caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers).unwrap();
     // Interrupted at 4 of the 8 spp (passes stop at the listed count).
-    caustic::render::render_with_checkpoints(backend.as_mut(), &buffers, 0, spp, seed, &[4], |done, _, _| Ok(if done == 4 { Break(()) } else { Continue(()) })).unwrap();
-    let half = Checkpoint { scene: fingerprint(&buffers, seed, spp), seed, spp_total: spp, spp_done: 4, accum: backend.read_accum().unwrap() };
+    caustic::render::render_with_checkpoints(backend.as_mut(), &buffers, 0, spp, seed, &[4], |done, _, _| {
+        Ok(if done == 4 { Break(()) } else { Continue(()) })
+    })
+    .unwrap();
+    let half = Checkpoint {
+        scene: fingerprint(&buffers, seed, spp),
+        seed,
+        spp_total: spp,
+        spp_done: 4,
+        accum: backend.read_accum().unwrap(),
+    };
     let ckpt = dir.join("render.ckpt");
     half.save(&ckpt).unwrap();
     assert_eq!(Checkpoint::load(&ckpt).unwrap(), half);
 
     let (resumed, whole) = (dir.join("resumed.exr"), dir.join("whole.exr"));
-    let args = |out: &std::path::Path| vec!["render".to_string(), scene_path.to_string(), "--backend".into(), "cpu".into(), "--spp".into(), "8".into(), "--seed".into(), "3".into(), "-D".into(), "res=16".into(), "-q".into(), "-o".into(), out.to_str().unwrap().to_string()];
+    let args = |out: &std::path::Path| {
+        vec![
+            "render".to_string(),
+            scene_path.to_string(),
+            "--backend".into(),
+            "cpu".into(),
+            "--spp".into(),
+            "8".into(),
+            "--seed".into(),
+            "3".into(),
+            "-D".into(),
+            "res=16".into(),
+            "-q".into(),
+            "-o".into(),
+            out.to_str().unwrap().to_string(),
+        ]
+    };
     let mut with_ckpt = args(&resumed);
     with_ckpt.extend(["--checkpoint".to_string(), ckpt.to_str().unwrap().to_string()]);
     let out = caustic(&with_ckpt.iter().map(String::as_str).collect::<Vec<_>>());
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(String::from_utf8_lossy(&out.stdout).contains("resumed at 4"), "{}", String::from_utf8_lossy(&out.stdout));
+    assert!(
+        String::from_utf8_lossy(&out.stdout).contains("resumed at 4"),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
     assert!(!ckpt.exists(), "the checkpoint outlived the finished render");
     let out = caustic(&args(&whole).iter().map(String::as_str).collect::<Vec<_>>());
     assert!(out.status.success());
-    let (a, b) = (caustic::film::Film::load_exr(&resumed).unwrap(), caustic::film::Film::load_exr(&whole).unwrap());
+    let (a, b) =
+        (caustic::film::Film::load_exr(&resumed).unwrap(), caustic::film::Film::load_exr(&whole).unwrap());
     for (p, q) in a.rgb.iter().zip(&b.rgb) {
         for c in 0..3 {
             assert!((p[c] - q[c]).abs() <= 1e-5 * (1.0 + q[c].abs()), "resumed {p:?} vs uninterrupted {q:?}");
@@ -114,7 +200,12 @@ fn checkpointed_renders_resume_where_they_stopped() {
     Checkpoint { seed: 9, scene: fingerprint(&buffers, 9, spp), ..half.clone() }.save(&ckpt).unwrap();
     let out = caustic(&with_ckpt.iter().map(String::as_str).collect::<Vec<_>>());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success() && err.contains("another scene, seed or sample count") && !err.contains("panicked"), "{err}");
+    assert!(
+        !out.status.success()
+            && err.contains("another scene, seed or sample count")
+            && !err.contains("panicked"),
+        "{err}"
+    );
     std::fs::write(&ckpt, b"CAUSTCK1 but short").unwrap();
     let out = caustic(&with_ckpt.iter().map(String::as_str).collect::<Vec<_>>());
     let err = String::from_utf8_lossy(&out.stderr);
@@ -140,7 +231,21 @@ fn render_streams_to_tev() {
     std::fs::create_dir_all(&dir).unwrap();
     let out_path = dir.join("tev.exr");
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
-    let out = caustic(&["render", scene, "--backend", "cpu", "--spp", "4", "-D", "res=8", "-o", out_path.to_str().unwrap(), "-q", "--tev", &address]);
+    let out = caustic(&[
+        "render",
+        scene,
+        "--backend",
+        "cpu",
+        "--spp",
+        "4",
+        "-D",
+        "res=8",
+        "-o",
+        out_path.to_str().unwrap(),
+        "-q",
+        "--tev",
+        &address,
+    ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let bytes = server.join().unwrap();
     let mut packets = Vec::new();
@@ -153,11 +258,28 @@ fn render_streams_to_tev() {
     }
     assert_eq!(at, bytes.len(), "trailing bytes");
     assert!(packets.len() >= 2, "{packets:?}");
-    assert!(packets[1..].iter().any(|&l| l > 8 * 8 * 3 * 4), "no update carries the whole image: {packets:?}");
+    assert!(
+        packets[1..].iter().any(|&l| l > 8 * 8 * 3 * 4),
+        "no update carries the whole image: {packets:?}"
+    );
 
     // Nobody listening: the render goes on.
     let closed = { std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().to_string() };
-    let out = caustic(&["render", scene, "--backend", "cpu", "--spp", "1", "-D", "res=8", "-o", out_path.to_str().unwrap(), "-q", "--tev", &closed]);
+    let out = caustic(&[
+        "render",
+        scene,
+        "--backend",
+        "cpu",
+        "--spp",
+        "1",
+        "-D",
+        "res=8",
+        "-o",
+        out_path.to_str().unwrap(),
+        "-q",
+        "--tev",
+        &closed,
+    ]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success() && err.contains("without the viewer"), "{err}");
     std::fs::remove_dir_all(&dir).ok();

@@ -52,7 +52,9 @@ struct Soup<'a> {
 
 fn soup(shape: &Shape) -> Soup<'_> {
     match &shape.geometry {
-        Geometry::Triangles { triangles, normals, uvs } => Soup { triangles, normals: normals.as_deref(), uvs: uvs.as_deref() },
+        Geometry::Triangles { triangles, normals, uvs } => {
+            Soup { triangles, normals: normals.as_deref(), uvs: uvs.as_deref() }
+        }
         other => panic!("expected triangles, got {other:?}"),
     }
 }
@@ -89,7 +91,10 @@ fn serialized_matpreview_meshes_have_their_counts_normals_and_uvs() {
         assert!(uvs.iter().all(|uv| uv.is_finite()));
         let (lo, hi) = bounds(&mesh.positions);
         let extent = hi - lo;
-        assert!(lo.is_finite() && hi.is_finite() && extent.max_element() > 0.1 && extent.max_element() < 100.0, "shape_index {index}: bounds {lo}..{hi}");
+        assert!(
+            lo.is_finite() && hi.is_finite() && extent.max_element() > 0.1 && extent.max_element() < 100.0,
+            "shape_index {index}: bounds {lo}..{hi}"
+        );
         // Every vertex is used by some triangle: a sign that the index array was read in step.
         let mut used = vec![false; vertices];
         mesh.indices.iter().for_each(|&i| used[i as usize] = true);
@@ -117,14 +122,18 @@ fn damaged_serialized_files_are_errors_naming_the_file() {
         ("truncated-header.serialized", bytes[..20].to_vec(), 0),
         ("truncated-table.serialized", bytes[..bytes.len() - 6].to_vec(), 2),
         ("not-a-mesh.serialized", b"definitely not a mesh".to_vec(), 0),
-        ("damaged.serialized", {
-            // Flip bits in the middle of the third mesh's compressed data.
-            let mut b = bytes.clone();
-            for k in 0..64 {
-                b[600_000 + 97 * k] ^= 0x5a;
-            }
-            b
-        }, 2),
+        (
+            "damaged.serialized",
+            {
+                // Flip bits in the middle of the third mesh's compressed data.
+                let mut b = bytes.clone();
+                for k in 0..64 {
+                    b[600_000 + 97 * k] ^= 0x5a;
+                }
+                b
+            },
+            2,
+        ),
     ];
     for (name, data, index) in cases {
         let file = dir.join(name);
@@ -175,8 +184,10 @@ fn ascii_ply_meshes_load() {
 struct SyntheticPly;
 
 impl SyntheticPly {
-    const POSITIONS: [[f32; 3]; 5] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.25], [0.0, 1.0, 0.0], [2.0, 0.5, -0.5]];
-    const NORMALS: [[f32; 3]; 5] = [[0.0, 0.0, 2.0], [0.0, 0.0, 1.0], [0.0, 0.6, 0.8], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]];
+    const POSITIONS: [[f32; 3]; 5] =
+        [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.25], [0.0, 1.0, 0.0], [2.0, 0.5, -0.5]];
+    const NORMALS: [[f32; 3]; 5] =
+        [[0.0, 0.0, 2.0], [0.0, 0.0, 1.0], [0.0, 0.6, 0.8], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]];
     const UVS: [[f32; 2]; 5] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.125]];
     const FACES: [&'static [i32]; 2] = [&[0, 1, 2, 3], &[1, 4, 2]];
 
@@ -193,24 +204,34 @@ impl SyntheticPly {
         let mut text = Self::header("ascii");
         for k in 0..5 {
             let (p, n, uv) = (Self::POSITIONS[k], Self::NORMALS[k], Self::UVS[k]);
-            text += &format!("{} {} {} 200 {} {} {} {} {}\n", p[0], p[1], p[2], n[0], n[1], n[2], uv[0], uv[1]);
+            text +=
+                &format!("{} {} {} 200 {} {} {} {} {}\n", p[0], p[1], p[2], n[0], n[1], n[2], uv[0], uv[1]);
         }
         for face in Self::FACES {
-            text += &format!("{} {} -3\n", face.len(), face.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(" "));
+            text += &format!(
+                "{} {} -3\n",
+                face.len(),
+                face.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(" ")
+            );
         }
         text += "0 2\n";
         text.into_bytes()
     }
 
     fn binary(big_endian: bool) -> Vec<u8> {
-        let mut out = Self::header(if big_endian { "binary_big_endian" } else { "binary_little_endian" }).into_bytes();
+        let mut out =
+            Self::header(if big_endian { "binary_big_endian" } else { "binary_little_endian" }).into_bytes();
         let f32b = |v: f32| if big_endian { v.to_be_bytes() } else { v.to_le_bytes() };
         let i32b = |v: i32| if big_endian { v.to_be_bytes() } else { v.to_le_bytes() };
         for k in 0..5 {
             let (p, n, uv) = (Self::POSITIONS[k], Self::NORMALS[k], Self::UVS[k]);
             out.extend(f32b(p[0]));
             out.extend(f32b(p[1]));
-            out.extend(if big_endian { f64::from(p[2]).to_be_bytes() } else { f64::from(p[2]).to_le_bytes() });
+            out.extend(if big_endian {
+                f64::from(p[2]).to_be_bytes()
+            } else {
+                f64::from(p[2]).to_le_bytes()
+            });
             out.push(200);
             for v in [n[0], n[1], n[2], uv[0], uv[1]] {
                 out.extend(f32b(v));
@@ -238,7 +259,11 @@ fn assert_same_mesh(a: &Mesh, b: &Mesh, what: &str) {
 fn ascii_and_binary_ply_give_identical_meshes() {
     let dir = temp_dir("ply-encodings");
     let mut meshes = Vec::new();
-    for (name, bytes) in [("ascii.ply", SyntheticPly::ascii()), ("little.ply", SyntheticPly::binary(false)), ("big.ply", SyntheticPly::binary(true))] {
+    for (name, bytes) in [
+        ("ascii.ply", SyntheticPly::ascii()),
+        ("little.ply", SyntheticPly::binary(false)),
+        ("big.ply", SyntheticPly::binary(true)),
+    ] {
         let path = dir.join(name);
         std::fs::write(&path, bytes).unwrap();
         meshes.push((name, mesh::load_ply(&path).unwrap_or_else(|e| panic!("{e:#}"))));
@@ -329,7 +354,10 @@ fn disk_and_cylinder_areas_match_the_analytic_shapes() {
     assert!((caustic_kernel::shape::disk::area(u, v) as f64 - 4.0 * std::f64::consts::PI).abs() < 1e-5);
     let cylinder = area(soup(&scene.shapes[1]).triangles);
     let true_cylinder = 2.0 * std::f64::consts::PI * 0.5 * 2.0;
-    assert!(cylinder < true_cylinder && cylinder > true_cylinder * (1.0 - 1e-5), "cylinder area {cylinder}, expected {true_cylinder}");
+    assert!(
+        cylinder < true_cylinder && cylinder > true_cylinder * (1.0 - 1e-5),
+        "cylinder area {cylinder}, expected {true_cylinder}"
+    );
     assert!(primitives::SEGMENTS >= 512);
 }
 
@@ -346,7 +374,12 @@ fn assert_cylinder_faces_outward(shape: &Shape) {
         assert!(geometric.dot(outward) > 0.999, "facet at {centre} faces {geometric}");
         for k in 0..3 {
             let radial = (t[k] - axis_point(t[k])).normalize();
-            assert!(n[k].dot(radial) > 0.99999 && (n[k].length() - 1.0).abs() < 1e-5, "normal {} at {}", n[k], t[k]);
+            assert!(
+                n[k].dot(radial) > 0.99999 && (n[k].length() - 1.0).abs() < 1e-5,
+                "normal {} at {}",
+                n[k],
+                t[k]
+            );
         }
     }
 }
@@ -375,10 +408,15 @@ fn cylinder_normals_and_uvs_follow_mitsuba() {
     for (t, uv) in s.triangles.iter().zip(s.uvs.expect("a cylinder has uvs")) {
         // No triangle spans the seam: each covers one segment's worth of u.
         let (u_min, u_max) = (uv[0].x.min(uv[1].x).min(uv[2].x), uv[0].x.max(uv[1].x).max(uv[2].x));
-        assert!(u_max - u_min < 1.5 / primitives::SEGMENTS as f32, "triangle at {} spans u {u_min}..{u_max}", t[0]);
+        assert!(
+            u_max - u_min < 1.5 / primitives::SEGMENTS as f32,
+            "triangle at {} spans u {u_min}..{u_max}",
+            t[0]
+        );
         for k in 0..3 {
             let d = t[k] - Vec3::new(1.0, t[k].y, 0.0);
-            let u = d.dot(second).atan2(d.dot(first)).rem_euclid(std::f32::consts::TAU) / std::f32::consts::TAU;
+            let u =
+                d.dot(second).atan2(d.dot(first)).rem_euclid(std::f32::consts::TAU) / std::f32::consts::TAU;
             // u = 0 and u = 1 are the same place on the seam.
             let distance = (uv[k].x - u).abs();
             assert!(distance.min(1.0 - distance) < 1e-4, "u {} at {}, expected {u}", uv[k].x, t[k]);
@@ -398,7 +436,8 @@ fn disk_hits_uvs_and_normals_follow_mitsuba() {
     let scene = load_scene_with(&dir, "<shape type=\"disk\"/>\n<shape type=\"disk\"><transform name=\"to_world\"><scale x=\"-1\"/><translate z=\"-3\"/></transform></shape>").unwrap();
     let buffers = caustic::buffers::build(&scene).unwrap();
     for (k, z) in [(0usize, 0.0f32), (1, -3.0)] {
-        let prim = buffers.prims.iter().find(|p| (p.p0[2] - z).abs() < 1e-6).expect("both disks are primitives");
+        let prim =
+            buffers.prims.iter().find(|p| (p.p0[2] - z).abs() < 1e-6).expect("both disks are primitives");
         let mirror = if k == 1 { -1.0 } else { 1.0 };
         for (x, y) in [(0.5f32, 0.0f32), (0.0, 0.7), (-0.3, -0.4), (0.99, 0.1), (1.01, 0.0), (0.8, 0.8)] {
             let ray = Ray { origin: Vec3::new(x, y, z + 1.0), dir: -Vec3::Z, t_min: 0.0, t_max: f32::MAX };
@@ -412,7 +451,11 @@ fn disk_hits_uvs_and_normals_follow_mitsuba() {
             assert!((sp.ng - Vec3::Z).length() < 1e-6, "disk {k} faces {}", sp.ng);
             // φ runs from the disk's local x axis, which the mirror sends to −x.
             let phi = y.atan2(mirror * x).rem_euclid(std::f32::consts::TAU) / std::f32::consts::TAU;
-            assert!((sp.uv.x - r).abs() < 1e-6 && (sp.uv.y - phi).abs() < 1e-5, "disk {k}: uv {} at ({x}, {y}), expected ({r}, {phi})", sp.uv);
+            assert!(
+                (sp.uv.x - r).abs() < 1e-6 && (sp.uv.y - phi).abs() < 1e-5,
+                "disk {k}: uv {} at ({x}, {y}), expected ({r}, {phi})",
+                sp.uv
+            );
         }
     }
 }
@@ -488,16 +531,23 @@ fn generated_normals_are_right_under_a_non_uniform_to_world() {
 fn bad_mesh_files_in_a_scene_name_the_scene_line_and_the_file() {
     let dir = temp_dir("scene-errors");
     std::fs::write(dir.join("broken.ply"), b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n").unwrap();
-    let e = load_error(&dir, "\n<shape type=\"ply\"><string name=\"filename\" value=\"broken.ply\"/></shape>");
+    let e =
+        load_error(&dir, "\n<shape type=\"ply\"><string name=\"filename\" value=\"broken.ply\"/></shape>");
     assert!(e.contains("scene.xml:3") && e.contains("broken.ply"), "{e}");
-    let e = load_error(&dir, "<shape type=\"serialized\"><string name=\"filename\" value=\"missing.serialized\"/></shape>");
+    let e = load_error(
+        &dir,
+        "<shape type=\"serialized\"><string name=\"filename\" value=\"missing.serialized\"/></shape>",
+    );
     assert!(e.contains("scene.xml:2") && e.contains("missing.serialized"), "{e}");
     let e = load_error(&dir, "<shape type=\"cylinder\"><point name=\"p1\" x=\"0\" y=\"0\" z=\"0\"/></shape>");
     assert!(e.contains("scene.xml:2"), "{e}");
     if let Some(path) = shared_mesh("matpreview.serialized") {
         let shape = format!("<shape type=\"serialized\"><string name=\"filename\" value=\"{}\"/><integer name=\"shape_index\" value=\"3\"/></shape>", path.display());
         let e = load_error(&dir, &shape);
-        assert!(e.contains("scene.xml:2") && e.contains("matpreview.serialized") && e.contains("out of range"), "{e}");
+        assert!(
+            e.contains("scene.xml:2") && e.contains("matpreview.serialized") && e.contains("out of range"),
+            "{e}"
+        );
         let e = load_error(&dir, &shape.replace("value=\"3\"", "value=\"-1\""));
         assert!(e.contains("scene.xml:2") && e.contains("shape_index"), "{e}");
     }
@@ -509,8 +559,11 @@ fn shared_shape_scenes_load() {
     let scenes = shared.join("scenes/mitsuba/docs/scenes");
     let disk = caustic::mitsuba::load(&scenes.join("shape_disk.xml"), &[]).expect("shape_disk.xml loads");
     assert!(matches!(disk.shapes[0].geometry, Geometry::Disk { .. }), "the disk is analytic");
-    for (file, kind_count) in [("shape_ply_bunny.xml", 69451), ("shape_cylinder_twosided.xml", 2 * primitives::SEGMENTS as usize)] {
-        let scene = caustic::mitsuba::load(&scenes.join(file), &[]).unwrap_or_else(|e| panic!("{file}: {e:#}"));
+    for (file, kind_count) in
+        [("shape_ply_bunny.xml", 69451), ("shape_cylinder_twosided.xml", 2 * primitives::SEGMENTS as usize)]
+    {
+        let scene =
+            caustic::mitsuba::load(&scenes.join(file), &[]).unwrap_or_else(|e| panic!("{file}: {e:#}"));
         // The first shape is the one the scene is about; the included stage follows.
         let s = soup(&scene.shapes[0]);
         assert_eq!(s.triangles.len(), kind_count, "{file}");

@@ -1,10 +1,10 @@
 //! BVH2 traversal with a fixed-size stack (no recursion on the GPU).
 
 use crate::camera::Ray;
+use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
 use crate::scene::{BvhNode, Primitive};
 use crate::shape::{self, Hit};
-use crate::glam::{Vec2, Vec3};
 
 /// Distance reported for a missed box. (naga rejects infinite float literals, so no `f32::INFINITY`.)
 const MISS: f32 = f32::MAX;
@@ -73,8 +73,10 @@ impl<'a> Accel<'a> {
             } else {
                 let left = node.first;
                 let right = node.first + 1;
-                let t_left = intersect_aabb(&self.nodes[left as usize], ray.origin, inv_dir, ray.t_min, best_t);
-                let t_right = intersect_aabb(&self.nodes[right as usize], ray.origin, inv_dir, ray.t_min, best_t);
+                let t_left =
+                    intersect_aabb(&self.nodes[left as usize], ray.origin, inv_dir, ray.t_min, best_t);
+                let t_right =
+                    intersect_aabb(&self.nodes[right as usize], ray.origin, inv_dir, ray.t_min, best_t);
                 let hit_left = t_left != MISS;
                 let hit_right = t_right != MISS;
                 if hit_left && hit_right {

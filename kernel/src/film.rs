@@ -9,10 +9,10 @@
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
+use crate::glam::Vec2;
 use crate::rng::Sampler;
 use crate::sampling::sample_cdf;
 use crate::scene::{FrameParams, SAMPLER_STRATIFIED};
-use crate::glam::Vec2;
 
 /// The filter's CDF at `x` (piecewise linear between the tabulated bin edges).
 fn filter_cdf_at(tables: &[f32], params: &FrameParams, x: f32) -> f32 {
@@ -54,7 +54,14 @@ fn pixel_sample(params: &FrameParams, sample_index: u32, sampler: &mut Sampler) 
 }
 
 /// Film position (fractions of width and height) of sample `sample_index` in pixel (px, py).
-pub fn sample_position(params: &FrameParams, tables: &[f32], px: u32, py: u32, sample_index: u32, sampler: &mut Sampler) -> Vec2 {
+pub fn sample_position(
+    params: &FrameParams,
+    tables: &[f32],
+    px: u32,
+    py: u32,
+    sample_index: u32,
+    sampler: &mut Sampler,
+) -> Vec2 {
     let u = pixel_sample(params, sample_index, sampler);
     let r = params.filter_radius;
     // Pixel centre in the full image (the rendered pixels may be a crop of it).

@@ -2,8 +2,8 @@
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
-use crate::math::{safe_sqrt, INV_PI, PI};
 use crate::glam::{Vec2, Vec3};
+use crate::math::{safe_sqrt, INV_PI, PI};
 
 /// Uniform point on the unit disk by Shirley–Chiu's concentric map (keeps strata compact).
 pub fn square_to_concentric_disk(u: Vec2) -> Vec2 {
@@ -12,11 +12,8 @@ pub fn square_to_concentric_disk(u: Vec2) -> Vec2 {
     if a == 0.0 && b == 0.0 {
         return Vec2::ZERO;
     }
-    let (r, phi) = if a * a > b * b {
-        (a, (PI / 4.0) * (b / a))
-    } else {
-        (b, (PI / 2.0) - (PI / 4.0) * (a / b))
-    };
+    let (r, phi) =
+        if a * a > b * b { (a, (PI / 4.0) * (b / a)) } else { (b, (PI / 2.0) - (PI / 4.0) * (a / b)) };
     Vec2::new(r * phi.cos(), r * phi.sin())
 }
 

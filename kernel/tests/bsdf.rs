@@ -7,9 +7,18 @@ use caustic_kernel::sampling::square_to_uniform_sphere;
 use caustic_kernel::scene::*;
 
 fn materials() -> Vec<Material> {
-    let mut v = vec![Material { kind: BSDF_DIFFUSE, reflectance: [1.0, 0.5, 0.2, 0.0], ..Default::default() }];
-    for (kd, ks, n) in [(0.0, 1.0, 1.0), (0.0, 1.0, 50.0), (0.5, 0.5, 10.0), (0.3, 0.7, 1000.0), (0.9, 0.1, 0.0)] {
-        v.push(Material { kind: BSDF_PHONG, eta: n, reflectance: [kd; 4], specular_reflectance: [ks; 4], ..Default::default() });
+    let mut v =
+        vec![Material { kind: BSDF_DIFFUSE, reflectance: [1.0, 0.5, 0.2, 0.0], ..Default::default() }];
+    for (kd, ks, n) in
+        [(0.0, 1.0, 1.0), (0.0, 1.0, 50.0), (0.5, 0.5, 10.0), (0.3, 0.7, 1000.0), (0.9, 0.1, 0.0)]
+    {
+        v.push(Material {
+            kind: BSDF_PHONG,
+            eta: n,
+            reflectance: [kd; 4],
+            specular_reflectance: [ks; 4],
+            ..Default::default()
+        });
     }
     v
 }
@@ -29,7 +38,11 @@ fn reciprocity() {
             // eval includes |cos θi|; f itself must be symmetric.
             let f1 = b.eval(wo, wi) / wi.z.abs().max(1e-8);
             let f2 = b.eval(wi, wo) / wo.z.abs().max(1e-8);
-            assert!((f1 - f2).abs().max_element() <= 1e-4 * f1.abs().max_element().max(1.0), "kind {} not reciprocal: {f1} vs {f2}", m.kind);
+            assert!(
+                (f1 - f2).abs().max_element() <= 1e-4 * f1.abs().max_element().max(1.0),
+                "kind {} not reciprocal: {f1} vs {f2}",
+                m.kind
+            );
         }
     }
 }
@@ -60,7 +73,12 @@ fn energy_is_conserved_and_sampling_weights_agree() {
         let b = Bsdf::from_material(&m, &[]);
         for wo in [Vec3::Z, Vec3::new(0.5, 0.0, 0.5).normalize(), Vec3::new(0.99, 0.1, 0.02).normalize()] {
             let a = albedo(&b, wo);
-            assert!(a.max_element() <= 1.0 + 2e-3, "kind {} exponent {} reflects {a} > 1 at wo {wo}", m.kind, m.eta);
+            assert!(
+                a.max_element() <= 1.0 + 2e-3,
+                "kind {} exponent {} reflects {a} > 1 at wo {wo}",
+                m.kind,
+                m.eta
+            );
             // The mean sampling weight estimates the same albedo.
             let mut rng = Sampler::new(1, m.kind, (wo.x * 1000.0) as u32);
             let n = 200_000;
@@ -78,7 +96,12 @@ fn energy_is_conserved_and_sampling_weights_agree() {
             mean /= n as f32;
             let se = ((sq / n as f32 - mean * mean) / n as f32).max(Vec3::ZERO);
             let tol = se.x.sqrt().max(se.y.sqrt()).max(se.z.sqrt()) * 5.0 + 2e-3;
-            assert!((mean - a).abs().max_element() <= tol, "kind {} n {} wo {wo}: sampled albedo {mean} vs quadrature {a}", m.kind, m.eta);
+            assert!(
+                (mean - a).abs().max_element() <= tol,
+                "kind {} n {} wo {wo}: sampled albedo {mean} vs quadrature {a}",
+                m.kind,
+                m.eta
+            );
         }
     }
 }

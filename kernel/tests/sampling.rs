@@ -11,19 +11,31 @@ use common::*;
 
 #[test]
 fn cosine_hemisphere() {
-    chi2_directions("cosine hemisphere", |_, u| Some(square_to_cosine_hemisphere(u)), |d| cosine_hemisphere_pdf(d.z) as f64);
+    chi2_directions(
+        "cosine hemisphere",
+        |_, u| Some(square_to_cosine_hemisphere(u)),
+        |d| cosine_hemisphere_pdf(d.z) as f64,
+    );
 }
 
 #[test]
 fn uniform_sphere() {
-    chi2_directions("uniform sphere", |_, u| Some(square_to_uniform_sphere(u)), |_| 1.0 / (4.0 * std::f64::consts::PI));
+    chi2_directions(
+        "uniform sphere",
+        |_, u| Some(square_to_uniform_sphere(u)),
+        |_| 1.0 / (4.0 * std::f64::consts::PI),
+    );
 }
 
 #[test]
 fn uniform_cone_wide_and_narrow() {
     for cos_max in [0.2f32, 0.9, 0.95] {
         let omc = 1.0 - cos_max;
-        chi2_directions(&format!("cone cosθmax={cos_max}"), |_, u| Some(square_to_uniform_cone(u, omc)), |d| if d.z >= cos_max { uniform_cone_pdf(omc) as f64 } else { 0.0 });
+        chi2_directions(
+            &format!("cone cosθmax={cos_max}"),
+            |_, u| Some(square_to_uniform_cone(u, omc)),
+            |d| if d.z >= cos_max { uniform_cone_pdf(omc) as f64 } else { 0.0 },
+        );
     }
 }
 
@@ -31,7 +43,11 @@ fn uniform_cone_wide_and_narrow() {
 fn phong_lobe_and_mixture() {
     for (kd, ks, n) in [(0.0, 1.0, 10.0), (0.0, 0.9, 200.0), (0.5, 0.5, 30.0), (0.8, 0.1, 1.0)] {
         let bsdf = Phong::new(Vec3::splat(kd), Vec3::splat(ks), n);
-        for wo in [Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.6, 0.2, 0.3).normalize(), Vec3::new(0.99, 0.0, 0.05).normalize()] {
+        for wo in [
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(0.6, 0.2, 0.3).normalize(),
+            Vec3::new(0.99, 0.0, 0.05).normalize(),
+        ] {
             chi2_directions(
                 &format!("phong kd={kd} ks={ks} n={n} wo={wo:?}"),
                 |ul, u| {
@@ -49,8 +65,18 @@ fn phong_lobe_and_mixture() {
 /// near, far and tiny spheres alike. The reported pdf must be the cone's, and `pdf()` must agree.
 #[test]
 fn sphere_light_directions() {
-    for (center, radius) in [(Vec3::new(0.0, 0.0, 3.0), 1.0f32), (Vec3::new(1.0, 2.0, 50.0), 1.0), (Vec3::new(0.0, 0.0, 1000.0), 0.5), (Vec3::new(3e4, -2e4, 1e4), 1e-2)] {
-        let prim = Primitive { p0: center.to_array(), kind: PRIM_SPHERE, p1: [radius, 0.0, 0.0], ..Default::default() };
+    for (center, radius) in [
+        (Vec3::new(0.0, 0.0, 3.0), 1.0f32),
+        (Vec3::new(1.0, 2.0, 50.0), 1.0),
+        (Vec3::new(0.0, 0.0, 1000.0), 0.5),
+        (Vec3::new(3e4, -2e4, 1e4), 1e-2),
+    ] {
+        let prim = Primitive {
+            p0: center.to_array(),
+            kind: PRIM_SPHERE,
+            p1: [radius, 0.0, 0.0],
+            ..Default::default()
+        };
         let l = Light { kind: LIGHT_SPHERE, prim: 0, pmf: 1.0, radiance: [1.0; 4], ..Default::default() };
         let d2 = center.length_squared();
         let omc = one_minus_cos_from_sin2(radius * radius / d2);
@@ -66,7 +92,11 @@ fn sphere_light_directions() {
             // The sampled point lies on the sphere.
             let q = s.wi * s.dist;
             // Up to the rounding of single-precision coordinates of that magnitude (a few ulps).
-            assert!(((q - center).length() - radius).abs() <= 1e-3 * radius + 4.0 * f32::EPSILON * center.length(), "point off the sphere");
+            assert!(
+                ((q - center).length() - radius).abs()
+                    <= 1e-3 * radius + 4.0 * f32::EPSILON * center.length(),
+                "point off the sphere"
+            );
             let local = axis.to_local(s.wi);
             let u = (((1.0 - local.z as f64) / omc as f64) * N as f64) as usize;
             let mut phi = (local.y as f64).atan2(local.x as f64);
@@ -93,7 +123,13 @@ fn sphere_light_directions() {
 #[test]
 fn sphere_light_from_inside() {
     let center = Vec3::new(0.3, 0.0, 0.2);
-    let prim = Primitive { p0: center.to_array(), kind: PRIM_SPHERE, p1: [2.0, 0.0, 0.0], flags: PRIM_FLAG_FLIP, ..Default::default() };
+    let prim = Primitive {
+        p0: center.to_array(),
+        kind: PRIM_SPHERE,
+        p1: [2.0, 0.0, 0.0],
+        flags: PRIM_FLAG_FLIP,
+        ..Default::default()
+    };
     let l = Light { kind: LIGHT_SPHERE, prim: 0, pmf: 1.0, radiance: [1.0; 4], ..Default::default() };
     chi2_directions(
         "sphere light from inside",
@@ -102,7 +138,8 @@ fn sphere_light_from_inside() {
             (s.pdf > 0.0).then_some(s.wi)
         },
         |wi| {
-            let ray = caustic_kernel::camera::Ray { origin: Vec3::ZERO, dir: wi, t_min: 0.0, t_max: f32::MAX };
+            let ray =
+                caustic_kernel::camera::Ray { origin: Vec3::ZERO, dir: wi, t_min: 0.0, t_max: f32::MAX };
             let (t, _) = caustic_kernel::shape::sphere::intersect(center, 2.0, &ray, f32::MAX).unwrap();
             let q = wi * t;
             light::sphere::pdf(&prim, Vec3::ZERO, q, -(q - center).normalize()) as f64
@@ -122,7 +159,8 @@ fn area_light_chi2(name: &str, prim: Primitive, normal: Vec3) {
             (s.pdf > 0.0).then_some(frame.to_local(s.wi))
         },
         |wi| {
-            let ray = caustic_kernel::camera::Ray { origin: Vec3::ZERO, dir: wi, t_min: 0.0, t_max: f32::MAX };
+            let ray =
+                caustic_kernel::camera::Ray { origin: Vec3::ZERO, dir: wi, t_min: 0.0, t_max: f32::MAX };
             match caustic_kernel::shape::intersect(&prim, &ray, f32::MAX) {
                 Some((t, _)) => light::area::pdf(&prim, Vec3::ZERO, wi * t, normal) as f64,
                 None => 0.0,
@@ -135,7 +173,13 @@ fn area_light_chi2(name: &str, prim: Primitive, normal: Vec3) {
 fn triangle_light_directions() {
     let (p0, p1, p2) = (Vec3::new(-1.0, -0.5, 2.0), Vec3::new(1.5, -0.2, 1.0), Vec3::new(0.2, 1.5, 1.5));
     // Winding chosen so that the emitting side faces the origin.
-    let prim = Primitive { p0: p0.to_array(), p1: p2.to_array(), p2: p1.to_array(), kind: PRIM_TRIANGLE, ..Default::default() };
+    let prim = Primitive {
+        p0: p0.to_array(),
+        p1: p2.to_array(),
+        p2: p1.to_array(),
+        kind: PRIM_TRIANGLE,
+        ..Default::default()
+    };
     area_light_chi2("triangle light", prim, (p2 - p0).cross(p1 - p0).normalize());
 }
 
@@ -145,7 +189,14 @@ fn disk_light_directions() {
     let (c, u, v) = (Vec3::new(0.3, -0.2, 2.0), Vec3::new(1.2, 0.0, 0.4), Vec3::new(0.1, 0.6, -0.2));
     // u × v points away from the origin; the flag turns the emitting side towards it.
     assert!(u.cross(v).dot(c) > 0.0);
-    let prim = Primitive { p0: c.to_array(), p1: u.to_array(), p2: v.to_array(), kind: PRIM_DISK, flags: PRIM_FLAG_FLIP, ..Default::default() };
+    let prim = Primitive {
+        p0: c.to_array(),
+        p1: u.to_array(),
+        p2: v.to_array(),
+        kind: PRIM_DISK,
+        flags: PRIM_FLAG_FLIP,
+        ..Default::default()
+    };
     area_light_chi2("disk light", prim, -u.cross(v).normalize());
 }
 

@@ -11,7 +11,11 @@ fn main() {
     // builder was compiled: its binary lives in a cache shared by every clone on the machine.
     let root = match std::env::var_os("CAUSTIC_ROOT") {
         Some(r) => PathBuf::from(r),
-        None => std::env::current_dir().expect("current directory").parent().expect("run from shaders-build/").to_path_buf(),
+        None => std::env::current_dir()
+            .expect("current directory")
+            .parent()
+            .expect("run from shaders-build/")
+            .to_path_buf(),
     };
     let root = root.as_path();
     let out = std::env::args_os()
@@ -19,9 +23,9 @@ fn main() {
         .map(PathBuf::from)
         .unwrap_or_else(|| root.join("host/shaders/caustic-kernel.spv"));
     // The kernel's own build directory lives outside the clone (a cache shared across clones and CI).
-    let cache = std::env::var_os("CAUSTIC_CACHE")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(std::env::var_os("HOME").unwrap_or_default()).join(".cache/caustic"));
+    let cache = std::env::var_os("CAUSTIC_CACHE").map(PathBuf::from).unwrap_or_else(|| {
+        PathBuf::from(std::env::var_os("HOME").unwrap_or_default()).join(".cache/caustic")
+    });
 
     let mut builder = SpirvBuilder::new(root.join("kernel"), "spirv-unknown-vulkan1.2")
         .release(true)

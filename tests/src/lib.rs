@@ -12,7 +12,11 @@ pub fn shared_dir() -> PathBuf {
         Some(p) => PathBuf::from(p),
         None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared"),
     };
-    assert!(dir.join("refs/mitsuba").is_dir(), "reference data not found at {} (set CAUSTIC_SHARED)", dir.display());
+    assert!(
+        dir.join("refs/mitsuba").is_dir(),
+        "reference data not found at {} (set CAUSTIC_SHARED)",
+        dir.display()
+    );
     dir
 }
 
@@ -48,8 +52,10 @@ pub fn render_scene(scene: &Scene, choice: BackendChoice, spp: u32, seed: u32) -
 /// `render_scene` for scene buffers built (and perhaps altered) by the caller.
 pub fn render_buffers(buffers: &buffers::SceneBuffers, choice: BackendChoice, spp: u32, seed: u32) -> Film {
     let buffers = buffers.clone();
-    let mut backend = backend::create(choice, &buffers).expect("backend starts (for the GPU: is a Vulkan driver such as lavapipe installed?)");
-    let (film, stats) = render::render(backend.as_mut(), &buffers, spp, seed, |_| {}).expect("render succeeds");
+    let mut backend = backend::create(choice, &buffers)
+        .expect("backend starts (for the GPU: is a Vulkan driver such as lavapipe installed?)");
+    let (film, stats) =
+        render::render(backend.as_mut(), &buffers, spp, seed, |_| {}).expect("render succeeds");
     eprintln!("rendered on {} in {:.2} s", backend.describe(), stats.seconds);
     assert!(film.rgb.iter().flatten().all(|c| c.is_finite()), "non-finite pixel");
     film

@@ -22,7 +22,10 @@ const SENSOR: &str = r#"<sensor type="perspective"><film type="hdrfilm"><integer
 
 #[test]
 fn malformed_xml_names_file_and_line() {
-    let e = load_err("malformed.xml", "<scene version=\"3.0.0\">\n  <shape type=\"sphere\">\n  </shap>\n</scene>\n");
+    let e = load_err(
+        "malformed.xml",
+        "<scene version=\"3.0.0\">\n  <shape type=\"sphere\">\n  </shap>\n</scene>\n",
+    );
     assert!(e.contains("malformed.xml:3"), "{e}");
 }
 
@@ -44,16 +47,28 @@ fn absurd_parameters_are_rejected() {
     for (what, body) in [
         ("fov", r#"<sensor type="perspective"><float name="fov" value="0"/></sensor>"#),
         ("radius", r#"<shape type="sphere"><float name="radius" value="-1"/></shape>"#),
-        ("film", r#"<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="0"/></film></sensor>"#),
+        (
+            "film",
+            r#"<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="0"/></film></sensor>"#,
+        ),
         ("number", r#"<sensor type="perspective"><float name="fov" value="wide"/></sensor>"#),
         ("nan", r#"<sensor type="perspective"><float name="fov" value="nan"/></sensor>"#),
         ("max_depth", r#"<integrator type="path"><integer name="max_depth" value="-7"/></integrator>"#),
         ("reflectance", r#"<bsdf type="diffuse"><rgb name="reflectance" value="1, -2, 3"/></bsdf>"#),
-        ("direct", r#"<integrator type="direct"><integer name="emitter_samples" value="0"/><integer name="bsdf_samples" value="0"/></integrator>"#),
-        ("direct_negative", r#"<integrator type="direct"><integer name="bsdf_samples" value="-1"/></integrator>"#),
+        (
+            "direct",
+            r#"<integrator type="direct"><integer name="emitter_samples" value="0"/><integer name="bsdf_samples" value="0"/></integrator>"#,
+        ),
+        (
+            "direct_negative",
+            r#"<integrator type="direct"><integer name="bsdf_samples" value="-1"/></integrator>"#,
+        ),
         ("fuzz", r#"<bsdf type="fuzzymetal"><float name="fuzz" value="1.5"/></bsdf>"#),
     ] {
-        let e = load_err(&format!("absurd-{what}.xml"), &format!("<scene version=\"3.0.0\">\n{body}\n</scene>\n"));
+        let e = load_err(
+            &format!("absurd-{what}.xml"),
+            &format!("<scene version=\"3.0.0\">\n{body}\n</scene>\n"),
+        );
         assert!(e.contains(&format!("absurd-{what}.xml:2")), "{what}: {e}");
     }
 }
@@ -95,7 +110,10 @@ fn moment_renders_its_nested_integrator() {
     );
     let scene = caustic::load_scene(&path, &[]).expect("loads");
     assert_eq!(scene.integrator.max_depth, 3, "the nested path integrator's settings apply");
-    let bad = write_scene("moment_empty.xml", &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<integrator type=\"moment\"/>\n</scene>\n"));
+    let bad = write_scene(
+        "moment_empty.xml",
+        &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<integrator type=\"moment\"/>\n</scene>\n"),
+    );
     let e = format!("{:#}", caustic::load_scene(&bad, &[]).unwrap_err());
     assert!(e.contains("moment_empty.xml:3") && e.contains("nested"), "{e}");
 }

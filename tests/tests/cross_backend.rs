@@ -6,14 +6,21 @@ use caustic_tests::*;
 
 #[test]
 fn gpu_and_cpu_agree_on_the_cornell_box() {
-    let scene = caustic::load_scene(&mitsuba_scene("scenes/cbox/cbox.xml"), &defines(&[("res", "96")])).expect("cbox loads");
+    let scene = caustic::load_scene(&mitsuba_scene("scenes/cbox/cbox.xml"), &defines(&[("res", "96")]))
+        .expect("cbox loads");
     let cpu = render_scene(&scene, BackendChoice::Cpu, 32, 11);
     let gpu = render_scene(&scene, BackendChoice::Gpu, 32, 11);
 
-    let diffs: Vec<f32> = cpu.rgb.iter().zip(&gpu.rgb).flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs())).collect();
+    let diffs: Vec<f32> =
+        cpu.rgb.iter().zip(&gpu.rgb).flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs())).collect();
     let max = diffs.iter().cloned().fold(0.0f32, f32::max);
     let mean = diffs.iter().map(|&d| d as f64).sum::<f64>() / diffs.len() as f64;
-    let divergent = cpu.rgb.iter().zip(&gpu.rgb).filter(|(a, b)| (0..3).any(|c| (a[c] - b[c]).abs() > 1e-3 * (1.0 + a[c].abs()))).count();
+    let divergent = cpu
+        .rgb
+        .iter()
+        .zip(&gpu.rgb)
+        .filter(|(a, b)| (0..3).any(|c| (a[c] - b[c]).abs() > 1e-3 * (1.0 + a[c].abs())))
+        .count();
     println!("same seed: max |cpu - gpu| = {max:.3e}, mean = {mean:.3e}, pixels differing by > 1e-3: {divergent} of {}", cpu.rgb.len());
     // Rounding differences can send a few paths different ways; nearly all pixels must be equal.
     assert!(mean < 1e-4, "mean difference {mean:.3e} is more than rounding");
@@ -22,7 +29,11 @@ fn gpu_and_cpu_agree_on_the_cornell_box() {
     // Independent seeds: statistically indistinguishable.
     let gpu2 = render_scene(&scene, BackendChoice::Gpu, 32, 12);
     let c = compare(&cpu, &gpu2, 1.0).expect("same size");
-    println!("independent seeds: pass fraction {:.4}, luminance z {:+.2}", c.pass_fraction.unwrap(), c.luminance_z.unwrap());
+    println!(
+        "independent seeds: pass fraction {:.4}, luminance z {:+.2}",
+        c.pass_fraction.unwrap(),
+        c.luminance_z.unwrap()
+    );
     assert!(c.pass_fraction.unwrap() >= 0.99);
     assert!(c.luminance_z.unwrap().abs() < 4.0);
 }
@@ -50,18 +61,33 @@ fn gpu_and_cpu_agree_on_every_feature() {
         let file = path.display();
         let mut scene = caustic::load_scene(&path, &defines(&[("spp", "4")])).expect("scene loads");
         let (w, h) = (scene.sensor.width, scene.sensor.height);
-        scene.sensor.crop = Some(caustic::scene::Crop { x: w / 2 - 24, y: h / 2 - 24, width: 48, height: 48 });
+        scene.sensor.crop =
+            Some(caustic::scene::Crop { x: w / 2 - 24, y: h / 2 - 24, width: 48, height: 48 });
         let cpu = render_scene(&scene, BackendChoice::Cpu, 4, 3);
         let gpu = render_scene(&scene, BackendChoice::Gpu, 4, 3);
-        let divergent = cpu.rgb.iter().zip(&gpu.rgb).filter(|(a, b)| (0..3).any(|c| (a[c] - b[c]).abs() > 1e-3 * (1.0 + a[c].abs()))).count();
-        let mean: f64 = cpu.rgb.iter().zip(&gpu.rgb).map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs() as f64).sum::<f64>()).sum::<f64>() / (3 * cpu.rgb.len()) as f64;
+        let divergent = cpu
+            .rgb
+            .iter()
+            .zip(&gpu.rgb)
+            .filter(|(a, b)| (0..3).any(|c| (a[c] - b[c]).abs() > 1e-3 * (1.0 + a[c].abs())))
+            .count();
+        let mean: f64 = cpu
+            .rgb
+            .iter()
+            .zip(&gpu.rgb)
+            .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs() as f64).sum::<f64>())
+            .sum::<f64>()
+            / (3 * cpu.rgb.len()) as f64;
         println!("{file}: mean |cpu - gpu| {mean:.3e}, {divergent} of {} pixels differ", cpu.rgb.len());
         // A path whose vertex moves by an ulp can cross a checker edge or a rim and go another way: at
         // 4 spp one such path is enough to change a pixel. Measured: up to 1.4% of the pixels on the
         // material previews, 3.1% on the disk scene (whose independent-seed renders at 256 spp agree:
         // every pixel passes the z-test, mean-luminance z −0.7). A broken code path differs nearly
         // everywhere.
-        assert!((divergent as f64) < 0.05 * cpu.rgb.len() as f64, "{file}: {divergent} pixels differ between the backends");
+        assert!(
+            (divergent as f64) < 0.05 * cpu.rgb.len() as f64,
+            "{file}: {divergent} pixels differ between the backends"
+        );
     }
 }
 
@@ -70,16 +96,23 @@ fn gpu_and_cpu_agree_on_every_feature() {
 #[test]
 fn specialization_changes_nothing_but_speed() {
     for file in ["docs/scenes/bsdf_plastic_default.xml", "docs/scenes/emitter_spot_no_texture.xml"] {
-        let mut scene = caustic::load_scene(&mitsuba_scene(file), &defines(&[("spp", "4")])).expect("scene loads");
+        let mut scene =
+            caustic::load_scene(&mitsuba_scene(file), &defines(&[("spp", "4")])).expect("scene loads");
         let (w, h) = (scene.sensor.width, scene.sensor.height);
-        scene.sensor.crop = Some(caustic::scene::Crop { x: w / 2 - 16, y: h / 2 - 16, width: 32, height: 32 });
+        scene.sensor.crop =
+            Some(caustic::scene::Crop { x: w / 2 - 16, y: h / 2 - 16, width: 32, height: 32 });
         let specialised = caustic::buffers::build(&scene).expect("scene builds");
         assert_ne!(specialised.features, caustic_kernel::features::ALL, "{file}: nothing to leave out");
         let mut general = specialised.clone();
         general.features = caustic_kernel::features::ALL;
         for choice in [BackendChoice::Cpu, BackendChoice::Gpu] {
             let (a, b) = (render_buffers(&specialised, choice, 4, 5), render_buffers(&general, choice, 4, 5));
-            let differ = a.rgb.iter().zip(&b.rgb).filter(|(p, q)| (0..3).any(|c| (p[c] - q[c]).abs() > 1e-5 * (1.0 + p[c].abs()))).count();
+            let differ = a
+                .rgb
+                .iter()
+                .zip(&b.rgb)
+                .filter(|(p, q)| (0..3).any(|c| (p[c] - q[c]).abs() > 1e-5 * (1.0 + p[c].abs())))
+                .count();
             println!("{file} {choice:?}: {differ} of {} pixels differ", a.rgb.len());
             // The CPU takes the same branches either way: bit for bit. The GPU driver compiles the two
             // pipelines separately and may contract or reorder differently: a few paths may diverge.
@@ -95,21 +128,32 @@ fn specialization_changes_nothing_but_speed() {
 fn resumed_renders_match_uninterrupted_ones() {
     use caustic::render::render_with_checkpoints;
     use std::ops::ControlFlow::{Break, Continue};
-    let scene = caustic::load_scene(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml")), &defines(&[("res", "16")])).unwrap();
+    let scene = caustic::load_scene(
+        std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml")),
+        &defines(&[("res", "16")]),
+    )
+    .unwrap();
     let buffers = caustic::buffers::build(&scene).unwrap();
     for choice in [BackendChoice::Cpu, BackendChoice::Gpu] {
         let mut first = caustic::backend::create(choice, &buffers).unwrap();
         // Interrupted at 3 of 6 spp: the stratified sampler's strata are laid out for all 6.
-        render_with_checkpoints(first.as_mut(), &buffers, 0, 6, 7, &[3], |done, _, _| Ok(if done == 3 { Break(()) } else { Continue(()) })).unwrap();
+        render_with_checkpoints(first.as_mut(), &buffers, 0, 6, 7, &[3], |done, _, _| {
+            Ok(if done == 3 { Break(()) } else { Continue(()) })
+        })
+        .unwrap();
         let saved = first.read_accum().unwrap();
         let mut second = caustic::backend::create(choice, &buffers).unwrap();
         second.write_accum(&saved).unwrap();
         render_with_checkpoints(second.as_mut(), &buffers, 3, 6, 7, &[], |_, _, _| Ok(Continue(()))).unwrap();
         let whole = render_buffers(&buffers, choice, 6, 7);
-        let resumed = caustic::film::Film::from_accum(whole.width, whole.height, second.read_accum().unwrap());
+        let resumed =
+            caustic::film::Film::from_accum(whole.width, whole.height, second.read_accum().unwrap());
         for (p, q) in resumed.rgb.iter().zip(&whole.rgb) {
             for c in 0..3 {
-                assert!((p[c] - q[c]).abs() <= 1e-5 * (1.0 + q[c].abs()), "{choice:?}: resumed {p:?} vs uninterrupted {q:?}");
+                assert!(
+                    (p[c] - q[c]).abs() <= 1e-5 * (1.0 + q[c].abs()),
+                    "{choice:?}: resumed {p:?} vs uninterrupted {q:?}"
+                );
             }
         }
     }

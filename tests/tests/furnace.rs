@@ -25,8 +25,20 @@ fn furnace(inner: Material) -> Scene {
         integrator: Integrator::default(),
         materials: vec![inner, Material { kind: BSDF_DIFFUSE, ..Default::default() }],
         shapes: vec![
-            Shape { origin: "object".into(), geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 1.0 }, material: 0, emission: None, flip_normals: false },
-            Shape { origin: "enclosure".into(), geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 10.0 }, material: 1, emission: Some([1.0; 3]), flip_normals: true },
+            Shape {
+                origin: "object".into(),
+                geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 1.0 },
+                material: 0,
+                emission: None,
+                flip_normals: false,
+            },
+            Shape {
+                origin: "enclosure".into(),
+                geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 10.0 },
+                material: 1,
+                emission: Some([1.0; 3]),
+                flip_normals: true,
+            },
         ],
         emitters: vec![],
         textures: vec![],
@@ -41,10 +53,17 @@ fn check(scene: &Scene, choice: BackendChoice) {
     let mean = film.rgb.iter().map(|p| p[1] as f64).sum::<f64>() / n;
     let se = (var.iter().map(|v| v[1] as f64).sum::<f64>()).sqrt() / n;
     println!("{choice:?}: mean radiance {mean:.5} ± {se:.5}");
-    assert!((mean - 1.0).abs() < 4.0 * se + 1e-4, "furnace mean {mean} ≠ 1 ({:.1} standard errors)", (mean - 1.0) / se);
+    assert!(
+        (mean - 1.0).abs() < 4.0 * se + 1e-4,
+        "furnace mean {mean} ≠ 1 ({:.1} standard errors)",
+        (mean - 1.0) / se
+    );
     for (p, v) in film.rgb.iter().zip(var) {
         for c in 0..3 {
-            assert!((p[c] as f64 - 1.0).abs() <= 6.0 * (v[c] as f64).sqrt() + 1e-4, "pixel {p:?} (variance {v:?}) is not 1");
+            assert!(
+                (p[c] as f64 - 1.0).abs() <= 6.0 * (v[c] as f64).sqrt() + 1e-4,
+                "pixel {p:?} (variance {v:?}) is not 1"
+            );
         }
     }
 }
@@ -57,7 +76,13 @@ fn white_lambert() -> Material {
 /// identity; an energy-conserving Phong must not exceed it.
 #[test]
 fn phong_never_exceeds_the_furnace() {
-    let phong = Material { kind: BSDF_PHONG, eta: 20.0, reflectance: [0.5, 0.5, 0.5, 0.0], specular_reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() };
+    let phong = Material {
+        kind: BSDF_PHONG,
+        eta: 20.0,
+        reflectance: [0.5, 0.5, 0.5, 0.0],
+        specular_reflectance: [0.5, 0.5, 0.5, 0.0],
+        ..Default::default()
+    };
     let film = render_scene(&furnace(phong), BackendChoice::Cpu, 64, 6);
     let mean = film.rgb.iter().map(|p| p[1] as f64).sum::<f64>() / film.rgb.len() as f64;
     println!("phong furnace mean {mean:.4}");
@@ -125,13 +150,21 @@ fn convergence_against_the_exact_furnace_image() {
     let scene = furnace(white_lambert());
     let buffers = caustic::buffers::build(&scene).unwrap();
     let (w, h) = (buffers.params.width, buffers.params.height);
-    let exact = Film { width: w, height: h, rgb: vec![[1.0; 3]; (w * h) as usize], variance: None, invalid_samples: 0 };
+    let exact = Film {
+        width: w,
+        height: h,
+        rgb: vec![[1.0; 3]; (w * h) as usize],
+        variance: None,
+        invalid_samples: 0,
+    };
     let mut backend = caustic::backend::create(BackendChoice::Cpu, &buffers).unwrap();
     let points = caustic::convergence::measure(backend.as_mut(), &buffers, &exact, 256, 9).unwrap();
     assert_eq!(points.iter().map(|p| p.spp).collect::<Vec<_>>(), vec![1, 2, 4, 8, 16, 32, 64, 128, 256]);
     assert!(points.windows(2).all(|p| p[1].seconds > p[0].seconds), "render time must grow");
     // Slope of log(rel MSE) against log(spp), fitted over all points.
-    let slope = caustic::convergence::least_squares_log_slope(points.iter().map(|p| (p.spp as f64, p.rel_mse))).expect("nine points");
+    let slope =
+        caustic::convergence::least_squares_log_slope(points.iter().map(|p| (p.spp as f64, p.rel_mse)))
+            .expect("nine points");
     println!("furnace convergence: slope {slope:.3}, last {:?}", points.last().unwrap());
     assert!((-1.2..-0.8).contains(&slope), "relative MSE falls as spp^{slope:.3}, not 1/spp");
     assert!((points.last().unwrap().luminance_ratio - 1.0).abs() < 0.01);

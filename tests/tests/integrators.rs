@@ -42,11 +42,23 @@ fn hidden_emitters_let_camera_rays_through() {
         let without = render(&wall_scene(integrator, true, 6.0), &format!("{integrator}-without"));
         let shown = render(&wall_scene(integrator, false, 2.0), &format!("{integrator}-shown"));
         // The same camera rays reach the same wall points with the same random numbers.
-        let max_diff = hidden.rgb.iter().zip(&without.rgb).flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs())).fold(0.0f32, f32::max);
+        let max_diff = hidden
+            .rgb
+            .iter()
+            .zip(&without.rgb)
+            .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
+            .fold(0.0f32, f32::max);
         println!("{integrator}: centre hidden {:?}, emitter behind the camera {:?}, shown {:?}; max |hidden - without| {max_diff:e}", centre(&hidden), centre(&without), centre(&shown));
         assert!(centre(&without)[0] > 0.01, "{integrator}: the wall is not lit");
-        assert!(max_diff <= 1e-5 * (1.0 + centre(&without)[0]), "{integrator}: hidden emitter changes the image by {max_diff}");
-        assert!(centre(&shown)[0] >= 5.0, "{integrator}: the visible emitter's radiance is missing ({:?})", centre(&shown));
+        assert!(
+            max_diff <= 1e-5 * (1.0 + centre(&without)[0]),
+            "{integrator}: hidden emitter changes the image by {max_diff}"
+        );
+        assert!(
+            centre(&shown)[0] >= 5.0,
+            "{integrator}: the visible emitter's radiance is missing ({:?})",
+            centre(&shown)
+        );
     }
 }
 
@@ -56,9 +68,18 @@ fn hidden_emitters_let_camera_rays_through() {
 #[test]
 fn light_and_bsdf_sampling_agree_on_every_emitter_shape() {
     let emitters = [
-        ("rectangle", r#"<shape type="rectangle"><transform name="to_world"><scale value="0.4"/><rotate x="1" angle="180"/><translate z="1.2"/></transform>"#),
-        ("disk", r#"<shape type="disk"><transform name="to_world"><scale x="0.5" y="0.3"/><rotate x="1" angle="150"/><translate z="1.2"/></transform>"#),
-        ("sphere", r#"<shape type="sphere"><float name="radius" value="0.3"/><point name="center" x="0.2" y="0" z="1.2"/>"#),
+        (
+            "rectangle",
+            r#"<shape type="rectangle"><transform name="to_world"><scale value="0.4"/><rotate x="1" angle="180"/><translate z="1.2"/></transform>"#,
+        ),
+        (
+            "disk",
+            r#"<shape type="disk"><transform name="to_world"><scale x="0.5" y="0.3"/><rotate x="1" angle="150"/><translate z="1.2"/></transform>"#,
+        ),
+        (
+            "sphere",
+            r#"<shape type="sphere"><float name="radius" value="0.3"/><point name="center" x="0.2" y="0" z="1.2"/>"#,
+        ),
     ];
     for (name, shape) in emitters {
         let render_with = |emitter_samples: u32, bsdf_samples: u32| {
@@ -82,7 +103,9 @@ fn light_and_bsdf_sampling_agree_on_every_emitter_shape() {
         let bsdf_only = render_with(0, 3);
         // The two estimators' variances differ widely: the z-scores use both, each pooled over the
         // pixel's neighbours (a pixel whose few BSDF samples all missed the light has a zero estimate).
-        let pooled = |f: &caustic::film::Film| caustic::compare::pooled_variance(f.variance.as_ref().unwrap(), f.width, f.height);
+        let pooled = |f: &caustic::film::Film| {
+            caustic::compare::pooled_variance(f.variance.as_ref().unwrap(), f.width, f.height)
+        };
         let (va, vb) = (pooled(&light_only), pooled(&bsdf_only));
         let (mut diff, mut var, mut worst) = (0.0f64, 0.0f64, 0.0f64);
         for i in 0..light_only.rgb.len() {
@@ -95,6 +118,9 @@ fn light_and_bsdf_sampling_agree_on_every_emitter_shape() {
         let z = diff / var.sqrt();
         println!("{name}: light vs BSDF sampling: image mean z {z:+.2}, worst pixel |z| {worst:.2}");
         // 1024 pixels: |z| ≤ 4.9 is the Šidák-corrected 0.1% two-sided bound per pixel.
-        assert!(z.abs() < 4.0 && worst < 4.9, "{name}: light and BSDF sampling disagree (z {z:+.2}, worst {worst:.2})");
+        assert!(
+            z.abs() < 4.0 && worst < 4.9,
+            "{name}: light and BSDF sampling disagree (z {z:+.2}, worst {worst:.2})"
+        );
     }
 }

@@ -32,7 +32,12 @@ impl Backend for CpuBackend {
     }
 
     fn write_accum(&mut self, accum: &[f32]) -> Result<()> {
-        anyhow::ensure!(accum.len() == self.accum.len(), "accumulation buffer of {} floats, expected {}", accum.len(), self.accum.len());
+        anyhow::ensure!(
+            accum.len() == self.accum.len(),
+            "accumulation buffer of {} floats, expected {}",
+            accum.len(),
+            self.accum.len()
+        );
         self.accum.copy_from_slice(accum);
         Ok(())
     }

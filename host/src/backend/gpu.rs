@@ -40,10 +40,15 @@ fn adapter_rank(info: &wgpu::AdapterInfo) -> u32 {
 
 /// The best Vulkan adapter; with `hardware_only`, none if only software rasterisers exist.
 pub fn pick_adapter(hardware_only: bool) -> Result<wgpu::Adapter> {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor { backends: wgpu::Backends::VULKAN, ..wgpu::InstanceDescriptor::new_without_display_handle() });
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+        backends: wgpu::Backends::VULKAN,
+        ..wgpu::InstanceDescriptor::new_without_display_handle()
+    });
     let mut adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::VULKAN));
     adapters.sort_by_key(|a| adapter_rank(&a.get_info()));
-    let adapter = adapters.into_iter().next().ok_or_else(|| anyhow!("no Vulkan adapter found (install a Vulkan driver, e.g. mesa-vulkan-drivers for lavapipe)"))?;
+    let adapter = adapters.into_iter().next().ok_or_else(|| {
+        anyhow!("no Vulkan adapter found (install a Vulkan driver, e.g. mesa-vulkan-drivers for lavapipe)")
+    })?;
     if hardware_only && adapter.get_info().device_type == wgpu::DeviceType::Cpu {
         bail!("only a software Vulkan adapter ({}) is available", adapter.get_info().name);
     }
@@ -65,7 +70,10 @@ impl GpuBackend {
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         // CAUSTIC_KERNEL_SPV runs another build of the kernel (driver investigations, A/B timings).
         let override_spv = match std::env::var_os("CAUSTIC_KERNEL_SPV") {
-            Some(path) => Some(std::fs::read(&path).with_context(|| format!("cannot read CAUSTIC_KERNEL_SPV={}", path.to_string_lossy()))?),
+            Some(path) => Some(
+                std::fs::read(&path)
+                    .with_context(|| format!("cannot read CAUSTIC_KERNEL_SPV={}", path.to_string_lossy()))?,
+            ),
             None => None,
         };
         let words: Vec<u32> = bytemuck::pod_collect_to_vec(override_spv.as_deref().unwrap_or(KERNEL_SPV));
@@ -73,7 +81,10 @@ impl GpuBackend {
         // in the source; dropping naga's duplicate runtime checks is what makes this path fast.
         let module = unsafe {
             device.create_shader_module_trusted(
-                wgpu::ShaderModuleDescriptor { label: Some("caustic-kernel"), source: wgpu::ShaderSource::SpirV(words.into()) },
+                wgpu::ShaderModuleDescriptor {
+                    label: Some("caustic-kernel"),
+                    source: wgpu::ShaderSource::SpirV(words.into()),
+                },
                 wgpu::ShaderRuntimeChecks::unchecked(),
             )
         };
@@ -83,7 +94,10 @@ impl GpuBackend {
             module: &module,
             entry_point: Some(ENTRY_POINT),
             // The scene's feature mask specialises the kernel (spec constant 0): unused paths fold away.
-            compilation_options: wgpu::PipelineCompilationOptions { constants: &[("0", buffers.features as f64)], ..Default::default() },
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: &[("0", buffers.features as f64)],
+                ..Default::default()
+            },
             cache: None,
         });
         if let Some(e) = pollster::block_on(scope.pop()) {
@@ -91,7 +105,11 @@ impl GpuBackend {
         }
 
         let storage = |label: &str, bytes: &[u8]| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents: bytes, usage: wgpu::BufferUsages::STORAGE })
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
         };
         let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("params"),
@@ -113,14 +131,39 @@ impl GpuBackend {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let entries: Vec<wgpu::BindGroupEntry> = [&params_buffer, &nodes, &prims, &attributes, &materials, &lights, &tables, &accum_buffer, &textures]
-            .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
-            .collect();
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some("scene"), layout: &pipeline.get_bind_group_layout(0), entries: &entries });
+        let entries: Vec<wgpu::BindGroupEntry> = [
+            &params_buffer,
+            &nodes,
+            &prims,
+            &attributes,
+            &materials,
+            &lights,
+            &tables,
+            &accum_buffer,
+            &textures,
+        ]
+        .iter()
+        .enumerate()
+        .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+        .collect();
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("scene"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &entries,
+        });
         let adapter_name = format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend);
-        Ok(GpuBackend { device, queue, pipeline, bind_group, params_buffer, accum_buffer, accum_size, adapter_name, width: buffers.params.width, height: buffers.params.height })
+        Ok(GpuBackend {
+            device,
+            queue,
+            pipeline,
+            bind_group,
+            params_buffer,
+            accum_buffer,
+            accum_size,
+            adapter_name,
+            width: buffers.params.width,
+            height: buffers.params.height,
+        })
     }
 
     fn wait(&self) -> Result<()> {
@@ -136,9 +179,13 @@ impl Backend for GpuBackend {
 
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
         self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(params));
-        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pass") });
+        let mut encoder =
+            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pass") });
         {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("render"), timestamp_writes: None });
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("render"),
+                timestamp_writes: None,
+            });
             pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.bind_group, &[]);
             pass.dispatch_workgroups(self.width.div_ceil(TILE), self.height.div_ceil(TILE), 1);
@@ -148,7 +195,12 @@ impl Backend for GpuBackend {
     }
 
     fn write_accum(&mut self, accum: &[f32]) -> Result<()> {
-        anyhow::ensure!(accum.len() as u64 * 4 == self.accum_size, "accumulation buffer of {} floats, expected {}", accum.len(), self.accum_size / 4);
+        anyhow::ensure!(
+            accum.len() as u64 * 4 == self.accum_size,
+            "accumulation buffer of {} floats, expected {}",
+            accum.len(),
+            self.accum_size / 4
+        );
         self.queue.write_buffer(&self.accum_buffer, 0, bytemuck::cast_slice(accum));
         self.queue.submit([]);
         self.wait()
@@ -161,7 +213,8 @@ impl Backend for GpuBackend {
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+        let mut encoder =
+            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
         encoder.copy_buffer_to_buffer(&self.accum_buffer, 0, &staging, 0, self.accum_size);
         self.queue.submit([encoder.finish()]);
         let slice = staging.slice(..);
@@ -170,9 +223,13 @@ impl Backend for GpuBackend {
             let _ = tx.send(r);
         });
         self.wait()?;
-        rx.recv().context("GPU readback was dropped")?.map_err(|e| anyhow!("cannot map the accumulation buffer: {e}"))?;
+        rx.recv()
+            .context("GPU readback was dropped")?
+            .map_err(|e| anyhow!("cannot map the accumulation buffer: {e}"))?;
         let data = {
-            let view = slice.get_mapped_range().map_err(|e| anyhow!("cannot read the accumulation buffer: {e:?}"))?;
+            let view = slice
+                .get_mapped_range()
+                .map_err(|e| anyhow!("cannot read the accumulation buffer: {e:?}"))?;
             bytemuck::pod_collect_to_vec(&view)
         };
         staging.unmap();

@@ -12,8 +12,10 @@ use std::path::Path;
 /// `Mesh::flip_tex_coords` undoes it. One difference: tobj welds vertices within each object or
 /// group only, so normals generated for a mesh without them do not blend across group borders.
 pub fn load_obj(path: &Path, with_materials: bool) -> Result<(Mesh, Vec<tobj::Material>)> {
-    let options = tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
-    let (models, materials) = tobj::load_obj(path, &options).with_context(|| format!("cannot load OBJ mesh {}", path.display()))?;
+    let options =
+        tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
+    let (models, materials) =
+        tobj::load_obj(path, &options).with_context(|| format!("cannot load OBJ mesh {}", path.display()))?;
     let materials = if with_materials {
         materials.unwrap_or_else(|e| {
             eprintln!("warning: {}: material library not loaded ({e}); using defaults", path.display());
@@ -24,7 +26,8 @@ pub fn load_obj(path: &Path, with_materials: bool) -> Result<(Mesh, Vec<tobj::Ma
     };
     let any_normals = models.iter().any(|m| has_one_per_vertex(&m.mesh.normals, 3, &m.mesh));
     let any_uvs = models.iter().any(|m| has_one_per_vertex(&m.mesh.texcoords, 2, &m.mesh));
-    let mut mesh = Mesh { normals: any_normals.then(Vec::new), uvs: any_uvs.then(Vec::new), ..Default::default() };
+    let mut mesh =
+        Mesh { normals: any_normals.then(Vec::new), uvs: any_uvs.then(Vec::new), ..Default::default() };
     for model in &models {
         append_model(&mut mesh, &model.mesh);
     }
@@ -52,7 +55,8 @@ fn append_model(mesh: &mut Mesh, m: &tobj::Mesh) {
     mesh.triangle_materials.extend(std::iter::repeat_n(m.material_id, m.indices.len() / 3));
     if let Some(normals) = &mut mesh.normals {
         if has_one_per_vertex(&m.normals, 3, m) {
-            normals.extend(m.normals.chunks_exact(3).map(|n| Vec3::new(n[0], n[1], n[2]).normalize_or_zero()));
+            normals
+                .extend(m.normals.chunks_exact(3).map(|n| Vec3::new(n[0], n[1], n[2]).normalize_or_zero()));
         } else {
             normals.extend(std::iter::repeat_n(Vec3::ZERO, vertex_count));
         }

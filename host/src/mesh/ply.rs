@@ -14,13 +14,15 @@ use std::path::Path;
 /// Loads a PLY mesh; every failure names the file.
 pub fn load_ply(path: &Path) -> Result<Mesh> {
     let file = File::open(path).with_context(|| format!("cannot open PLY mesh {}", path.display()))?;
-    let mesh = read_ply(BufReader::new(file)).map_err(|e| anyhow!("{}: invalid PLY file: {e:#}", path.display()))?;
+    let mesh =
+        read_ply(BufReader::new(file)).map_err(|e| anyhow!("{}: invalid PLY file: {e:#}", path.display()))?;
     mesh.validate(path)?;
     Ok(mesh)
 }
 
 /// Where each vertex property we read is kept in `PlyVertex::values`.
-const VERTEX_SLOTS: [&str; 12] = ["x", "y", "z", "nx", "ny", "nz", "u", "v", "texture_u", "texture_v", "s", "t"];
+const VERTEX_SLOTS: [&str; 12] =
+    ["x", "y", "z", "nx", "ny", "nz", "u", "v", "texture_u", "texture_v", "s", "t"];
 const NORMAL_SLOT: usize = 3;
 /// First slot of each texture coordinate naming, in Mitsuba's order of preference.
 const UV_SLOTS: [usize; 3] = [6, 8, 10];
@@ -36,7 +38,9 @@ impl PropertyAccess for PlyVertex {
     }
 
     fn set_property(&mut self, name: &str, property: Property) -> PropertyAccessResult {
-        let Some(slot) = VERTEX_SLOTS.iter().position(|&s| s == name) else { return PropertyAccessResult::Ignored };
+        let Some(slot) = VERTEX_SLOTS.iter().position(|&s| s == name) else {
+            return PropertyAccessResult::Ignored;
+        };
         match scalar(&property) {
             Some(value) => {
                 self.values[slot] = value as f32;
@@ -138,14 +142,18 @@ fn read_ply<R: BufRead>(input: R) -> Result<Mesh> {
     let Some(vertex_def) = header.elements.get("vertex") else { bail!("no 'vertex' element") };
     let layout = VertexLayout::of(vertex_def)?;
     let Some(face_def) = header.elements.get("face") else { bail!("no 'face' element") };
-    if !face_def.properties.contains_key("vertex_indices") && !face_def.properties.contains_key("vertex_index") {
+    if !face_def.properties.contains_key("vertex_indices")
+        && !face_def.properties.contains_key("vertex_index")
+    {
         bail!("the face element has neither a 'vertex_indices' nor a 'vertex_index' list");
     }
     // Elements follow in header order, each through the parser of its own element type.
     let (mut vertices, mut faces) = (Vec::new(), Vec::new());
     for (name, def) in &header.elements {
         match name.as_str() {
-            "vertex" => vertices = Parser::<PlyVertex>::new().read_payload_for_element(&mut reader, def, &header)?,
+            "vertex" => {
+                vertices = Parser::<PlyVertex>::new().read_payload_for_element(&mut reader, def, &header)?
+            }
             "face" => faces = Parser::<PlyFace>::new().read_payload_for_element(&mut reader, def, &header)?,
             _ => {
                 Parser::<Skipped>::new().read_payload_for_element(&mut reader, def, &header)?;
@@ -174,11 +182,16 @@ fn reject_trailing_data<R: BufRead>(rest: &mut R, header: &Header) -> Result<()>
 /// Builds the mesh: polygons fan out from their first corner; faces of fewer than three corners
 /// enclose no area and are skipped.
 fn assemble(vertices: &[PlyVertex], faces: &[PlyFace], layout: &VertexLayout) -> Mesh {
-    let attribute = |v: &PlyVertex, slot: usize| Vec3::new(v.values[slot], v.values[slot + 1], v.values[slot + 2]);
+    let attribute =
+        |v: &PlyVertex, slot: usize| Vec3::new(v.values[slot], v.values[slot + 1], v.values[slot + 2]);
     let mut mesh = Mesh {
         positions: vertices.iter().map(|v| attribute(v, 0)).collect(),
-        normals: layout.has_normals.then(|| vertices.iter().map(|v| attribute(v, NORMAL_SLOT).normalize_or_zero()).collect()),
-        uvs: layout.uv_slot.map(|slot| vertices.iter().map(|v| Vec2::new(v.values[slot], v.values[slot + 1])).collect()),
+        normals: layout
+            .has_normals
+            .then(|| vertices.iter().map(|v| attribute(v, NORMAL_SLOT).normalize_or_zero()).collect()),
+        uvs: layout
+            .uv_slot
+            .map(|slot| vertices.iter().map(|v| Vec2::new(v.values[slot], v.values[slot + 1])).collect()),
         ..Default::default()
     };
     for face in faces.iter().filter(|f| f.corners.len() >= 3) {

@@ -13,7 +13,11 @@ pub const SEGMENTS: u32 = 1024;
 
 /// The angle of segment boundary `i` of `SEGMENTS`; the last boundary is the first again, exactly.
 fn boundary_angle(i: u32) -> f32 {
-    if i == SEGMENTS { 0.0 } else { TAU * i as f32 / SEGMENTS as f32 }
+    if i == SEGMENTS {
+        0.0
+    } else {
+        TAU * i as f32 / SEGMENTS as f32
+    }
 }
 
 /// Mitsuba's `rectangle`: [-1, 1]² in the z = 0 plane, facing +z, uv = xy / 2 + 1/2. Vertex `k`

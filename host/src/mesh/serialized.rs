@@ -28,7 +28,9 @@ const MAX_DEFLATE_RATIO: u64 = 1032;
 /// `face_normals` property; so do we. Vertex colours are skipped.
 pub fn load_serialized(path: &Path, shape_index: u32) -> Result<Mesh> {
     let file = File::open(path).with_context(|| format!("cannot open serialized mesh {}", path.display()))?;
-    let mesh = read_mesh(file, shape_index).map_err(|e| anyhow!("{}: invalid serialized mesh (shape_index {shape_index}): {e:#}", path.display()))?;
+    let mesh = read_mesh(file, shape_index).map_err(|e| {
+        anyhow!("{}: invalid serialized mesh (shape_index {shape_index}): {e:#}", path.display())
+    })?;
     mesh.validate(path)?;
     Ok(mesh)
 }
@@ -44,9 +46,13 @@ fn read_mesh(mut file: File, shape_index: u32) -> Result<Mesh> {
     }
     let max_unpacked = (file_size - start).saturating_mul(MAX_DEFLATE_RATIO);
     let mut stream = ZlibDecoder::new(BufReader::new(file));
-    read_mesh_stream(&mut stream, version, max_unpacked).map_err(|e| match e.downcast_ref::<std::io::Error>() {
-        Some(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => anyhow!("the compressed data ends early (truncated file?)"),
-        _ => e,
+    read_mesh_stream(&mut stream, version, max_unpacked).map_err(|e| {
+        match e.downcast_ref::<std::io::Error>() {
+            Some(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => {
+                anyhow!("the compressed data ends early (truncated file?)")
+            }
+            _ => e,
+        }
     })
 }
 
@@ -54,7 +60,8 @@ fn read_mesh(mut file: File, shape_index: u32) -> Result<Mesh> {
 fn read_stream_header(input: &mut impl Read) -> Result<u16> {
     let mut bytes = [0u8; 4];
     input.read_exact(&mut bytes).context("the file is too short for a header")?;
-    let (magic, version) = (u16::from_le_bytes([bytes[0], bytes[1]]), u16::from_le_bytes([bytes[2], bytes[3]]));
+    let (magic, version) =
+        (u16::from_le_bytes([bytes[0], bytes[1]]), u16::from_le_bytes([bytes[2], bytes[3]]));
     if magic != FORMAT_MAGIC {
         bail!("not a serialized mesh (format id {magic:#06x}, expected {FORMAT_MAGIC:#06x})");
     }
@@ -74,7 +81,10 @@ fn stream_offset(file: &mut File, file_size: u64, version: u16, shape_index: u32
     let entry_size: u64 = if version == 3 { 4 } else { 8 };
     let count = u64::from(read_u32_at(file, file_size.checked_sub(4).context("the file is too short")?)?);
     if u64::from(shape_index) >= count {
-        bail!("shape_index {shape_index} is out of range: the file holds {count} meshes (0..{})", count.saturating_sub(1));
+        bail!(
+            "shape_index {shape_index} is out of range: the file holds {count} meshes (0..{})",
+            count.saturating_sub(1)
+        );
     }
     let table_size = count * entry_size + 4;
     if table_size > file_size {
@@ -111,7 +121,11 @@ struct StreamLayout {
 
 impl StreamLayout {
     fn scalar_size(&self) -> u64 {
-        if self.flags & DOUBLE_PRECISION != 0 { 8 } else { 4 }
+        if self.flags & DOUBLE_PRECISION != 0 {
+            8
+        } else {
+            4
+        }
     }
 
     fn has(&self, flag: u32) -> bool {
@@ -120,19 +134,36 @@ impl StreamLayout {
 
     /// Bytes of vertex and index data that follow the counts.
     fn payload_size(&self) -> u64 {
-        let per_vertex = 3 + 3 * u64::from(self.has(HAS_NORMALS)) + 2 * u64::from(self.has(HAS_UVS)) + 3 * u64::from(self.has(HAS_COLORS));
-        (self.vertex_count as u64).saturating_mul(per_vertex * self.scalar_size()).saturating_add((self.triangle_count as u64).saturating_mul(12))
+        let per_vertex = 3
+            + 3 * u64::from(self.has(HAS_NORMALS))
+            + 2 * u64::from(self.has(HAS_UVS))
+            + 3 * u64::from(self.has(HAS_COLORS));
+        (self.vertex_count as u64)
+            .saturating_mul(per_vertex * self.scalar_size())
+            .saturating_add((self.triangle_count as u64).saturating_mul(12))
     }
 }
 
 fn read_mesh_stream(stream: &mut impl Read, version: u16, max_unpacked: u64) -> Result<Mesh> {
     let layout = read_stream_layout(stream, version)?;
     if layout.payload_size() > max_unpacked {
-        bail!("{} vertices and {} triangles cannot fit in the file (corrupt counts?)", layout.vertex_count, layout.triangle_count);
+        bail!(
+            "{} vertices and {} triangles cannot fit in the file (corrupt counts?)",
+            layout.vertex_count,
+            layout.triangle_count
+        );
     }
     let positions = read_vec3s(stream, &layout)?;
-    let normals = if layout.has(HAS_NORMALS) { Some(read_vec3s(stream, &layout)?.into_iter().map(Vec3::normalize_or_zero).collect()) } else { None };
-    let uvs = if layout.has(HAS_UVS) { Some(read_scalars(stream, &layout, 2)?.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])).collect()) } else { None };
+    let normals = if layout.has(HAS_NORMALS) {
+        Some(read_vec3s(stream, &layout)?.into_iter().map(Vec3::normalize_or_zero).collect())
+    } else {
+        None
+    };
+    let uvs = if layout.has(HAS_UVS) {
+        Some(read_scalars(stream, &layout, 2)?.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])).collect())
+    } else {
+        None
+    };
     if layout.has(HAS_COLORS) {
         read_scalars(stream, &layout, 3)?;
     }

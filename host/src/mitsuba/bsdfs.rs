@@ -46,7 +46,8 @@ impl Loader {
         Ok(match props.kind.as_str() {
             "diffuse" => {
                 let mut m = Material { kind: BSDF_DIFFUSE, ..Default::default() };
-                let reflectance = self.color_param(props, "reflectance", SpectrumUse::Reflectance, [0.5; 3])?;
+                let reflectance =
+                    self.color_param(props, "reflectance", SpectrumUse::Reflectance, [0.5; 3])?;
                 set_reflectance(&mut m, reflectance);
                 m
             }
@@ -57,7 +58,10 @@ impl Loader {
             "plastic" | "roughplastic" => self.plastic(props)?,
             "twosided" => self.twosided(props)?,
             other => {
-                self.warn(&format!("{}: bsdf type '{other}' is not supported yet; rendering it as grey diffuse", props.loc));
+                self.warn(&format!(
+                    "{}: bsdf type '{other}' is not supported yet; rendering it as grey diffuse",
+                    props.loc
+                ));
                 props.mark_all_used();
                 Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }
             }
@@ -85,7 +89,10 @@ impl Loader {
             bail!("{}: phong exponent must be in [0, 1e6], got {exponent}", props.loc);
         }
         if (0..3).any(|c| kd.rgb[c] + ks.rgb[c] > 1.0 + 1e-6) {
-            self.warn(&format!("{}: phong with diffuse + specular reflectance > 1 does not conserve energy", props.loc));
+            self.warn(&format!(
+                "{}: phong with diffuse + specular reflectance > 1 does not conserve energy",
+                props.loc
+            ));
         }
         let mut m = Material { kind: BSDF_PHONG, eta: exponent, ..Default::default() };
         set_reflectance(&mut m, kd);
@@ -101,7 +108,10 @@ impl Loader {
             (None, None) => bail!("{}: twosided needs a nested <bsdf>", props.loc),
         };
         if nested.len() + refs.len() > 1 {
-            self.warn(&format!("{}: twosided with two different BSDFs is not supported; using the first on both sides", props.loc));
+            self.warn(&format!(
+                "{}: twosided with two different BSDFs is not supported; using the first on both sides",
+                props.loc
+            ));
         }
         let inner_props = self.props(&props.path, props.doc, inner_entry.node)?;
         let index = self.load_bsdf(&inner_props)?;
@@ -139,14 +149,22 @@ impl Loader {
 
     fn conductor(&mut self, props: &Props) -> Result<Material> {
         let rough = props.kind == "roughconductor";
-        let mut m = Material { kind: if rough { BSDF_ROUGH_CONDUCTOR } else { BSDF_CONDUCTOR }, ..Default::default() };
+        let mut m = Material {
+            kind: if rough { BSDF_ROUGH_CONDUCTOR } else { BSDF_CONDUCTOR },
+            ..Default::default()
+        };
         if rough {
             self.microfacet(props, &mut m)?;
         }
         let has_explicit = props.entries.iter().any(|e| matches!(e.name.as_deref(), Some("eta") | Some("k")));
         let (eta, k) = match props.string("material")? {
-            Some(name) if has_explicit => bail!("{}: give either 'material' ({name}) or 'eta'/'k', not both", props.loc),
-            None if has_explicit => (props.color("eta", SpectrumUse::Unbounded, [0.0; 3])?, props.color("k", SpectrumUse::Unbounded, [1.0; 3])?),
+            Some(name) if has_explicit => {
+                bail!("{}: give either 'material' ({name}) or 'eta'/'k', not both", props.loc)
+            }
+            None if has_explicit => (
+                props.color("eta", SpectrumUse::Unbounded, [0.0; 3])?,
+                props.color("k", SpectrumUse::Unbounded, [1.0; 3])?,
+            ),
             name => {
                 let name = name.unwrap_or_else(|| "none".to_string());
                 let dirs = ior::with_ancestors(&self.search_paths);
@@ -155,7 +173,10 @@ impl Loader {
         };
         m.conductor_eta = rgba(eta);
         m.conductor_k = rgba(k);
-        set_specular(&mut m, self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?);
+        set_specular(
+            &mut m,
+            self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?,
+        );
         Ok(m)
     }
 
@@ -184,19 +205,33 @@ impl Loader {
         if kind == BSDF_ROUGH_DIELECTRIC {
             self.microfacet(props, &mut m)?;
         }
-        set_specular(&mut m, self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?);
-        m.specular_transmittance = rgba(props.color("specular_transmittance", SpectrumUse::Reflectance, [1.0; 3])?);
+        set_specular(
+            &mut m,
+            self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?,
+        );
+        m.specular_transmittance =
+            rgba(props.color("specular_transmittance", SpectrumUse::Reflectance, [1.0; 3])?);
         Ok(m)
     }
 
     fn plastic(&mut self, props: &Props) -> Result<Material> {
         let rough = props.kind == "roughplastic";
-        let mut m = Material { kind: if rough { BSDF_ROUGH_PLASTIC } else { BSDF_PLASTIC }, eta: self.relative_ior(props, "polypropylene")?, ..Default::default() };
+        let mut m = Material {
+            kind: if rough { BSDF_ROUGH_PLASTIC } else { BSDF_PLASTIC },
+            eta: self.relative_ior(props, "polypropylene")?,
+            ..Default::default()
+        };
         if rough {
             self.microfacet(props, &mut m)?;
         }
-        set_reflectance(&mut m, self.color_param(props, "diffuse_reflectance", SpectrumUse::Reflectance, [0.5; 3])?);
-        set_specular(&mut m, self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?);
+        set_reflectance(
+            &mut m,
+            self.color_param(props, "diffuse_reflectance", SpectrumUse::Reflectance, [0.5; 3])?,
+        );
+        set_specular(
+            &mut m,
+            self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?,
+        );
         if props.boolean("nonlinear", false)? {
             m.flags |= MATERIAL_NONLINEAR;
         }

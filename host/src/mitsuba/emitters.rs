@@ -12,7 +12,10 @@ impl Loader {
     /// The radiance of an `<emitter>` nested in a shape, or `None` (with a warning) for other kinds.
     pub(crate) fn load_shape_emitter(&mut self, props: &Props) -> Result<Option<[f32; 3]>> {
         if props.kind != "area" {
-            self.warn(&format!("{}: emitter type '{}' cannot be attached to a shape; ignored", props.loc, props.kind));
+            self.warn(&format!(
+                "{}: emitter type '{}' cannot be attached to a shape; ignored",
+                props.loc, props.kind
+            ));
             props.mark_all_used();
             return Ok(None);
         }
@@ -27,7 +30,10 @@ impl Loader {
         let emitter = match props.kind.as_str() {
             "point" => {
                 let position = props.point("position", to_world.w_axis.truncate())?;
-                Emitter::Point { position, intensity: props.color("intensity", SpectrumUse::Emission, [1.0; 3])? }
+                Emitter::Point {
+                    position,
+                    intensity: props.color("intensity", SpectrumUse::Emission, [1.0; 3])?,
+                }
             }
             "spot" => {
                 let intensity = props.color("intensity", SpectrumUse::Emission, [1.0; 3])?;
@@ -43,9 +49,14 @@ impl Loader {
                 if direction.length_squared() == 0.0 {
                     bail!("{}: directional emitter needs a non-zero direction", props.loc);
                 }
-                Emitter::Directional { direction, irradiance: props.color("irradiance", SpectrumUse::Emission, [1.0; 3])? }
+                Emitter::Directional {
+                    direction,
+                    irradiance: props.color("irradiance", SpectrumUse::Emission, [1.0; 3])?,
+                }
             }
-            "constant" => Emitter::Constant { radiance: props.color("radiance", SpectrumUse::Emission, [1.0; 3])? },
+            "constant" => {
+                Emitter::Constant { radiance: props.color("radiance", SpectrumUse::Emission, [1.0; 3])? }
+            }
             "envmap" => self.envmap(props, Mat3::from_mat4(to_world))?,
             "area" => bail!("{}: an area emitter must be nested in a <shape>", props.loc),
             other => {
@@ -54,7 +65,9 @@ impl Loader {
                 return Ok(());
             }
         };
-        if matches!(emitter, Emitter::Constant { .. } | Emitter::Envmap { .. }) && self.emitters.iter().any(|e| matches!(e, Emitter::Constant { .. } | Emitter::Envmap { .. })) {
+        if matches!(emitter, Emitter::Constant { .. } | Emitter::Envmap { .. })
+            && self.emitters.iter().any(|e| matches!(e, Emitter::Constant { .. } | Emitter::Envmap { .. }))
+        {
             bail!("{}: only one environment emitter (constant or envmap) is allowed per scene", props.loc);
         }
         self.warn_unused(props);
@@ -65,7 +78,8 @@ impl Loader {
     fn envmap(&mut self, props: &Props, to_world: Mat3) -> Result<Emitter> {
         let Some(name) = props.string("filename")? else { bail!("{}: envmap needs a 'filename'", props.loc) };
         let path = self.resolve(&name, &props.loc)?;
-        let image = crate::image_io::load_linear_rgb(&path, false).map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?;
+        let image = crate::image_io::load_linear_rgb(&path, false)
+            .map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?;
         if image.height < 2 {
             bail!("{}: envmap {} must be at least 2 pixels high", props.loc, path.display());
         }
@@ -74,10 +88,14 @@ impl Loader {
             bail!("{}: envmap scale must be non-negative", props.loc);
         }
         if (to_world.transpose() * to_world - Mat3::IDENTITY).to_cols_array().iter().any(|v| v.abs() > 1e-3) {
-            self.warn(&format!("{}: envmap to_world is not a rotation; directions are mapped by its inverse", props.loc));
+            self.warn(&format!(
+                "{}: envmap to_world is not a rotation; directions are mapped by its inverse",
+                props.loc
+            ));
         }
         props.boolean("mis_compensation", false)?;
-        let record = Texture { kind: TEXTURE_BITMAP, width: image.width, height: image.height, ..Default::default() };
+        let record =
+            Texture { kind: TEXTURE_BITMAP, width: image.width, height: image.height, ..Default::default() };
         self.textures.push(SceneTexture { record, texels: image.rgb });
         Ok(Emitter::Envmap { texture: self.textures.len() as u32 - 1, to_world, scale })
     }

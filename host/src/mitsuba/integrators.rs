@@ -12,12 +12,20 @@ impl Loader {
                 let max_depth = props.integer("max_depth", -1)?;
                 let rr_depth = props.integer("rr_depth", 5)?;
                 if max_depth < -1 || max_depth > 1_000_000 {
-                    bail!("{}: max_depth must be -1 (unbounded) or in [0, 1000000], got {max_depth}", props.loc);
+                    bail!(
+                        "{}: max_depth must be -1 (unbounded) or in [0, 1000000], got {max_depth}",
+                        props.loc
+                    );
                 }
                 if !(1..=1_000_000).contains(&rr_depth) {
                     bail!("{}: rr_depth must be in [1, 1000000], got {rr_depth}", props.loc);
                 }
-                Integrator { kind: IntegratorKind::Path, max_depth: max_depth as i32, rr_depth: rr_depth as u32, hide_emitters: props.boolean("hide_emitters", false)? }
+                Integrator {
+                    kind: IntegratorKind::Path,
+                    max_depth: max_depth as i32,
+                    rr_depth: rr_depth as u32,
+                    hide_emitters: props.boolean("hide_emitters", false)?,
+                }
             }
             "direct" => {
                 // As in Mitsuba, `shading_samples` is the default of both counts.
@@ -32,16 +40,29 @@ impl Loader {
                 if emitter_samples + bsdf_samples == 0 {
                     bail!("{}: direct needs at least one emitter or BSDF sample", props.loc);
                 }
-                let kind = IntegratorKind::Direct { emitter_samples: emitter_samples as u32, bsdf_samples: bsdf_samples as u32 };
-                Integrator { kind, max_depth: 2, rr_depth: 5, hide_emitters: props.boolean("hide_emitters", false)? }
+                let kind = IntegratorKind::Direct {
+                    emitter_samples: emitter_samples as u32,
+                    bsdf_samples: bsdf_samples as u32,
+                };
+                Integrator {
+                    kind,
+                    max_depth: 2,
+                    rr_depth: 5,
+                    hide_emitters: props.boolean("hide_emitters", false)?,
+                }
             }
             "moment" => {
                 // Mitsuba's moment integrator renders its nested integrator and adds the second moment
                 // as an extra output; caustic always tracks it (`render --variance` writes it).
                 let nested = props.nested("integrator");
-                let Some(inner) = nested.first() else { bail!("{}: moment needs a nested <integrator>", props.loc) };
+                let Some(inner) = nested.first() else {
+                    bail!("{}: moment needs a nested <integrator>", props.loc)
+                };
                 if nested.len() > 1 {
-                    self.warn(&format!("{}: moment with several nested integrators renders only the first", props.loc));
+                    self.warn(&format!(
+                        "{}: moment with several nested integrators renders only the first",
+                        props.loc
+                    ));
                 }
                 let inner = self.props(&props.path, props.doc, inner.node)?;
                 self.load_integrator(&inner)?

@@ -60,7 +60,8 @@ pub fn dielectric_ior_names() -> String {
 /// The sign is not checked here (Mitsuba's BSDFs reject negative IORs themselves).
 pub(crate) fn ior_property(props: &Props, name: &str, default: &str) -> Result<f32> {
     let Some(entry) = props.entries.iter().find(|e| e.name.as_deref() == Some(name)) else {
-        return named_dielectric_ior(default).with_context(|| format!("{}: default IOR '{default}' is not a known name", props.loc));
+        return named_dielectric_ior(default)
+            .with_context(|| format!("{}: default IOR '{default}' is not a known name", props.loc));
     };
     // Mark the property used through the typed accessors, then interpret it by its tag.
     let value = match entry.tag.as_str() {
@@ -76,7 +77,10 @@ fn ior_from_tagged_value(tag: &str, name: &str, value: &str, loc: &Loc) -> Resul
         bail!("{loc}: '{name}' must be a <float> or a <string> naming a material, not <{tag}>");
     }
     named_dielectric_ior(value).with_context(|| {
-        format!("{loc}: no IOR is known by the name '{value}' for '{name}' (give a <float>, or one of: {})", dielectric_ior_names())
+        format!(
+            "{loc}: no IOR is known by the name '{value}' for '{name}' (give a <float>, or one of: {})",
+            dielectric_ior_names()
+        )
     })
 }
 
@@ -137,7 +141,9 @@ pub fn conductor_materials(search_dirs: &[PathBuf]) -> Vec<String> {
         let Ok(entries) = std::fs::read_dir(&dir) else { continue };
         for entry in entries.flatten() {
             let file_name = entry.file_name();
-            let Some(material) = file_name.to_str().and_then(|n| n.strip_suffix(".eta.spd")) else { continue };
+            let Some(material) = file_name.to_str().and_then(|n| n.strip_suffix(".eta.spd")) else {
+                continue;
+            };
             if dir.join(format!("{material}.k.spd")).is_file() && !names.iter().any(|n| n == material) {
                 names.push(material.to_string());
             }
@@ -158,7 +164,9 @@ fn missing_material_message(material: &str, ior_dirs: &[PathBuf]) -> String {
     if available.len() > 1 {
         message.push_str(&format!("; available: {}", available.join(", ")));
     } else {
-        message.push_str(&format!("; no IOR data found at all (set {DATA_DIR_VARIABLE} to a folder holding ior/*.spd)"));
+        message.push_str(&format!(
+            "; no IOR data found at all (set {DATA_DIR_VARIABLE} to a folder holding ior/*.spd)"
+        ));
     }
     message
 }
@@ -173,7 +181,8 @@ pub fn spd_file_to_rgb(path: &Path) -> Result<[f32; 3]> {
 /// Parses an `.spd` file: one `wavelength value` pair (nm) per line, `#` starts a comment.
 /// Wavelengths must increase; at least one pair is needed.
 pub fn read_spd(path: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("cannot read spectrum file {}", path.display()))?;
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read spectrum file {}", path.display()))?;
     let mut wavelengths = Vec::new();
     let mut values = Vec::new();
     for (index, line) in text.lines().enumerate() {
@@ -260,7 +269,10 @@ mod tests {
         let loc = Loc { file: PathBuf::from("scene.xml"), line: 7 };
         assert_eq!(ior_from_tagged_value("string", "int_ior", "Diamond", &loc).unwrap(), 2.419);
         let unknown = ior_from_tagged_value("string", "int_ior", "1.5", &loc).unwrap_err().to_string();
-        assert!(unknown.contains("scene.xml:7") && unknown.contains("'1.5'") && unknown.contains("bk7"), "{unknown}");
+        assert!(
+            unknown.contains("scene.xml:7") && unknown.contains("'1.5'") && unknown.contains("bk7"),
+            "{unknown}"
+        );
         let wrong_tag = ior_from_tagged_value("integer", "int_ior", "2", &loc).unwrap_err().to_string();
         assert!(wrong_tag.contains("<integer>"), "{wrong_tag}");
     }
@@ -306,7 +318,10 @@ mod tests {
     fn missing_material_names_where_it_looked_and_what_exists() {
         let Some(dir) = shared_mitsuba_dir() else { return };
         let message = conductor_eta_k("au", std::slice::from_ref(&dir)).unwrap_err().to_string();
-        assert!(message.contains("'au'") && message.contains(&dir.join("ior").display().to_string()), "{message}");
+        assert!(
+            message.contains("'au'") && message.contains(&dir.join("ior").display().to_string()),
+            "{message}"
+        );
         assert!(message.contains("did you mean 'Au'"), "{message}");
         assert!(message.contains("Cu") && message.contains("none"), "{message}");
         let names = conductor_materials(&[dir]);
@@ -328,7 +343,10 @@ mod tests {
 
         std::fs::write(&eta, "500 1.0\n400 1.0\n").unwrap();
         let message = format!("{:#}", conductor_eta_k("Bad", std::slice::from_ref(&dir)).unwrap_err());
-        assert!(message.contains(&format!("{}:2", eta.display())) && message.contains("increase"), "{message}");
+        assert!(
+            message.contains(&format!("{}:2", eta.display())) && message.contains("increase"),
+            "{message}"
+        );
         let _ = std::fs::remove_dir_all(&dir);
     }
 
@@ -350,7 +368,10 @@ mod tests {
         let (eta, k) = conductor_eta_k("Flat", std::slice::from_ref(&dir)).unwrap();
         let white = super::super::spectrum::xyz_to_srgb([1.0, 1.0, 1.0]).map(|c| c as f32);
         for c in 0..3 {
-            assert!((k[c] - white[c]).abs() < 2e-3 && (eta[c] - 2.0 * white[c]).abs() < 4e-3, "{eta:?} {k:?} {white:?}");
+            assert!(
+                (k[c] - white[c]).abs() < 2e-3 && (eta[c] - 2.0 * white[c]).abs() < 4e-3,
+                "{eta:?} {k:?} {white:?}"
+            );
         }
         let _ = std::fs::remove_dir_all(&dir);
     }

@@ -66,7 +66,10 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
     let sensor = match loader.sensor.take() {
         Some(s) => s,
         None => {
-            loader.warn(&format!("{}: no <sensor>; using Mitsuba's default perspective camera", path.display()));
+            loader.warn(&format!(
+                "{}: no <sensor>; using Mitsuba's default perspective camera",
+                path.display()
+            ));
             sensors::default_sensor()
         }
     };
@@ -88,7 +91,8 @@ impl Loader {
     }
 
     fn load_file(&mut self, path: &Path) -> Result<()> {
-        let text = std::fs::read_to_string(path).with_context(|| format!("cannot read scene file {}", path.display()))?;
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read scene file {}", path.display()))?;
         let doc = roxmltree::Document::parse(&text).map_err(|e| {
             let pos = e.pos();
             anyhow::anyhow!("{}:{}:{}: malformed XML: {e}", path.display(), pos.row, pos.col)
@@ -105,7 +109,12 @@ impl Loader {
         result
     }
 
-    fn load_scene_children(&mut self, path: &Path, doc: &roxmltree::Document, root: roxmltree::Node) -> Result<()> {
+    fn load_scene_children(
+        &mut self,
+        path: &Path,
+        doc: &roxmltree::Document,
+        root: roxmltree::Node,
+    ) -> Result<()> {
         self.register_named_area_emitters(path, doc, root)?;
         for node in root.children().filter(|n| n.is_element()) {
             let loc = Loc::of(path, doc, node);
@@ -116,7 +125,8 @@ impl Loader {
                     self.params.entry(name.to_string()).or_insert_with(|| value.to_string());
                 }
                 "include" => {
-                    let file = self.resolve(&self.substitute(props::attr(node, "filename", &loc)?, &loc)?, &loc)?;
+                    let file =
+                        self.resolve(&self.substitute(props::attr(node, "filename", &loc)?, &loc)?, &loc)?;
                     self.include_depth += 1;
                     if self.include_depth > 32 {
                         bail!("{loc}: <include> nested more than 32 deep (a cycle?)");
@@ -171,8 +181,15 @@ impl Loader {
 
     /// Top-level named area emitters, registered before the shapes that `<ref>` them load: Mitsuba
     /// resolves references across the whole file, so a shape may name an emitter defined below it.
-    fn register_named_area_emitters(&mut self, path: &Path, doc: &roxmltree::Document, root: roxmltree::Node) -> Result<()> {
-        let named = root.children().filter(|n| n.is_element() && n.tag_name().name() == "emitter" && n.attribute("type") == Some("area"));
+    fn register_named_area_emitters(
+        &mut self,
+        path: &Path,
+        doc: &roxmltree::Document,
+        root: roxmltree::Node,
+    ) -> Result<()> {
+        let named = root.children().filter(|n| {
+            n.is_element() && n.tag_name().name() == "emitter" && n.attribute("type") == Some("area")
+        });
         for node in named {
             if let Some(id) = node.attribute("id") {
                 let props = self.props(path, doc, node)?;
@@ -221,7 +238,10 @@ impl Loader {
                 }
             }
         }
-        bail!("{loc}: file not found: {name} (searched {})", self.search_paths.iter().map(|d| d.display().to_string()).collect::<Vec<_>>().join(", "))
+        bail!(
+            "{loc}: file not found: {name} (searched {})",
+            self.search_paths.iter().map(|d| d.display().to_string()).collect::<Vec<_>>().join(", ")
+        )
     }
 
     fn resolve_dir(&self, value: &str) -> PathBuf {
@@ -233,7 +253,12 @@ impl Loader {
         }
     }
 
-    pub(crate) fn props<'a, 'input>(&self, path: &Path, doc: &'a roxmltree::Document<'input>, node: roxmltree::Node<'a, 'input>) -> Result<Props<'a, 'input>> {
+    pub(crate) fn props<'a, 'input>(
+        &self,
+        path: &Path,
+        doc: &'a roxmltree::Document<'input>,
+        node: roxmltree::Node<'a, 'input>,
+    ) -> Result<Props<'a, 'input>> {
         Props::collect(self, path, doc, node)
     }
 

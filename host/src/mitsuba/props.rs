@@ -65,7 +65,12 @@ pub struct Props<'a, 'input> {
 }
 
 impl<'a, 'input> Props<'a, 'input> {
-    pub fn collect(loader: &Loader, path: &Path, doc: &'a roxmltree::Document<'input>, node: roxmltree::Node<'a, 'input>) -> Result<Self> {
+    pub fn collect(
+        loader: &Loader,
+        path: &Path,
+        doc: &'a roxmltree::Document<'input>,
+        node: roxmltree::Node<'a, 'input>,
+    ) -> Result<Self> {
         let loc = Loc::of(path, doc, node);
         let mut entries = Vec::new();
         for child in node.children().filter(|n| n.is_element()) {
@@ -87,7 +92,16 @@ impl<'a, 'input> Props<'a, 'input> {
             None => String::new(),
         };
         let n = entries.len();
-        Ok(Props { loc, tag: node.tag_name().name().to_string(), kind, id: node.attribute("id").map(str::to_string), path: path.to_path_buf(), doc, entries, used: RefCell::new(vec![false; n]) })
+        Ok(Props {
+            loc,
+            tag: node.tag_name().name().to_string(),
+            kind,
+            id: node.attribute("id").map(str::to_string),
+            path: path.to_path_buf(),
+            doc,
+            entries,
+            used: RefCell::new(vec![false; n]),
+        })
     }
 
     fn find(&self, name: &str) -> Option<usize> {
@@ -104,7 +118,11 @@ impl<'a, 'input> Props<'a, 'input> {
     pub fn float(&self, name: &str, default: f32) -> Result<f32> {
         let Some(i) = self.find(name) else { return Ok(default) };
         let e = &self.entries[i];
-        let v: f32 = self.value_of(i)?.trim().parse().map_err(|_| anyhow::anyhow!("{}: '{name}' must be a number", e.loc))?;
+        let v: f32 = self
+            .value_of(i)?
+            .trim()
+            .parse()
+            .map_err(|_| anyhow::anyhow!("{}: '{name}' must be a number", e.loc))?;
         if !v.is_finite() {
             bail!("{}: '{name}' must be finite", e.loc);
         }
@@ -114,7 +132,10 @@ impl<'a, 'input> Props<'a, 'input> {
     pub fn integer(&self, name: &str, default: i64) -> Result<i64> {
         let Some(i) = self.find(name) else { return Ok(default) };
         let e = &self.entries[i];
-        self.value_of(i)?.trim().parse().map_err(|_| anyhow::anyhow!("{}: '{name}' must be an integer", e.loc))
+        self.value_of(i)?
+            .trim()
+            .parse()
+            .map_err(|_| anyhow::anyhow!("{}: '{name}' must be an integer", e.loc))
     }
 
     pub fn boolean(&self, name: &str, default: bool) -> Result<bool> {
@@ -202,8 +223,14 @@ impl<'a, 'input> Props<'a, 'input> {
             .zip(used.iter())
             .filter(|(_, u)| !**u)
             .map(|(e, _)| match &e.name {
-                Some(n) => format!("{}: <{} name=\"{n}\"> of {} '{}' is not supported; ignored", e.loc, e.tag, self.tag, self.kind),
-                None => format!("{}: <{}> inside {} '{}' is not supported; ignored", e.loc, e.tag, self.tag, self.kind),
+                Some(n) => format!(
+                    "{}: <{} name=\"{n}\"> of {} '{}' is not supported; ignored",
+                    e.loc, e.tag, self.tag, self.kind
+                ),
+                None => format!(
+                    "{}: <{}> inside {} '{}' is not supported; ignored",
+                    e.loc, e.tag, self.tag, self.kind
+                ),
             })
             .collect()
     }
@@ -231,14 +258,19 @@ pub fn vector_from_node(node: roxmltree::Node, value: Option<&str>, loc: &Loc) -
 /// `<spectrum value="0.5"/>` or `value="400:0.1, 500:0.2, …"`.
 fn parse_spectrum(value: &str, usage: SpectrumUse, loc: &Loc) -> Result<[f32; 3]> {
     if !value.contains(':') {
-        let v: f64 = value.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: spectrum value '{value}' is not a number"))?;
+        let v: f64 = value
+            .trim()
+            .parse()
+            .map_err(|_| anyhow::anyhow!("{loc}: spectrum value '{value}' is not a number"))?;
         return Ok(uniform_spectrum_to_rgb(v, usage));
     }
     let mut wavelengths = Vec::new();
     let mut values = Vec::new();
     for pair in value.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-        let (w, v) = pair.split_once(':').with_context(|| format!("{loc}: '{pair}' is not wavelength:value"))?;
-        let w: f64 = w.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: wavelength '{w}' is not a number"))?;
+        let (w, v) =
+            pair.split_once(':').with_context(|| format!("{loc}: '{pair}' is not wavelength:value"))?;
+        let w: f64 =
+            w.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: wavelength '{w}' is not a number"))?;
         let v: f64 = v.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: value '{v}' is not a number"))?;
         if let Some(&last) = wavelengths.last() {
             if w <= last {

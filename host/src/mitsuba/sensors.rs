@@ -27,8 +27,20 @@ pub fn default_sensor() -> Sensor {
 fn horizontal_fov(fov: f32, axis: &str, width: u32, height: u32, props: &Props) -> Result<f32> {
     let aspect = width as f32 / height as f32;
     let axis = match axis {
-        "smaller" => if aspect > 1.0 { "y" } else { "x" },
-        "larger" => if aspect > 1.0 { "x" } else { "y" },
+        "smaller" => {
+            if aspect > 1.0 {
+                "y"
+            } else {
+                "x"
+            }
+        }
+        "larger" => {
+            if aspect > 1.0 {
+                "x"
+            } else {
+                "y"
+            }
+        }
         other => other,
     };
     let half = (fov.to_radians() * 0.5).tan();
@@ -48,7 +60,10 @@ impl Loader {
     pub(crate) fn load_sensor(&mut self, props: &Props) -> Result<Sensor> {
         let mut sensor = default_sensor();
         if !matches!(props.kind.as_str(), "perspective" | "thinlens" | "orthographic") {
-            self.warn(&format!("{}: sensor type '{}' is not supported yet; using perspective", props.loc, props.kind));
+            self.warn(&format!(
+                "{}: sensor type '{}' is not supported yet; using perspective",
+                props.loc, props.kind
+            ));
         }
         for e in props.nested("film") {
             let film = self.props(&props.path, props.doc, e.node)?;
@@ -86,7 +101,10 @@ impl Loader {
                 // to_world's scale.
                 let aspect = sensor.width as f32 / sensor.height as f32;
                 let half_width = to_world.x_axis.truncate().length();
-                Projection::Orthographic { half_width, half_height: to_world.y_axis.truncate().length() / aspect }
+                Projection::Orthographic {
+                    half_width,
+                    half_height: to_world.y_axis.truncate().length() / aspect,
+                }
             }
             _ => {
                 props.float("focus_distance", 0.0)?; // meaningful only for thin-lens cameras
@@ -150,7 +168,10 @@ impl Loader {
         let w = props.integer("crop_width", width as i64)?;
         let h = props.integer("crop_height", height as i64)?;
         if x < 0 || y < 0 || w < 1 || h < 1 || x + w > width as i64 || y + h > height as i64 {
-            bail!("{}: the crop window ({x}, {y}) + {w}×{h} must lie inside the {width}×{height} film", props.loc);
+            bail!(
+                "{}: the crop window ({x}, {y}) + {w}×{h} must lie inside the {width}×{height} film",
+                props.loc
+            );
         }
         let crop = Crop { x: x as u32, y: y as u32, width: w as u32, height: h as u32 };
         Ok((crop != Crop { x: 0, y: 0, width, height }).then_some(crop))

@@ -17,7 +17,9 @@ impl Loader {
         let mut flip_normals = props.boolean("flip_normals", false)?;
         let face_normals = props.boolean("face_normals", false)?;
         let geometry = match props.kind.as_str() {
-            "obj" | "ply" | "serialized" => mesh_geometry(self.load_mesh_file(props)?, to_world, face_normals),
+            "obj" | "ply" | "serialized" => {
+                mesh_geometry(self.load_mesh_file(props)?, to_world, face_normals)
+            }
             // Mitsuba's rectangle and cube are flat, whatever face_normals says.
             "rectangle" => flat_geometry(primitives::rectangle(), to_world),
             "cube" => flat_geometry(primitives::cube(), to_world),
@@ -38,7 +40,9 @@ impl Loader {
                 let radius = props.float("radius", 1.0)?;
                 // Like Mitsuba, fold a uniform scale and translation of to_world into centre and radius.
                 let (scale, _, _) = to_world.to_scale_rotation_translation();
-                if (scale.x - scale.y).abs() > 1e-4 * scale.x.abs() || (scale.x - scale.z).abs() > 1e-4 * scale.x.abs() {
+                if (scale.x - scale.y).abs() > 1e-4 * scale.x.abs()
+                    || (scale.x - scale.z).abs() > 1e-4 * scale.x.abs()
+                {
                     bail!("{}: a sphere's to_world may only scale uniformly", props.loc);
                 }
                 let center = to_world.transform_point3(center);
@@ -70,7 +74,9 @@ impl Loader {
     /// The mesh of an `obj`, `ply` or `serialized` shape in object space, with Mitsuba's
     /// `flip_tex_coords` (default true for OBJ, false for PLY; serialized files have no such option).
     fn load_mesh_file(&self, props: &Props) -> Result<Mesh> {
-        let Some(name) = props.string("filename")? else { bail!("{}: a {} shape needs a 'filename'", props.loc, props.kind) };
+        let Some(name) = props.string("filename")? else {
+            bail!("{}: a {} shape needs a 'filename'", props.loc, props.kind)
+        };
         let path = self.resolve(&name, &props.loc)?;
         // load_obj has already flipped v, as Mitsuba's default for OBJ asks.
         let flip_tex_coords = match props.kind.as_str() {
@@ -83,7 +89,9 @@ impl Loader {
             "ply" => mesh::load_ply(&path),
             _ => {
                 let index = props.integer("shape_index", 0)?;
-                let Ok(index) = u32::try_from(index) else { bail!("{}: shape_index must be a non-negative integer, not {index}", props.loc) };
+                let Ok(index) = u32::try_from(index) else {
+                    bail!("{}: shape_index must be a non-negative integer, not {index}", props.loc)
+                };
                 mesh::load_serialized(&path, index)
             }
         };
@@ -120,7 +128,11 @@ impl Loader {
             Some(m) => m,
             None => {
                 let grey = if emission.is_some() { 0.0 } else { 0.5 };
-                self.materials.push(Material { kind: BSDF_DIFFUSE, reflectance: [grey, grey, grey, 0.0], ..Default::default() });
+                self.materials.push(Material {
+                    kind: BSDF_DIFFUSE,
+                    reflectance: [grey, grey, grey, 0.0],
+                    ..Default::default()
+                });
                 self.materials.len() as u32 - 1
             }
         };

@@ -51,14 +51,18 @@ pub fn spectrum_to_rgb(wavelengths: &[f64], values: &[f64], usage: SpectrumUse) 
         if lambda < first || lambda > last {
             continue;
         }
-        let k = wavelengths.partition_point(|&w| w <= lambda).saturating_sub(1).min(wavelengths.len().saturating_sub(2));
+        let k = wavelengths
+            .partition_point(|&w| w <= lambda)
+            .saturating_sub(1)
+            .min(wavelengths.len().saturating_sub(2));
         let value = if wavelengths.len() == 1 {
             values[0]
         } else {
             let (w0, w1, v0, v1) = (wavelengths[k], wavelengths[k + 1], values[k], values[k + 1]);
             ((lambda - w1) * v0 + (w0 - lambda) * v1) / (w0 - w1)
         };
-        let weight = if usage == SpectrumUse::Emission { 1.0 } else { cie_lookup(&D65, lambda) * D65_NORMALIZATION };
+        let weight =
+            if usage == SpectrumUse::Emission { 1.0 } else { cie_lookup(&D65, lambda) * D65_NORMALIZATION };
         xyz[0] += cie_lookup(&CIE_X, lambda) * value * weight;
         xyz[1] += cie_lookup(&CIE_Y, lambda) * value * weight;
         xyz[2] += cie_lookup(&CIE_Z, lambda) * value * weight;

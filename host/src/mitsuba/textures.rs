@@ -39,11 +39,19 @@ impl Loader {
             "checkerboard" => {
                 let color0 = props.color("color0", SpectrumUse::Reflectance, [0.4; 3])?;
                 let color1 = props.color("color1", SpectrumUse::Reflectance, [0.2; 3])?;
-                let record = Texture { kind: TEXTURE_CHECKERBOARD, to_uv, color0: rgba(color0), color1: rgba(color1), ..Default::default() };
+                let record = Texture {
+                    kind: TEXTURE_CHECKERBOARD,
+                    to_uv,
+                    color0: rgba(color0),
+                    color1: rgba(color1),
+                    ..Default::default()
+                };
                 SceneTexture { record, texels: Vec::new() }
             }
             "bitmap" => self.bitmap(props, to_uv)?,
-            other => bail!("{}: texture type '{other}' is not supported (bitmap, checkerboard are)", props.loc),
+            other => {
+                bail!("{}: texture type '{other}' is not supported (bitmap, checkerboard are)", props.loc)
+            }
         };
         self.warn_unused(props);
         self.textures.push(texture);
@@ -54,7 +62,8 @@ impl Loader {
         let Some(name) = props.string("filename")? else { bail!("{}: bitmap needs a 'filename'", props.loc) };
         let path = self.resolve(&name, &props.loc)?;
         let raw = props.boolean("raw", false)?;
-        let image = crate::image_io::load_linear_rgb(&path, raw).map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?;
+        let image = crate::image_io::load_linear_rgb(&path, raw)
+            .map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?;
         let filter = match props.string("filter_type")?.as_deref() {
             None | Some("bilinear") => 0,
             Some("nearest") => TEXTURE_NEAREST,
@@ -67,13 +76,29 @@ impl Loader {
             Some(other) => bail!("{}: wrap_mode must be repeat, mirror or clamp, not '{other}'", props.loc),
         };
         props.string("format")?; // caustic always stores linear RGB
-        let record = Texture { kind: TEXTURE_BITMAP, width: image.width, height: image.height, flags: filter | (wrap << TEXTURE_WRAP_SHIFT), to_uv, ..Default::default() };
+        let record = Texture {
+            kind: TEXTURE_BITMAP,
+            width: image.width,
+            height: image.height,
+            flags: filter | (wrap << TEXTURE_WRAP_SHIFT),
+            to_uv,
+            ..Default::default()
+        };
         Ok(SceneTexture { record, texels: image.rgb })
     }
 
     /// A colour-valued BSDF parameter that may also be a nested `<texture>` or a `<ref>` to one.
-    pub(crate) fn color_param(&mut self, props: &Props, name: &str, usage: SpectrumUse, default: [f32; 3]) -> Result<ColorParam> {
-        let texture_entry = props.entries.iter().find(|e| e.name.as_deref() == Some(name) && matches!(e.tag.as_str(), "texture" | "ref"));
+    pub(crate) fn color_param(
+        &mut self,
+        props: &Props,
+        name: &str,
+        usage: SpectrumUse,
+        default: [f32; 3],
+    ) -> Result<ColorParam> {
+        let texture_entry = props
+            .entries
+            .iter()
+            .find(|e| e.name.as_deref() == Some(name) && matches!(e.tag.as_str(), "texture" | "ref"));
         let Some(entry) = texture_entry else {
             return Ok(ColorParam { rgb: props.color(name, usage, default)?, texture: NONE });
         };

@@ -23,7 +23,9 @@ pub fn parse(props: &Props, node: roxmltree::Node, loc: &Loc) -> Result<Mat4> {
                 } else {
                     let get = |a: &str| op.attribute(a).map(|s| s.trim().parse::<f32>()).transpose();
                     match (get("x"), get("y"), get("z")) {
-                        (Ok(x), Ok(y), Ok(z)) => Vec3::new(x.unwrap_or(1.0), y.unwrap_or(1.0), z.unwrap_or(1.0)),
+                        (Ok(x), Ok(y), Ok(z)) => {
+                            Vec3::new(x.unwrap_or(1.0), y.unwrap_or(1.0), z.unwrap_or(1.0))
+                        }
                         _ => bail!("{op_loc}: <scale> values must be numbers"),
                     }
                 };
@@ -32,7 +34,9 @@ pub fn parse(props: &Props, node: roxmltree::Node, loc: &Loc) -> Result<Mat4> {
             "rotate" => {
                 let axis = vector_from_node(op, value, &op_loc)?;
                 let angle: f32 = match op.attribute("angle") {
-                    Some(a) => a.trim().parse().map_err(|_| anyhow::anyhow!("{op_loc}: angle must be a number"))?,
+                    Some(a) => {
+                        a.trim().parse().map_err(|_| anyhow::anyhow!("{op_loc}: angle must be a number"))?
+                    }
                     None => bail!("{op_loc}: <rotate> needs an angle"),
                 };
                 if axis.length_squared() == 0.0 {

@@ -40,7 +40,13 @@ impl Dielectric {
         let fr = fresnel(wo.z, self.eta);
         // Strict comparison: F = 0 (matched indices) never picks the mirror with probability 0.
         if u_lobe < fr.f {
-            return BsdfSample { wi: reflect(wo), weight: self.specular_reflectance, pdf: fr.f, eta: 1.0, delta: true };
+            return BsdfSample {
+                wi: reflect(wo),
+                weight: self.specular_reflectance,
+                pdf: fr.f,
+                eta: 1.0,
+                delta: true,
+            };
         }
         let scale = if self.adjoint { 1.0 } else { fr.eta_ti * fr.eta_ti };
         BsdfSample {

@@ -1,9 +1,9 @@
 //! Lambertian reflection (Mitsuba `diffuse`).
 use super::{same_hemisphere_above, BsdfSample};
+use crate::glam::{Vec2, Vec3};
 use crate::math::INV_PI;
 use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::spectrum::Rgb;
-use crate::glam::{Vec2, Vec3};
 
 #[derive(Clone, Copy)]
 pub struct Diffuse {

@@ -184,7 +184,8 @@ fn beckmann_visible_slope(cos_theta: f32, u: Vec2) -> Vec2 {
 pub fn erf(x: f32) -> f32 {
     let ax = x.abs();
     let t = 1.0 / (1.0 + 0.327_591_1 * ax);
-    let poly = t * (0.254_829_6 + t * (-0.284_496_74 + t * (1.421_413_7 + t * (-1.453_152 + t * 1.061_405_4))));
+    let poly =
+        t * (0.254_829_6 + t * (-0.284_496_74 + t * (1.421_413_7 + t * (-1.453_152 + t * 1.061_405_4))));
     let y = 1.0 - poly * (-ax * ax).exp();
     if x < 0.0 {
         -y

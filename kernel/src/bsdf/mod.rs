@@ -1,13 +1,13 @@
 //! BSDFs. Every model works in the local shading frame (normal = +z) with `wo` pointing towards the
 //! viewer (or the previous vertex) and `wi` towards the light; `eval` includes the cosine factor
 //! `|cos θi|` so that sampling weights are `eval / pdf`.
-pub mod diffuse;
-pub mod phong;
 pub mod conductor;
 pub mod dielectric;
+pub mod diffuse;
 pub mod fresnel;
 pub mod fuzzy_metal;
 pub mod microfacet;
+pub mod phong;
 pub mod plastic;
 pub mod rough_conductor;
 pub mod rough_dielectric;
@@ -15,10 +15,10 @@ pub mod rough_plastic;
 pub mod thin_dielectric;
 
 use crate::features;
-use crate::scene::*;
-use crate::texture;
-use crate::spectrum::Rgb;
 use crate::glam::{Vec2, Vec3};
+use crate::scene::*;
+use crate::spectrum::Rgb;
+use crate::texture;
 
 /// A sampled direction with its weight `f·cos/pdf` and solid-angle density.
 #[derive(Clone, Copy)]
@@ -92,7 +92,13 @@ impl<'a> Bsdf<'a> {
 
     /// A BSDF without textures (tests, tools).
     pub fn from_material(m: &Material, tables: &'a [f32]) -> Bsdf<'a> {
-        Bsdf { material: *m, reflectance: vec3_of(m.reflectance), specular: vec3_of(m.specular_reflectance), tables, features: features::ALL }
+        Bsdf {
+            material: *m,
+            reflectance: vec3_of(m.reflectance),
+            specular: vec3_of(m.specular_reflectance),
+            tables,
+            features: features::ALL,
+        }
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {

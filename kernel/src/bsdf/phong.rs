@@ -7,10 +7,10 @@ use spirv_std::num_traits::Float;
 
 use super::{same_hemisphere_above, BsdfSample};
 use crate::frame::Frame;
+use crate::glam::{Vec2, Vec3};
 use crate::math::{INV_2PI, INV_PI};
 use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::spectrum::{luminance, Rgb};
-use crate::glam::{Vec2, Vec3};
 
 #[derive(Clone, Copy)]
 pub struct Phong {

@@ -81,7 +81,11 @@ impl Plastic {
     /// The diffuse base's albedo after the internal inter-reflections, scaled by the `1/η²` of leaving.
     #[inline]
     fn diffuse_term(&self) -> Rgb {
-        let denom = if self.nonlinear { Rgb::ONE - self.diffuse * self.fdr_int } else { Rgb::splat(1.0 - self.fdr_int) };
+        let denom = if self.nonlinear {
+            Rgb::ONE - self.diffuse * self.fdr_int
+        } else {
+            Rgb::splat(1.0 - self.fdr_int)
+        };
         self.diffuse / denom / (self.eta * self.eta)
     }
 

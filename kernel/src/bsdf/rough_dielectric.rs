@@ -40,7 +40,13 @@ impl RoughDielectric {
     /// `specular` is the evaluated `specular_reflectance`.
     pub fn from_material(m: &Material, _reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
         let t = vec3([m.specular_transmittance[0], m.specular_transmittance[1], m.specular_transmittance[2]]);
-        RoughDielectric { distr: Microfacet::from_material(m), eta: m.eta, specular_reflectance: specular, specular_transmittance: t, adjoint: false }
+        RoughDielectric {
+            distr: Microfacet::from_material(m),
+            eta: m.eta,
+            specular_reflectance: specular,
+            specular_transmittance: t,
+            adjoint: false,
+        }
     }
 
     /// Generalised half vector `wo + η·wi` (η = 1 for reflection), flipped to the upper hemisphere.
@@ -88,7 +94,8 @@ impl RoughDielectric {
         }
         // Radiance is compressed into a smaller solid angle on the denser side.
         let scale = if self.adjoint { 1.0 } else { 1.0 / (hv.eta * hv.eta) };
-        let value = scale * (1.0 - f) * d * g * hv.eta * hv.eta * wo_m * wi_m / (wo.z * sqr(wo_m + hv.eta * wi_m));
+        let value =
+            scale * (1.0 - f) * d * g * hv.eta * hv.eta * wo_m * wi_m / (wo.z * sqr(wo_m + hv.eta * wi_m));
         self.specular_transmittance * value.abs()
     }
 
@@ -127,7 +134,12 @@ impl RoughDielectric {
             (reflect_about(wo, m), self.specular_reflectance, fr.f, 1.0)
         } else {
             let scale = if self.adjoint { 1.0 } else { fr.eta_ti * fr.eta_ti };
-            (refract_about(wo, m, fr.cos_theta_t, fr.eta_ti), self.specular_transmittance * scale, 1.0 - fr.f, fr.eta_it)
+            (
+                refract_about(wo, m, fr.cos_theta_t, fr.eta_ti),
+                self.specular_transmittance * scale,
+                1.0 - fr.f,
+                fr.eta_it,
+            )
         };
         // A scattered direction on the wrong side of the macrosurface (G1 = 0) ends the path, as in
         // Mitsuba where it carries zero weight.

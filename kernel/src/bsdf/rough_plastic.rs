@@ -142,7 +142,8 @@ pub fn precompute(m: &mut Material) -> std::vec::Vec<f32> {
     }
     // Mitsuba's estimate of 2∫R(μ)μ dμ: twice the mean over the same equispaced cosines.
     m.params[PARAM_INTERNAL_REFLECTANCE] = (2.0 * internal / TRANSMITTANCE_RES as f64) as f32;
-    m.params[PARAM_SPECULAR_WEIGHT] = super::plastic::specular_sampling_weight(m.reflectance, m.specular_reflectance);
+    m.params[PARAM_SPECULAR_WEIGHT] =
+        super::plastic::specular_sampling_weight(m.reflectance, m.specular_reflectance);
     table
 }
 

@@ -24,7 +24,12 @@ impl ThinDielectric {
     /// Reads `eta` and `specular_transmittance`; `specular` is the evaluated `specular_reflectance`.
     pub fn from_material(m: &Material, _reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
         let t = vec3([m.specular_transmittance[0], m.specular_transmittance[1], m.specular_transmittance[2]]);
-        ThinDielectric { eta: m.eta, specular_reflectance: specular, specular_transmittance: t, adjoint: false }
+        ThinDielectric {
+            eta: m.eta,
+            specular_reflectance: specular,
+            specular_transmittance: t,
+            adjoint: false,
+        }
     }
 
     /// Total reflectance of the slab: `R + T R T + T R³ T + … = 2R / (1 + R)` for one interface's `R`.

@@ -1,7 +1,9 @@
 //! Direct illumination (Mitsuba's `direct`): emission seen by the camera plus light arriving at the
 //! first surface straight from an emitter, estimated with `emitter_samples` light samples and
 //! `bsdf_samples` BSDF samples per pixel sample, combined by the power heuristic.
-use super::nee::{area_emission, environment, first_hit_past_emitters, next_event, PreviousVertex, StrategyCounts};
+use super::nee::{
+    area_emission, environment, first_hit_past_emitters, next_event, PreviousVertex, StrategyCounts,
+};
 use super::path::DIM_FIRST_BOUNCE;
 use super::shading_frame;
 use crate::bsdf::Bsdf;
@@ -20,7 +22,11 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     sampler.set_dimension(DIM_FIRST_BOUNCE);
 
     let hidden = params.hide_emitters != 0;
-    let found = if hidden { first_hit_past_emitters(scene, &accel, &camera_ray) } else { accel.trace(&camera_ray, false, NONE) };
+    let found = if hidden {
+        first_hit_past_emitters(scene, &accel, &camera_ray)
+    } else {
+        accel.trace(&camera_ray, false, NONE)
+    };
     let hit = match found {
         Some(h) => h,
         None if hidden => return Rgb::ZERO,
@@ -42,7 +48,9 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         while i < params.emitter_samples {
             let u_select = sampler.next_1d();
             let u_light = sampler.next_2d();
-            result += next_event(scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, counts) / counts.light;
+            result +=
+                next_event(scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, counts)
+                    / counts.light;
             i += 1;
         }
     }
@@ -66,7 +74,14 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
                 if lit.light == NONE {
                     continue;
                 }
-                area_emission(scene, &lit, &surface_point(&lit, scene.attributes, &h, &ray), wi, &from, counts)
+                area_emission(
+                    scene,
+                    &lit,
+                    &surface_point(&lit, scene.attributes, &h, &ray),
+                    wi,
+                    &from,
+                    counts,
+                )
             }
         };
         result += bs.weight * le / counts.bsdf;

@@ -7,11 +7,11 @@ use crate::features;
 use crate::film;
 use crate::frame::Frame;
 use crate::glam::Vec3;
-use crate::shape::SurfacePoint;
 use crate::math::is_finite3;
 use crate::rng::Sampler;
-use crate::scene::{FrameParams, INTEGRATOR_DIRECT};
 pub use crate::scene::SceneView;
+use crate::scene::{FrameParams, INTEGRATOR_DIRECT};
+use crate::shape::SurfacePoint;
 use crate::spectrum::Rgb;
 
 /// Floats per pixel in the accumulation buffer: RGB sum, sample count, RGB sum of squares, spare.
@@ -39,7 +39,13 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
         let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
         let u_lens = sampler.next_2d();
         let ray = params.camera.generate_ray(film_pos, u_lens);
-        let l = if params.integrator == INTEGRATOR_DIRECT && features::has(scene.features, features::DIRECT_INTEGRATOR) { direct::li(scene, params, ray, &mut sampler) } else { path::li(scene, params, ray, &mut sampler) };
+        let l = if params.integrator == INTEGRATOR_DIRECT
+            && features::has(scene.features, features::DIRECT_INTEGRATOR)
+        {
+            direct::li(scene, params, ray, &mut sampler)
+        } else {
+            path::li(scene, params, ray, &mut sampler)
+        };
         if is_finite3(l) {
             sums.sum += l;
             sums.sum_sq += l * l;

@@ -49,7 +49,19 @@ impl PreviousVertex {
 /// One light sample at a surface point, weighted against BSDF sampling (delta emitters, which BSDF
 /// sampling cannot hit, take the full weight). Not divided by `counts.light`.
 #[allow(clippy::too_many_arguments)]
-pub fn next_event(scene: &SceneView, params: &FrameParams, accel: &Accel, bsdf: &Bsdf, frame: &Frame, sp: &SurfacePoint, ng: Vec3, wo: Vec3, u_select: f32, u_light: Vec2, counts: StrategyCounts) -> Rgb {
+pub fn next_event(
+    scene: &SceneView,
+    params: &FrameParams,
+    accel: &Accel,
+    bsdf: &Bsdf,
+    frame: &Frame,
+    sp: &SurfacePoint,
+    ng: Vec3,
+    wo: Vec3,
+    u_select: f32,
+    u_light: Vec2,
+    counts: StrategyCounts,
+) -> Rgb {
     let ls = light::sample(scene, params, sp.p, u_select, u_light);
     if ls.pdf <= 0.0 || max_component(ls.radiance) <= 0.0 {
         return Rgb::ZERO;
@@ -59,31 +71,61 @@ pub fn next_event(scene: &SceneView, params: &FrameParams, accel: &Accel, bsdf: 
     if max_component(f) <= 0.0 {
         return Rgb::ZERO;
     }
-    let shadow = Ray { origin: offset_origin(sp, ng, ls.wi), dir: ls.wi, t_min: 0.0, t_max: ls.dist * (1.0 - SHADOW_EPSILON) };
+    let shadow = Ray {
+        origin: offset_origin(sp, ng, ls.wi),
+        dir: ls.wi,
+        t_min: 0.0,
+        t_max: ls.dist * (1.0 - SHADOW_EPSILON),
+    };
     if accel.occluded(&shadow, ls.prim) {
         return Rgb::ZERO;
     }
-    let weight = if ls.delta { 1.0 } else { power_heuristic(counts.light * ls.pdf, counts.bsdf * bsdf.pdf(wo, wi)) };
+    let weight =
+        if ls.delta { 1.0 } else { power_heuristic(counts.light * ls.pdf, counts.bsdf * bsdf.pdf(wo, wi)) };
     f * ls.radiance * (weight / ls.pdf)
 }
 
 /// Radiance of the area emitter on `prim` seen along `dir` at `sp`, weighted against light sampling
 /// from `prev`.
-pub fn area_emission(scene: &SceneView, prim: &Primitive, sp: &SurfacePoint, dir: Vec3, prev: &PreviousVertex, counts: StrategyCounts) -> Rgb {
+pub fn area_emission(
+    scene: &SceneView,
+    prim: &Primitive,
+    sp: &SurfacePoint,
+    dir: Vec3,
+    prev: &PreviousVertex,
+    counts: StrategyCounts,
+) -> Rgb {
     let emitter = scene.lights[prim.light as usize];
     let le = light::emitted(&emitter, sp.ns, -dir);
-    let weight = if prev.delta { 1.0 } else { power_heuristic(counts.bsdf * prev.pdf, counts.light * light::pdf(&emitter, prim, prev.p, sp.p, sp.ng)) };
+    let weight = if prev.delta {
+        1.0
+    } else {
+        power_heuristic(
+            counts.bsdf * prev.pdf,
+            counts.light * light::pdf(&emitter, prim, prev.p, sp.p, sp.ng),
+        )
+    };
     le * weight
 }
 
 /// Radiance of the environment emitter (if any) along an escaping ray, weighted likewise.
-pub fn environment(scene: &SceneView, params: &FrameParams, dir: Vec3, prev: &PreviousVertex, counts: StrategyCounts) -> Rgb {
+pub fn environment(
+    scene: &SceneView,
+    params: &FrameParams,
+    dir: Vec3,
+    prev: &PreviousVertex,
+    counts: StrategyCounts,
+) -> Rgb {
     if params.env_light == NONE {
         return Rgb::ZERO;
     }
     let env = scene.lights[params.env_light as usize];
     let le = infinite::eval(&env, scene, dir);
-    let weight = if prev.delta { 1.0 } else { power_heuristic(counts.bsdf * prev.pdf, counts.light * infinite::pdf(&env, scene, dir) * env.pmf) };
+    let weight = if prev.delta {
+        1.0
+    } else {
+        power_heuristic(counts.bsdf * prev.pdf, counts.light * infinite::pdf(&env, scene, dir) * env.pmf)
+    };
     le * weight
 }
 

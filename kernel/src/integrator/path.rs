@@ -1,7 +1,9 @@
 //! Unidirectional path tracing with next-event estimation, combined with BSDF sampling by the power
 //! heuristic; Mitsuba's `path` semantics for `max_depth`, `rr_depth` and `hide_emitters`.
+use super::nee::{
+    area_emission, environment, first_hit_past_emitters, next_event, PreviousVertex, StrategyCounts,
+};
 use super::shading_frame;
-use super::nee::{area_emission, environment, first_hit_past_emitters, next_event, PreviousVertex, StrategyCounts};
 use crate::bsdf::Bsdf;
 use crate::bvh::Accel;
 use crate::camera::Ray;
@@ -31,7 +33,11 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     loop {
         sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
         let visible_emitter = !(depth == 0 && params.hide_emitters != 0);
-        let found = if visible_emitter { accel.trace(&ray, false, NONE) } else { first_hit_past_emitters(scene, &accel, &ray) };
+        let found = if visible_emitter {
+            accel.trace(&ray, false, NONE)
+        } else {
+            first_hit_past_emitters(scene, &accel, &ray)
+        };
         let hit = match found {
             Some(h) => h,
             None => {
@@ -59,7 +65,8 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         let u_select = sampler.next_1d();
         let u_light = sampler.next_2d();
         if bsdf.has_smooth_component() {
-            result += throughput * next_event(scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, ONE_EACH);
+            result += throughput
+                * next_event(scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, ONE_EACH);
         }
 
         // BSDF sampling.
@@ -92,4 +99,3 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     }
     result
 }
-

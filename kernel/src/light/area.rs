@@ -26,7 +26,11 @@ fn normal_and_area(prim: &Primitive) -> (Vec3, f32) {
 
 pub fn sample(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample {
     let (p0, p1, p2) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
-    let q = if prim.kind == PRIM_DISK { disk::sample_point(p0, p1, p2, u) } else { triangle::sample_point(p0, p1, p2, u) };
+    let q = if prim.kind == PRIM_DISK {
+        disk::sample_point(p0, p1, p2, u)
+    } else {
+        triangle::sample_point(p0, p1, p2, u)
+    };
     let (n, area) = normal_and_area(prim);
     from_area_sample(light, p, q, n, area)
 }

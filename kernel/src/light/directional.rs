@@ -6,5 +6,12 @@ use crate::scene::{Light, NONE};
 pub fn sample(light: &Light, p: Vec3) -> LightSample {
     // Local +z is the direction the light travels.
     let wi = -to_world(light, Vec3::Z).normalize();
-    LightSample { wi, dist: beyond_scene(light, p), radiance: radiance(light), pdf: 1.0, delta: true, prim: NONE }
+    LightSample {
+        wi,
+        dist: beyond_scene(light, p),
+        radiance: radiance(light),
+        pdf: 1.0,
+        delta: true,
+        prim: NONE,
+    }
 }

@@ -5,11 +5,11 @@
 use spirv_std::num_traits::Float;
 
 use super::{beyond_scene, radiance, to_local, to_world, LightSample};
+use crate::features;
 use crate::glam::{Vec2, Vec3};
 use crate::math::{INV_2PI, INV_4PI, INV_PI, PI};
 use crate::sampling::{sample_cdf, square_to_uniform_sphere};
-use crate::features;
-use crate::scene::{NONE, Light, SceneView, Texture, LIGHT_ENVMAP};
+use crate::scene::{Light, SceneView, Texture, LIGHT_ENVMAP, NONE};
 use crate::spectrum::Rgb;
 use crate::texture::texel;
 
@@ -37,7 +37,8 @@ fn envmap_pdf(light: &Light, scene: &SceneView, dir: Vec3) -> f32 {
     let local = to_local(light, dir);
     let sin_theta = (local.x * local.x + local.z * local.z).sqrt();
     let (col, row) = envmap_cell(&t, direction_to_uv(local));
-    let pdf = cell_pmf(&t, scene.tables, light.table, col, row) * cell_count(&t) / (2.0 * PI * PI * sin_theta.max(1e-20));
+    let pdf = cell_pmf(&t, scene.tables, light.table, col, row) * cell_count(&t)
+        / (2.0 * PI * PI * sin_theta.max(1e-20));
     if sin_theta > 0.0 {
         pdf
     } else {
@@ -47,7 +48,14 @@ fn envmap_pdf(light: &Light, scene: &SceneView, dir: Vec3) -> f32 {
 
 pub fn sample_constant(light: &Light, p: Vec3, u: Vec2) -> LightSample {
     let wi = square_to_uniform_sphere(u);
-    LightSample { wi, dist: beyond_scene(light, p), radiance: radiance(light), pdf: INV_4PI, delta: false, prim: NONE }
+    LightSample {
+        wi,
+        dist: beyond_scene(light, p),
+        radiance: radiance(light),
+        pdf: INV_4PI,
+        delta: false,
+        prim: NONE,
+    }
 }
 
 pub fn sample_envmap(light: &Light, scene: &SceneView, p: Vec3, u: Vec2) -> LightSample {
@@ -56,7 +64,10 @@ pub fn sample_envmap(light: &Light, scene: &SceneView, p: Vec3, u: Vec2) -> Ligh
     let row = sample_cdf(scene.tables, light.table, rows, u.y);
     let col = sample_cdf(scene.tables, conditional_offset(&t, light.table, row.index), cols, u.x);
     // Cell (c, r) spans u from texel centre c to c + 1 and v from texel row r to r + 1.
-    let uv = Vec2::new((col.index as f32 + 0.5 + col.remapped) / cols as f32, (row.index as f32 + row.remapped) / rows as f32);
+    let uv = Vec2::new(
+        (col.index as f32 + 0.5 + col.remapped) / cols as f32,
+        (row.index as f32 + row.remapped) / rows as f32,
+    );
     let theta = uv.y * PI;
     let phi = uv.x * 2.0 * PI;
     let sin_theta = theta.sin();
@@ -64,7 +75,8 @@ pub fn sample_envmap(light: &Light, scene: &SceneView, p: Vec3, u: Vec2) -> Ligh
         return LightSample::none();
     }
     let local = Vec3::new(phi.sin() * sin_theta, theta.cos(), -phi.cos() * sin_theta);
-    let pdf = cell_pmf(&t, scene.tables, light.table, col.index, row.index) * cell_count(&t) / (2.0 * PI * PI * sin_theta);
+    let pdf = cell_pmf(&t, scene.tables, light.table, col.index, row.index) * cell_count(&t)
+        / (2.0 * PI * PI * sin_theta);
     if pdf <= 0.0 {
         return LightSample::none();
     }

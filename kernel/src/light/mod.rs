@@ -9,11 +9,14 @@ pub mod infinite;
 pub mod point;
 pub mod sphere;
 
+use crate::features;
 use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
 use crate::sampling::sample_cdf;
-use crate::features;
-use crate::scene::{FrameParams, Light, Primitive, SceneView, NONE, LIGHT_CONSTANT, LIGHT_DIRECTIONAL, LIGHT_ENVMAP, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, LIGHT_AREA};
+use crate::scene::{
+    FrameParams, Light, Primitive, SceneView, LIGHT_AREA, LIGHT_CONSTANT, LIGHT_DIRECTIONAL, LIGHT_ENVMAP,
+    LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, NONE,
+};
 use crate::spectrum::Rgb;
 
 /// A direction towards a point on an emitter, with what arrives along it.
@@ -134,12 +137,48 @@ pub fn sample(scene: &SceneView, params: &FrameParams, p: Vec3, u_select: f32, u
     // Feature tests inside the arms, not as guards: measured faster here (BENCHMARKS.md).
     let uses = |kind: u32| features::has(scene.features, features::light(kind));
     let mut s = match light.kind {
-        LIGHT_AREA => if uses(LIGHT_AREA) { area::sample(&light, &scene.prims[light.prim as usize], p, u) } else { LightSample::none() },
-        LIGHT_SPHERE => if uses(LIGHT_SPHERE) { sphere::sample(&light, &scene.prims[light.prim as usize], p, u) } else { LightSample::none() },
-        LIGHT_POINT | LIGHT_SPOT => if uses(LIGHT_POINT) || uses(LIGHT_SPOT) { point::sample(&light, p) } else { LightSample::none() },
-        LIGHT_DIRECTIONAL => if uses(LIGHT_DIRECTIONAL) { directional::sample(&light, p) } else { LightSample::none() },
-        LIGHT_CONSTANT => if uses(LIGHT_CONSTANT) { infinite::sample_constant(&light, p, u) } else { LightSample::none() },
-        LIGHT_ENVMAP => if uses(LIGHT_ENVMAP) { infinite::sample_envmap(&light, scene, p, u) } else { LightSample::none() },
+        LIGHT_AREA => {
+            if uses(LIGHT_AREA) {
+                area::sample(&light, &scene.prims[light.prim as usize], p, u)
+            } else {
+                LightSample::none()
+            }
+        }
+        LIGHT_SPHERE => {
+            if uses(LIGHT_SPHERE) {
+                sphere::sample(&light, &scene.prims[light.prim as usize], p, u)
+            } else {
+                LightSample::none()
+            }
+        }
+        LIGHT_POINT | LIGHT_SPOT => {
+            if uses(LIGHT_POINT) || uses(LIGHT_SPOT) {
+                point::sample(&light, p)
+            } else {
+                LightSample::none()
+            }
+        }
+        LIGHT_DIRECTIONAL => {
+            if uses(LIGHT_DIRECTIONAL) {
+                directional::sample(&light, p)
+            } else {
+                LightSample::none()
+            }
+        }
+        LIGHT_CONSTANT => {
+            if uses(LIGHT_CONSTANT) {
+                infinite::sample_constant(&light, p, u)
+            } else {
+                LightSample::none()
+            }
+        }
+        LIGHT_ENVMAP => {
+            if uses(LIGHT_ENVMAP) {
+                infinite::sample_envmap(&light, scene, p, u)
+            } else {
+                LightSample::none()
+            }
+        }
         _ => LightSample::none(),
     };
     s.pdf *= light.pmf;

@@ -7,11 +7,13 @@ use spirv_std::num_traits::Float;
 
 use super::{area_sample_pdf, from_area_sample, LightSample};
 use crate::frame::Frame;
+use crate::glam::{Vec2, Vec3};
 use crate::math::{safe_sqrt, vec3, PI};
-use crate::sampling::{one_minus_cos_from_sin2, square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf};
+use crate::sampling::{
+    one_minus_cos_from_sin2, square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf,
+};
 use crate::scene::{Light, Primitive, PRIM_FLAG_FLIP};
 use crate::spectrum::Rgb;
-use crate::glam::{Vec2, Vec3};
 
 #[inline]
 fn orientation(prim: &Primitive) -> f32 {
@@ -46,7 +48,14 @@ pub fn sample(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample 
     // emits towards `p` unless its normals are flipped. (Deciding this from the sampled point's normal
     // fails for tiny spheres far away, where that point carries more error than the radius.)
     let radiance = if orientation(prim) > 0.0 { super::radiance(light) } else { Rgb::ZERO };
-    LightSample { wi, dist, radiance, pdf: uniform_cone_pdf(one_minus_cos_max), delta: false, prim: light.prim }
+    LightSample {
+        wi,
+        dist,
+        radiance,
+        pdf: uniform_cone_pdf(one_minus_cos_max),
+        delta: false,
+        prim: light.prim,
+    }
 }
 
 fn sample_from_inside(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample {

@@ -4,9 +4,9 @@ pub mod sphere;
 pub mod triangle;
 
 use crate::camera::Ray;
+use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
 use crate::scene::{Primitive, TriangleAttributes, PRIM_DISK, PRIM_FLAG_FLIP, PRIM_FLAG_SMOOTH, PRIM_SPHERE};
-use crate::glam::{Vec2, Vec3};
 
 /// The nearest hit found so far: distance, primitive and its parametric coordinates
 /// (barycentrics b1, b2 for triangles; unused for spheres).
@@ -45,7 +45,12 @@ pub struct SurfacePoint {
 }
 
 /// Reconstructs the surface point of a hit.
-pub fn surface_point(prim: &Primitive, attributes: &[TriangleAttributes], hit: &Hit, ray: &Ray) -> SurfacePoint {
+pub fn surface_point(
+    prim: &Primitive,
+    attributes: &[TriangleAttributes],
+    hit: &Hit,
+    ray: &Ray,
+) -> SurfacePoint {
     let flip = if prim.flags & PRIM_FLAG_FLIP != 0 { -1.0 } else { 1.0 };
     if prim.kind == PRIM_SPHERE {
         let centre = vec3(prim.p0);
@@ -59,7 +64,13 @@ pub fn surface_point(prim: &Primitive, attributes: &[TriangleAttributes], hit: &
         let (c, u, v) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
         let n = u.cross(v).normalize() * flip;
         let error_scale = c.abs().max_element().max(u.abs().max_element()).max(v.abs().max_element());
-        return SurfacePoint { p: disk::point(c, u, v, hit.uv), ng: n, ns: n, error_scale, uv: disk::uv(hit.uv) };
+        return SurfacePoint {
+            p: disk::point(c, u, v, hit.uv),
+            ng: n,
+            ns: n,
+            error_scale,
+            uv: disk::uv(hit.uv),
+        };
     }
     let (p0, p1, p2) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
     let b0 = 1.0 - hit.uv.x - hit.uv.y;

@@ -3,8 +3,8 @@
 use spirv_std::num_traits::Float;
 
 use crate::camera::Ray;
-use crate::math::sign;
 use crate::glam::{Vec2, Vec3};
+use crate::math::sign;
 
 /// Ray/sphere intersection in the form of "Precision Improvements for Ray/Sphere Intersection"
 /// (Haines et al., Ray Tracing Gems ch. 7): the discriminant is computed from the distance of the

@@ -1,7 +1,7 @@
 //! Triangles: watertight intersection and uniform area sampling.
 use crate::camera::Ray;
-use crate::sampling::square_to_uniform_triangle;
 use crate::glam::{Vec2, Vec3};
+use crate::sampling::square_to_uniform_triangle;
 
 #[inline]
 fn component(v: Vec3, axis: u32) -> f32 {

@@ -24,7 +24,17 @@ fn bin_of(d: Vec3) -> usize {
 /// One adaptive Simpson step on [a, b] given f at a, the midpoint and b and the whole-interval estimate:
 /// splits until the halves agree with the whole to `15·eps` or `depth` runs out (Richardson-corrected).
 #[allow(clippy::too_many_arguments)]
-fn simpson_refine(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fm: f64, fb: f64, whole: f64, eps: f64, depth: u32) -> f64 {
+fn simpson_refine(
+    f: &mut dyn FnMut(f64) -> f64,
+    a: f64,
+    b: f64,
+    fa: f64,
+    fm: f64,
+    fb: f64,
+    whole: f64,
+    eps: f64,
+    depth: u32,
+) -> f64 {
     let m = 0.5 * (a + b);
     let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
     let (flm, frm) = (f(lm), f(rm));
@@ -33,7 +43,8 @@ fn simpson_refine(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, fa: f64, fm: f6
     if depth == 0 || (left + right - whole).abs() <= 15.0 * eps {
         return left + right + (left + right - whole) / 15.0;
     }
-    simpson_refine(f, a, m, fa, flm, fm, left, eps * 0.5, depth - 1) + simpson_refine(f, m, b, fm, frm, fb, right, eps * 0.5, depth - 1)
+    simpson_refine(f, a, m, fa, flm, fm, left, eps * 0.5, depth - 1)
+        + simpson_refine(f, m, b, fm, frm, fb, right, eps * 0.5, depth - 1)
 }
 
 /// Adaptive Simpson quadrature of `f` over [a, b] (absolute tolerance `eps`, bounded depth).
@@ -54,7 +65,8 @@ fn expected(pdf: &dyn Fn(Vec3) -> f64) -> Vec<f64> {
             let (z0, p0) = (-1.0 + i as f64 * d_cos, j as f64 * d_phi);
             let mut over_z = |z: f64| {
                 let r = (1.0 - z * z).max(0.0).sqrt();
-                let mut over_phi = |phi: f64| pdf(Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32));
+                let mut over_phi =
+                    |phi: f64| pdf(Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32));
                 adaptive_simpson(&mut over_phi, p0, p0 + d_phi, 1e-7)
             };
             e[i * PHI_BINS + j] = adaptive_simpson(&mut over_z, z0, z0 + d_cos, 1e-6);
@@ -65,7 +77,11 @@ fn expected(pdf: &dyn Fn(Vec3) -> f64) -> Vec<f64> {
 
 /// Runs the test. `sample` maps (u_lobe, u) to a direction or `None` (a rejected sample, expected
 /// with the probability mass the pdf misses). Returns the p-value.
-pub fn chi2_directions(name: &str, mut sample: impl FnMut(f32, Vec2) -> Option<Vec3>, pdf: impl Fn(Vec3) -> f64) -> f64 {
+pub fn chi2_directions(
+    name: &str,
+    mut sample: impl FnMut(f32, Vec2) -> Option<Vec3>,
+    pdf: impl Fn(Vec3) -> f64,
+) -> f64 {
     let mut observed = vec![0.0f64; THETA_BINS * PHI_BINS + 1];
     let mut rng = Sampler::new(0x5eed, name.len() as u32, 0);
     for _ in 0..SAMPLES {
@@ -148,13 +164,27 @@ impl Grid {
     /// Bins around `axis` with `1 - cos α = 2 (k/K)^power`: `power` > 1 crowds them near the axis.
     pub fn around(axis: Vec3, power: f64) -> Grid {
         let omc_edges = (0..=THETA_BINS).map(|k| 2.0 * (k as f64 / THETA_BINS as f64).powf(power)).collect();
-        Grid { frame: caustic_kernel::frame::Frame::from_normal(axis.normalize()), omc_edges, phi_bins: PHI_BINS, min_depth: 3, mass_tolerance: 1e-3, conditional: false }
+        Grid {
+            frame: caustic_kernel::frame::Frame::from_normal(axis.normalize()),
+            omc_edges,
+            phi_bins: PHI_BINS,
+            min_depth: 3,
+            mass_tolerance: 1e-3,
+            conditional: false,
+        }
     }
 
     /// A coarser grid (12 × 24 bins), for plain integration.
     pub fn coarse(axis: Vec3) -> Grid {
         let omc_edges = (0..=12).map(|k| 2.0 * k as f64 / 12.0).collect();
-        Grid { frame: caustic_kernel::frame::Frame::from_normal(axis.normalize()), omc_edges, phi_bins: 24, min_depth: 2, mass_tolerance: 1e-3, conditional: false }
+        Grid {
+            frame: caustic_kernel::frame::Frame::from_normal(axis.normalize()),
+            omc_edges,
+            phi_bins: 24,
+            min_depth: 2,
+            mass_tolerance: 1e-3,
+            conditional: false,
+        }
     }
 
     fn bins(&self) -> usize {
@@ -178,13 +208,35 @@ impl Grid {
 /// Adaptive Simpson quadrature over `2^min_depth` equal pieces (so that a feature narrower than the
 /// interval is not missed by the first nodes), to a relative tolerance `rel` of a first composite
 /// estimate, or the absolute floor `abs`.
-fn simpson_min_depth(f: &mut dyn FnMut(f64) -> f64, a: f64, b: f64, rel: f64, abs: f64, min_depth: u32) -> f64 {
+fn simpson_min_depth(
+    f: &mut dyn FnMut(f64) -> f64,
+    a: f64,
+    b: f64,
+    rel: f64,
+    abs: f64,
+    min_depth: u32,
+) -> f64 {
     let n = 1usize << min_depth;
     let h = (b - a) / n as f64;
     let nodes: Vec<f64> = (0..=2 * n).map(|k| f(a + 0.5 * h * k as f64)).collect();
-    let pieces: Vec<f64> = (0..n).map(|k| h / 6.0 * (nodes[2 * k] + 4.0 * nodes[2 * k + 1] + nodes[2 * k + 2])).collect();
+    let pieces: Vec<f64> =
+        (0..n).map(|k| h / 6.0 * (nodes[2 * k] + 4.0 * nodes[2 * k + 1] + nodes[2 * k + 2])).collect();
     let eps = (rel * pieces.iter().sum::<f64>().abs()).max(abs) / n as f64;
-    (0..n).map(|k| simpson_refine(f, a + h * k as f64, a + h * (k + 1) as f64, nodes[2 * k], nodes[2 * k + 1], nodes[2 * k + 2], pieces[k], eps, 12)).sum()
+    (0..n)
+        .map(|k| {
+            simpson_refine(
+                f,
+                a + h * k as f64,
+                a + h * (k + 1) as f64,
+                nodes[2 * k],
+                nodes[2 * k + 1],
+                nodes[2 * k + 2],
+                pieces[k],
+                eps,
+                12,
+            )
+        })
+        .sum()
 }
 
 /// Integral of `f` over each bin of `grid` (nested adaptive quadrature in 1 - cos α and φ).
@@ -204,7 +256,8 @@ pub fn integrate_grid(grid: &Grid, f: &dyn Fn(Vec3) -> f64) -> Vec<f64> {
                 };
                 simpson_min_depth(&mut over_phi, p0, p0 + d_phi, 1e-4, 1e-12, grid.min_depth)
             };
-            out[t * grid.phi_bins + j] = simpson_min_depth(&mut over_omc, o0, o1, 1e-4, 1e-10, grid.min_depth);
+            out[t * grid.phi_bins + j] =
+                simpson_min_depth(&mut over_omc, o0, o1, 1e-4, 1e-10, grid.min_depth);
         }
     }
     out
@@ -212,7 +265,13 @@ pub fn integrate_grid(grid: &Grid, f: &dyn Fn(Vec3) -> f64) -> Vec<f64> {
 
 /// χ² test of `sample` against `pdf` on `grid` (see `chi2_directions`); `seed` varies the samples.
 /// Returns the p-value.
-pub fn chi2_grid(name: &str, grid: &Grid, seed: u32, mut sample: impl FnMut(f32, Vec2) -> Option<Vec3>, pdf: impl Fn(Vec3) -> f64) -> f64 {
+pub fn chi2_grid(
+    name: &str,
+    grid: &Grid,
+    seed: u32,
+    mut sample: impl FnMut(f32, Vec2) -> Option<Vec3>,
+    pdf: impl Fn(Vec3) -> f64,
+) -> f64 {
     let n = grid.bins();
     let mut observed = vec![0.0f64; n + 1];
     let mut rng = Sampler::new(0xc41, seed, name.len() as u32);
@@ -253,6 +312,10 @@ pub fn chi2_grid(name: &str, grid: &Grid, seed: u32, mut sample: impl FnMut(f32,
             }
         }
     }
-    assert!(p > ALPHA, "{name}: samples do not follow the pdf (p = {p:.2e}, pdf mass {mass:.5}, rejected {})", observed[n]);
+    assert!(
+        p > ALPHA,
+        "{name}: samples do not follow the pdf (p = {p:.2e}, pdf mass {mass:.5}, rejected {})",
+        observed[n]
+    );
     p
 }
