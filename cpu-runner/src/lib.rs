@@ -1,6 +1,6 @@
 //! The CPU backend: the kernel's per-pixel function, called natively on every core.
 use caustic_kernel::integrator::{accumulate, render_pixel, SceneView, ACCUM_STRIDE};
-use caustic_kernel::scene::FrameParams;
+use caustic_kernel::layout::FrameParams;
 use rayon::prelude::*;
 
 /// Adds `params.sample_count` samples to every pixel of `accum` (`ACCUM_STRIDE` floats per pixel),

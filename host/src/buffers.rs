@@ -6,7 +6,7 @@ use anyhow::{bail, Result};
 use caustic_kernel::bvh::STACK_SIZE;
 use caustic_kernel::camera::{Camera, CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, CAMERA_THIN_LENS};
 use caustic_kernel::features;
-use caustic_kernel::scene::*;
+use caustic_kernel::layout::*;
 use caustic_kernel::spectrum::luminance;
 use glam::{Mat3, Vec2, Vec3, Vec3A};
 use obvhs::aabb::Aabb;

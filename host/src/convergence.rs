@@ -8,7 +8,7 @@ use crate::compare::compare;
 use crate::film::Film;
 use crate::render::render_with_checkpoints;
 use anyhow::{bail, Context, Result};
-use caustic_kernel::scene::SAMPLER_INDEPENDENT;
+use caustic_kernel::layout::SAMPLER_INDEPENDENT;
 use std::path::Path;
 
 /// One point of the curve.

@@ -1,4 +1,5 @@
-//! The developed image: per-pixel mean and the variance of that mean, and image files.
+//! The developed image: per-pixel mean and the variance of that mean, and image files. (The kernel's
+//! `film` module is the other end: where each camera sample lands on the sensor.)
 use anyhow::{bail, Context, Result};
 use caustic_kernel::integrator::ACCUM_STRIDE;
 use std::path::Path;

@@ -3,7 +3,7 @@
 use crate::mesh;
 use crate::scene::{look_at, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape};
 use anyhow::Result;
-use caustic_kernel::scene::{Material, BSDF_DIFFUSE, BSDF_PHONG};
+use caustic_kernel::layout::{Material, BSDF_DIFFUSE, BSDF_PHONG};
 use glam::Vec3;
 use std::path::Path;
 

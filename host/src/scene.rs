@@ -1,6 +1,6 @@
 //! A renderer-neutral description of a scene, produced by the loaders (Mitsuba XML, OBJ) and turned
 //! into kernel buffers by `buffers`.
-use caustic_kernel::scene::{Material, Texture};
+use caustic_kernel::layout::{Material, Texture};
 use glam::{Mat3, Mat4, Vec2, Vec3};
 
 /// Reconstruction filter of the film (Mitsuba's `rfilter`).

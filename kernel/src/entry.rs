@@ -1,7 +1,7 @@
 //! GPU compute entry points (SPIR-V only). They do nothing but fetch the buffers and call the same
 //! functions the CPU runner calls.
 use crate::integrator::{accumulate, render_pixel, SceneView};
-use crate::scene::{BvhNode, FrameParams, Light, Material, Primitive, Texture, TriangleAttributes};
+use crate::layout::{BvhNode, FrameParams, Light, Material, Primitive, Texture, TriangleAttributes};
 use spirv_std::glam::UVec3;
 use spirv_std::spirv;
 

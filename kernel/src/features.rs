@@ -4,7 +4,7 @@
 //! (fewer registers, higher occupancy) and a scene pays nothing for features it does not use. On the
 //! CPU it is an ordinary value: the same branches are taken, so both backends still run one kernel.
 //! A cleared bit only ever removes a path the scene cannot reach.
-use crate::scene::{BSDF_FUZZY_METAL, LIGHT_ENVMAP};
+use crate::layout::{BSDF_FUZZY_METAL, LIGHT_ENVMAP};
 
 /// Every path compiled in: the specialization constant's default.
 pub const ALL: u32 = u32::MAX;

@@ -1,4 +1,5 @@
-//! Film sampling: where in the image a camera sample lands.
+//! Film sampling: where in the image a camera sample lands. (The host's `film` module is the other
+//! end: it develops the accumulated sums into an image and writes files.)
 //!
 //! Reconstruction filters are applied by filter importance sampling: each sample's offset from the
 //! pixel centre is drawn from the (separable) filter itself, so every sample has weight 1 and no
@@ -12,7 +13,7 @@ use spirv_std::num_traits::Float;
 use crate::glam::Vec2;
 use crate::rng::Sampler;
 use crate::sampling::sample_cdf;
-use crate::scene::{FrameParams, SAMPLER_STRATIFIED};
+use crate::layout::{FrameParams, SAMPLER_STRATIFIED};
 
 /// The filter's CDF at `x` (piecewise linear between the tabulated bin edges).
 fn filter_cdf_at(tables: &[f32], params: &FrameParams, x: f32) -> f32 {

@@ -6,7 +6,7 @@
 //!
 //! The dialect is the subset rust-gpu 0.11 accepts: no recursion, no trait objects, no slice iterator
 //! adaptors, no `.get()`, no sub-slices, no 64-bit types. Buffer data are `#[repr(C)]` plain structs
-//! (`scene`) shared with the host.
+//! (`layout`) shared with the host.
 #![cfg_attr(target_arch = "spirv", no_std)]
 
 pub mod bsdf;
@@ -20,7 +20,7 @@ pub mod light;
 pub mod math;
 pub mod rng;
 pub mod sampling;
-pub mod scene;
+pub mod layout;
 pub mod shape;
 pub mod spectrum;
 pub mod texture;

@@ -4,7 +4,7 @@ use caustic_kernel::bsdf::Bsdf;
 use caustic_kernel::glam::Vec3;
 use caustic_kernel::rng::Sampler;
 use caustic_kernel::sampling::square_to_uniform_sphere;
-use caustic_kernel::scene::*;
+use caustic_kernel::layout::*;
 
 fn materials() -> Vec<Material> {
     let mut v =

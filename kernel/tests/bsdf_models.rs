@@ -16,7 +16,7 @@ use caustic_kernel::bsdf::BsdfSample;
 use caustic_kernel::glam::{Vec2, Vec3};
 use caustic_kernel::rng::Sampler;
 use caustic_kernel::sampling::square_to_uniform_sphere;
-use caustic_kernel::scene::*;
+use caustic_kernel::layout::*;
 use common::*;
 
 // ---------------------------------------------------------------------------------------------------

@@ -6,7 +6,7 @@ use caustic_kernel::glam::Vec3;
 use caustic_kernel::light;
 use caustic_kernel::rng::Sampler;
 use caustic_kernel::sampling::*;
-use caustic_kernel::scene::*;
+use caustic_kernel::layout::*;
 use common::*;
 
 #[test]

@@ -3,7 +3,7 @@
 //! path tracer's NEE/MIS bookkeeping, Russian roulette (unbiased), and sphere lights seen from inside.
 use caustic::backend::BackendChoice;
 use caustic::scene::*;
-use caustic_kernel::scene::{Material, BSDF_DIFFUSE, BSDF_PHONG};
+use caustic_kernel::layout::{Material, BSDF_DIFFUSE, BSDF_PHONG};
 use caustic_tests::render_scene;
 use glam::Vec3;
 

@@ -2,7 +2,7 @@
 //! automatic camera and sphere light; the result renders to a finite, lit image.
 use caustic::backend::BackendChoice;
 use caustic::scene::Geometry;
-use caustic_kernel::scene::{BSDF_DIFFUSE, BSDF_PHONG};
+use caustic_kernel::layout::{BSDF_DIFFUSE, BSDF_PHONG};
 use caustic_tests::render_scene;
 
 #[test]

@@ -3,7 +3,7 @@ use super::Backend;
 use crate::buffers::SceneBuffers;
 use anyhow::Result;
 use caustic_kernel::integrator::ACCUM_STRIDE;
-use caustic_kernel::scene::FrameParams;
+use caustic_kernel::layout::FrameParams;
 
 pub struct CpuBackend {
     buffers: SceneBuffers,

@@ -7,7 +7,7 @@ use super::Backend;
 use crate::buffers::SceneBuffers;
 use anyhow::{anyhow, bail, Context, Result};
 use caustic_kernel::integrator::ACCUM_STRIDE;
-use caustic_kernel::scene::FrameParams;
+use caustic_kernel::layout::FrameParams;
 use wgpu::util::DeviceExt;
 
 /// The kernel compiled by `shaders-build` (committed; CI checks it matches the source).

@@ -3,7 +3,7 @@ pub mod cpu;
 pub mod gpu;
 
 use anyhow::Result;
-use caustic_kernel::scene::FrameParams;
+use caustic_kernel::layout::FrameParams;
 
 /// A device that can add samples to an accumulation buffer (`ACCUM_STRIDE` floats per pixel).
 pub trait Backend {

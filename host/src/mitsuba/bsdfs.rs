@@ -7,7 +7,7 @@ use super::spectrum::SpectrumUse;
 use super::textures::ColorParam;
 use super::Loader;
 use anyhow::{bail, Result};
-use caustic_kernel::scene::*;
+use caustic_kernel::layout::*;
 
 fn rgba(c: [f32; 3]) -> [f32; 4] {
     [c[0], c[1], c[2], 0.0]

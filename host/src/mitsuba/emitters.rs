@@ -5,7 +5,7 @@ use super::spectrum::SpectrumUse;
 use super::Loader;
 use crate::scene::{Emitter, SceneTexture};
 use anyhow::{bail, Result};
-use caustic_kernel::scene::{Texture, TEXTURE_BITMAP};
+use caustic_kernel::layout::{Texture, TEXTURE_BITMAP};
 use glam::{Mat3, Vec3};
 
 impl Loader {

@@ -18,7 +18,7 @@ mod transform;
 
 use crate::scene::{Integrator, Scene};
 use anyhow::{bail, Context, Result};
-use caustic_kernel::scene::Material;
+use caustic_kernel::layout::Material;
 use props::{Loc, Props};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

@@ -8,7 +8,7 @@ use super::Loader;
 use crate::mesh::{self, primitives, Mesh};
 use crate::scene::{Geometry, Shape};
 use anyhow::{anyhow, bail, Result};
-use caustic_kernel::scene::{Material, BSDF_DIFFUSE};
+use caustic_kernel::layout::{Material, BSDF_DIFFUSE};
 use glam::{Mat3, Mat4, Vec3};
 
 impl Loader {

@@ -5,7 +5,7 @@ use super::spectrum::SpectrumUse;
 use super::Loader;
 use crate::scene::SceneTexture;
 use anyhow::{bail, Result};
-use caustic_kernel::scene::*;
+use caustic_kernel::layout::*;
 use glam::Mat4;
 
 /// A colour parameter: a constant, or a texture (whose mean is kept as the constant for the

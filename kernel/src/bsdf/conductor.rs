@@ -5,7 +5,7 @@ use super::fresnel::{fresnel_conductor_rgb, reflect};
 use super::BsdfSample;
 use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
-use crate::scene::Material;
+use crate::layout::Material;
 use crate::spectrum::Rgb;
 
 #[derive(Clone, Copy)]

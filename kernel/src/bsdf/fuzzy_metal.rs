@@ -17,7 +17,7 @@ use super::fresnel::reflect;
 use super::{same_hemisphere_above, BsdfSample};
 use crate::glam::{Vec2, Vec3};
 use crate::sampling::square_to_uniform_sphere;
-use crate::scene::Material;
+use crate::layout::Material;
 use crate::spectrum::Rgb;
 use core::f32::consts::PI;
 #[cfg(target_arch = "spirv")]

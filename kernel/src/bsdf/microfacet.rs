@@ -10,7 +10,7 @@ use spirv_std::num_traits::Float;
 use crate::glam::{Vec2, Vec3};
 use crate::math::{is_finite, is_finite3, safe_sqrt, PI};
 use crate::sampling::square_to_concentric_disk;
-use crate::scene::{Material, MATERIAL_BECKMANN};
+use crate::layout::{Material, MATERIAL_BECKMANN};
 
 /// Mitsuba clamps roughness to this: at zero the distribution is a Dirac delta that `D` cannot express.
 pub const MIN_ALPHA: f32 = 1e-4;

@@ -16,7 +16,7 @@ pub mod thin_dielectric;
 
 use crate::features;
 use crate::glam::{Vec2, Vec3};
-use crate::scene::*;
+use crate::layout::*;
 use crate::spectrum::Rgb;
 use crate::texture;
 

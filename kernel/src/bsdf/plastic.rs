@@ -7,7 +7,7 @@ use super::BsdfSample;
 use crate::glam::{Vec2, Vec3};
 use crate::math::INV_PI;
 use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use crate::scene::{Material, MATERIAL_NONLINEAR};
+use crate::layout::{Material, MATERIAL_NONLINEAR};
 use crate::spectrum::Rgb;
 
 /// `params` slots filled by `precompute`.

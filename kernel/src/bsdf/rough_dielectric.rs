@@ -10,7 +10,7 @@ use super::microfacet::Microfacet;
 use super::BsdfSample;
 use crate::glam::{Vec2, Vec3};
 use crate::math::{sign, sqr, vec3};
-use crate::scene::Material;
+use crate::layout::Material;
 use crate::spectrum::Rgb;
 
 #[derive(Clone, Copy)]

@@ -10,7 +10,7 @@ use super::BsdfSample;
 use crate::glam::{Vec2, Vec3};
 use crate::math::INV_PI;
 use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use crate::scene::{Material, MATERIAL_BECKMANN, MATERIAL_NONLINEAR};
+use crate::layout::{Material, MATERIAL_BECKMANN, MATERIAL_NONLINEAR};
 use crate::spectrum::Rgb;
 
 /// Entries of the transmittance table, at cos θ = j / (RES - 1) (Mitsuba's `MI_ROUGH_TRANSMITTANCE_RES`).

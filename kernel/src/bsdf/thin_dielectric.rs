@@ -7,7 +7,7 @@ use super::fresnel::{fresnel, reflect};
 use super::BsdfSample;
 use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
-use crate::scene::Material;
+use crate::layout::Material;
 use crate::spectrum::Rgb;
 
 #[derive(Clone, Copy)]

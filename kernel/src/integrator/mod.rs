@@ -9,8 +9,8 @@ use crate::frame::Frame;
 use crate::glam::Vec3;
 use crate::math::is_finite3;
 use crate::rng::Sampler;
-pub use crate::scene::SceneView;
-use crate::scene::{FrameParams, INTEGRATOR_DIRECT};
+pub use crate::layout::SceneView;
+use crate::layout::{FrameParams, INTEGRATOR_DIRECT};
 use crate::shape::SurfacePoint;
 use crate::spectrum::Rgb;
 

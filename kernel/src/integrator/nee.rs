@@ -12,7 +12,7 @@ use crate::glam::{Vec2, Vec3};
 use crate::light::{self, infinite};
 use crate::math::max_component;
 use crate::sampling::power_heuristic;
-use crate::scene::{FrameParams, Primitive, SceneView, NONE};
+use crate::layout::{FrameParams, Primitive, SceneView, NONE};
 use crate::shape::{offset_origin, Hit, SurfacePoint};
 use crate::spectrum::Rgb;
 

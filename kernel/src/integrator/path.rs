@@ -9,7 +9,7 @@ use crate::bvh::Accel;
 use crate::camera::Ray;
 use crate::math::max_component;
 use crate::rng::Sampler;
-use crate::scene::{FrameParams, SceneView, NONE};
+use crate::layout::{FrameParams, SceneView, NONE};
 use crate::shape::{offset_origin, surface_point};
 use crate::spectrum::Rgb;
 

@@ -2,7 +2,7 @@
 use super::{area_sample_pdf, from_area_sample, LightSample};
 use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
-use crate::scene::{Light, Primitive, PRIM_DISK, PRIM_FLAG_FLIP};
+use crate::layout::{Light, Primitive, PRIM_DISK, PRIM_FLAG_FLIP};
 use crate::shape::{disk, triangle};
 
 /// The primitive's unnormalised normal (edge cross product, or `u × v` for a disk) and its area.

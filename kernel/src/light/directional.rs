@@ -1,7 +1,7 @@
 //! Directional light (Mitsuba `directional`): irradiance arriving from one direction everywhere.
 use super::{beyond_scene, radiance, to_world, LightSample};
 use crate::glam::Vec3;
-use crate::scene::{Light, NONE};
+use crate::layout::{Light, NONE};
 
 pub fn sample(light: &Light, p: Vec3) -> LightSample {
     // Local +z is the direction the light travels.

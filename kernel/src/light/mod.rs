@@ -13,7 +13,7 @@ use crate::features;
 use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
 use crate::sampling::sample_cdf;
-use crate::scene::{
+use crate::layout::{
     FrameParams, Light, Primitive, SceneView, LIGHT_AREA, LIGHT_CONSTANT, LIGHT_DIRECTIONAL, LIGHT_ENVMAP,
     LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, NONE,
 };

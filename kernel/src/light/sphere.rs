@@ -12,7 +12,7 @@ use crate::math::{safe_sqrt, vec3, PI};
 use crate::sampling::{
     one_minus_cos_from_sin2, square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf,
 };
-use crate::scene::{Light, Primitive, PRIM_FLAG_FLIP};
+use crate::layout::{Light, Primitive, PRIM_FLAG_FLIP};
 use crate::spectrum::Rgb;
 
 #[inline]

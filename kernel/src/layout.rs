@@ -1,7 +1,9 @@
-//! Plain data shared between the host and the kernel: `#[repr(C)]` structs of 32-bit scalars with
-//! explicit padding, uploaded as storage buffers by the GPU backend and borrowed as slices by the CPU
-//! runner. Polymorphic records are tagged structs (a `kind` word), since rust-gpu lays out data-carrying
-//! enums in buffers differently from Rust.
+//! The one definition of every buffer the host and the kernel share (kajiya's `rust-shaders-shared`):
+//! `#[repr(C)]` structs of 32-bit scalars with explicit padding, uploaded as storage buffers by the GPU
+//! backend and borrowed as slices by the CPU runner. (The host's `scene` module is something else: the
+//! renderer-neutral description the loaders produce, which `host/src/buffers.rs` packs into these.)
+//! Polymorphic records are tagged structs (a `kind` word), since rust-gpu lays out data-carrying enums
+//! in buffers differently from Rust.
 
 /// Marks "none" in index fields.
 pub const NONE: u32 = u32::MAX;
