@@ -5,6 +5,7 @@
 //! is the image an uninterrupted one would have produced.
 use crate::buffers::SceneBuffers;
 use anyhow::{bail, Context, Result};
+use caustic_kernel::layout::PixelAccum;
 use std::hash::{Hash, Hasher};
 use std::path::Path;
 
@@ -18,7 +19,7 @@ pub struct Checkpoint {
     /// Samples per pixel of the whole render, and how many are in `accum`.
     pub spp_total: u32,
     pub spp_done: u32,
-    pub accum: Vec<f32>,
+    pub accum: Vec<PixelAccum>,
 }
 
 /// Identifies what the accumulation buffer belongs to: every buffer the kernel reads (so a changed
@@ -45,13 +46,14 @@ impl Checkpoint {
     /// Writes the checkpoint next to `path` and renames it into place, so that an interruption
     /// while writing leaves the previous checkpoint intact.
     pub fn save(&self, path: &Path) -> Result<()> {
-        let mut bytes = Vec::with_capacity(32 + self.accum.len() * 4);
+        let floats: &[f32] = bytemuck::cast_slice(&self.accum);
+        let mut bytes = Vec::with_capacity(32 + floats.len() * 4);
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&self.scene.to_le_bytes());
-        for v in [self.seed, self.spp_total, self.spp_done, self.accum.len() as u32] {
+        for v in [self.seed, self.spp_total, self.spp_done, floats.len() as u32] {
             bytes.extend_from_slice(&v.to_le_bytes());
         }
-        for v in &self.accum {
+        for v in floats {
             bytes.extend_from_slice(&v.to_le_bytes());
         }
         let partial = path.with_extension("partial");
@@ -72,7 +74,8 @@ impl Checkpoint {
         let scene = u64::from_le_bytes(bytes[8..16].try_into().unwrap());
         let (seed, spp_total, spp_done, count) =
             (word(16).unwrap(), word(20).unwrap(), word(24).unwrap(), word(28).unwrap() as usize);
-        if bytes.len() != 32 + count * 4 {
+        let per_pixel = std::mem::size_of::<PixelAccum>() / 4;
+        if bytes.len() != 32 + count * 4 || count % per_pixel != 0 {
             bail!(
                 "{}: truncated checkpoint ({} bytes, expected {})",
                 path.display(),
@@ -80,7 +83,9 @@ impl Checkpoint {
                 32 + count * 4
             );
         }
-        let accum = bytes[32..].chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().unwrap())).collect();
+        let floats: Vec<f32> =
+            bytes[32..].chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().unwrap())).collect();
+        let accum = bytemuck::pod_collect_to_vec(&floats);
         Ok(Checkpoint { scene, seed, spp_total, spp_done, accum })
     }
 }

@@ -57,7 +57,7 @@ pub fn measure(
     let (width, height) = (buffers.params.width, buffers.params.height);
     render_with_checkpoints(backend, &buffers, 0, max_spp, seed, &stops, |done, seconds, backend| {
         if stops.contains(&done) {
-            let film = Film::from_accum(width, height, backend.read_accum()?);
+            let film = Film::from_accum(width, height, &backend.read_accum()?);
             let c = compare(&film, reference, 0.0)?;
             points.push(ConvergencePoint {
                 spp: done,

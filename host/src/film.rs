@@ -1,7 +1,7 @@
 //! The developed image: per-pixel mean and the variance of that mean, and image files. (The kernel's
 //! `film` module is the other end: where each camera sample lands on the sensor.)
 use anyhow::{bail, Context, Result};
-use caustic_kernel::integrator::ACCUM_STRIDE;
+use caustic_kernel::layout::PixelAccum;
 use std::path::Path;
 
 /// A linear-RGB image with a per-pixel, per-channel variance estimate of each value.
@@ -18,20 +18,20 @@ pub struct Film {
 }
 
 impl Film {
-    pub fn from_accum(width: u32, height: u32, accum: Vec<f32>) -> Film {
+    pub fn from_accum(width: u32, height: u32, accum: &[PixelAccum]) -> Film {
         let mut rgb = Vec::with_capacity((width * height) as usize);
         let mut variance = Vec::with_capacity(rgb.capacity());
         let mut invalid = 0u64;
-        for px in accum.chunks_exact(ACCUM_STRIDE) {
-            let n = px[3].max(1.0) as f64;
-            let mean: [f64; 3] = std::array::from_fn(|c| px[c] as f64 / n);
+        for px in accum {
+            let n = px.count.max(1.0) as f64;
+            let mean: [f64; 3] = std::array::from_fn(|c| px.sum[c] as f64 / n);
             let var: [f32; 3] = std::array::from_fn(|c| {
-                let second = px[4 + c] as f64 / n;
+                let second = px.sum_sq[c] as f64 / n;
                 (((second - mean[c] * mean[c]).max(0.0)) * n / (n - 1.0).max(1.0) / n) as f32
             });
             rgb.push(mean.map(|m| m as f32));
             variance.push(var);
-            invalid += px[7] as u64;
+            invalid += px.invalid as u64;
         }
         Film { width, height, rgb, variance: Some(variance), invalid_samples: invalid }
     }

@@ -202,7 +202,7 @@ fn cmd_render(
         |done, _, backend| {
             bar.set_position(done as u64);
             if viewer.is_some() && (last_view.elapsed() >= TEV_INTERVAL || done == spp) {
-                let film = Film::from_accum(width, height, backend.read_accum()?);
+                let film = Film::from_accum(width, height, &backend.read_accum()?);
                 if let Err(e) = viewer.as_mut().unwrap().update(&film) {
                     eprintln!("warning: {e:#}; no more updates to the viewer");
                     viewer = None;
@@ -229,7 +229,7 @@ fn cmd_render(
         },
     )?;
     bar.finish_and_clear();
-    let mut film = Film::from_accum(buffers.params.width, buffers.params.height, backend.read_accum()?);
+    let mut film = Film::from_accum(buffers.params.width, buffers.params.height, &backend.read_accum()?);
     sanitize(&mut film);
     if let Err(e) = film.save(output) {
         // Keep the finished render: write it where it can be written, then report the failure.

@@ -31,7 +31,7 @@ pub fn render(
         Ok(Continue(()))
     })?;
     let accum = backend.read_accum()?;
-    Ok((Film::from_accum(buffers.params.width, buffers.params.height, accum), stats))
+    Ok((Film::from_accum(buffers.params.width, buffers.params.height, &accum), stats))
 }
 
 /// The pass loop, from sample `start` (a resumed render's accumulation buffer already holds the

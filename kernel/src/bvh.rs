@@ -2,8 +2,8 @@
 
 use crate::camera::Ray;
 use crate::glam::{Vec2, Vec3};
-use crate::math::vec3;
 use crate::layout::{BvhNode, Primitive};
+use crate::math::vec3;
 use crate::shape::{self, Hit};
 
 /// Distance reported for a missed box. (naga rejects infinite float literals, so no `f32::INFINITY`.)

@@ -1,26 +1,27 @@
 //! GPU compute entry points (SPIR-V only). They do nothing but fetch the buffers and call the same
-//! functions the CPU runner calls.
-use crate::integrator::{accumulate, render_pixel, SceneView};
-use crate::layout::{BvhNode, FrameParams, Light, Material, Primitive, Texture, TriangleAttributes};
+//! functions the CPU runner calls. Binding numbers and the workgroup size are the literals rust-gpu's
+//! attributes need; their names live in `layout` (`binding::*`, `TILE`), which the host uses.
+use crate::integrator::{accumulated, render_pixel, SceneView};
+use crate::layout::{
+    BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
+};
 use spirv_std::glam::UVec3;
 use spirv_std::spirv;
 
-/// Workgroup edge: 8×8 pixels, so neighbouring rays (coherent traversal) run together.
-pub const TILE: u32 = 8;
-
 /// One invocation per pixel; it adds `params.sample_count` samples to the pixel's accumulator.
-#[spirv(compute(threads(8, 8, 1)))]
+#[spirv(compute(threads(8, 8, 1)))] // layout::TILE
+#[allow(clippy::too_many_arguments)]
 pub fn render(
     #[spirv(global_invocation_id)] id: UVec3,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &FrameParams,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] prims: &[Primitive],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] attributes: &[TriangleAttributes],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] materials: &[Material],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] lights: &[Light],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] tables: &[f32],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] accum: &mut [f32],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] textures: &[Texture],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &FrameParams, // PARAMS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],    // NODES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] prims: &[Primitive],  // PRIMS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] attributes: &[TriangleAttributes], // ATTRIBUTES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] materials: &[Material], // MATERIALS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] lights: &[Light],     // LIGHTS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] tables: &[f32],       // TABLES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] accum: &mut [PixelAccum], // ACCUM
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] textures: &[Texture], // TEXTURES
     // The scene's `features` mask, fixed when the pipeline is created (default: everything).
     #[spirv(spec_constant(id = 0, default = 4294967295))] features: u32,
 ) {
@@ -30,5 +31,5 @@ pub fn render(
     let scene = SceneView { nodes, prims, attributes, materials, lights, textures, tables, features };
     let pixel = id.y * params.width + id.x;
     let sums = render_pixel(&scene, params, pixel);
-    accumulate(accum, pixel, &sums, params.sample_count);
+    accum[pixel as usize] = accumulated(accum[pixel as usize], &sums, params.sample_count);
 }

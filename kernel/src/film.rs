@@ -11,9 +11,9 @@
 use spirv_std::num_traits::Float;
 
 use crate::glam::Vec2;
+use crate::layout::{FrameParams, SAMPLER_STRATIFIED};
 use crate::rng::Sampler;
 use crate::sampling::sample_cdf;
-use crate::layout::{FrameParams, SAMPLER_STRATIFIED};
 
 /// The filter's CDF at `x` (piecewise linear between the tabulated bin edges).
 fn filter_cdf_at(tables: &[f32], params: &FrameParams, x: f32) -> f32 {

@@ -204,6 +204,41 @@ pub struct Texture {
     pub color1: [f32; 4],
 }
 
+/// One pixel's running sums in the accumulation buffer (32 bytes): what every pass adds to
+/// (`integrator::accumulated`), what the host develops into the image and its variance
+/// (`host/src/film.rs`) and what checkpoints save.
+#[repr(C)]
+#[derive(Clone, Copy, Default)]
+#[cfg_attr(not(target_arch = "spirv"), derive(bytemuck::Pod, bytemuck::Zeroable, Debug, PartialEq))]
+pub struct PixelAccum {
+    /// Sum of the samples' RGB estimates.
+    pub sum: [f32; 3],
+    /// Samples taken (a float, summed like the rest).
+    pub count: f32,
+    /// Sum of the squared estimates, per channel.
+    pub sum_sq: [f32; 3],
+    /// Samples whose estimate was NaN or infinite: counted as black and reported.
+    pub invalid: f32,
+}
+
+/// The GPU entry point's workgroup edge (`threads(8, 8, 1)` in `entry.rs`, which needs a literal):
+/// 8×8 pixels, so neighbouring rays (coherent traversal) run together. The host dispatches by it.
+pub const TILE: u32 = 8;
+
+/// Binding numbers of the entry point's buffers (descriptor set 0), named for the host's bind group;
+/// `entry.rs` spells the same numbers as the literals rust-gpu's attributes need.
+pub mod binding {
+    pub const PARAMS: u32 = 0;
+    pub const NODES: u32 = 1;
+    pub const PRIMS: u32 = 2;
+    pub const ATTRIBUTES: u32 = 3;
+    pub const MATERIALS: u32 = 4;
+    pub const LIGHTS: u32 = 5;
+    pub const TABLES: u32 = 6;
+    pub const ACCUM: u32 = 7;
+    pub const TEXTURES: u32 = 8;
+}
+
 pub const INTEGRATOR_PATH: u32 = 0;
 pub const INTEGRATOR_DIRECT: u32 = 1;
 

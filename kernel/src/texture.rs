@@ -3,11 +3,11 @@
 use spirv_std::num_traits::Float;
 
 use crate::glam::{Vec2, Vec3};
-use crate::math::vec3;
 use crate::layout::{
     Texture, NONE, TEXTURE_CHECKERBOARD, TEXTURE_NEAREST, TEXTURE_WRAP_CLAMP, TEXTURE_WRAP_MIRROR,
     TEXTURE_WRAP_SHIFT,
 };
+use crate::math::vec3;
 use crate::spectrum::Rgb;
 
 /// `constant` where `texture` is `NONE`, else the texture's value at `uv`.

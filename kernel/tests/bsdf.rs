@@ -2,9 +2,11 @@
 //! sampling weights and eval/pdf.
 use caustic_kernel::bsdf::Bsdf;
 use caustic_kernel::glam::Vec3;
+use caustic_kernel::layout::*;
 use caustic_kernel::rng::Sampler;
 use caustic_kernel::sampling::square_to_uniform_sphere;
-use caustic_kernel::layout::*;
+
+const RADIANCE: caustic_kernel::bsdf::TransportMode = caustic_kernel::bsdf::TransportMode::Radiance;
 
 fn materials() -> Vec<Material> {
     let mut v =
@@ -36,8 +38,8 @@ fn reciprocity() {
         for pair in dirs.chunks(2) {
             let (wo, wi) = (pair[0], pair[1]);
             // eval includes |cos θi|; f itself must be symmetric.
-            let f1 = b.eval(wo, wi) / wi.z.abs().max(1e-8);
-            let f2 = b.eval(wi, wo) / wo.z.abs().max(1e-8);
+            let f1 = b.eval(wo, wi, RADIANCE) / wi.z.abs().max(1e-8);
+            let f2 = b.eval(wi, wo, RADIANCE) / wo.z.abs().max(1e-8);
             assert!(
                 (f1 - f2).abs().max_element() <= 1e-4 * f1.abs().max_element().max(1.0),
                 "kind {} not reciprocal: {f1} vs {f2}",
@@ -61,7 +63,8 @@ fn albedo(b: &Bsdf, wo: Vec3) -> Vec3 {
         for j in 0..N {
             let phi = (j as f64 + 0.5) / N as f64 * 2.0 * std::f64::consts::PI;
             let local = Vec3::new((sin_a * phi.cos()) as f32, (sin_a * phi.sin()) as f32, cos_a as f32);
-            sum += b.eval(wo, frame.to_world(local)) * (d_cos * 2.0 * std::f64::consts::PI / N as f64) as f32;
+            sum += b.eval(wo, frame.to_world(local), RADIANCE)
+                * (d_cos * 2.0 * std::f64::consts::PI / N as f64) as f32;
         }
     }
     sum
@@ -86,7 +89,7 @@ fn energy_is_conserved_and_sampling_weights_agree() {
             let mut sq = Vec3::ZERO;
             for _ in 0..n {
                 let ul = rng.next_1d();
-                let s = b.sample(wo, ul, rng.next_2d());
+                let s = b.sample(wo, ul, rng.next_2d(), RADIANCE);
                 if s.pdf > 0.0 {
                     assert!(s.weight.is_finite() && s.weight.min_element() >= 0.0);
                     mean += s.weight;
@@ -112,9 +115,9 @@ fn back_side_is_black_for_one_sided_models() {
         let b = Bsdf::from_material(&m, &[]);
         let below = Vec3::new(0.2, 0.1, -0.9).normalize();
         let above = Vec3::new(0.1, -0.3, 0.8).normalize();
-        assert_eq!(b.eval(below, above), Vec3::ZERO);
-        assert_eq!(b.eval(above, below), Vec3::ZERO);
-        assert_eq!(b.pdf(above, below), 0.0);
-        assert_eq!(b.sample(below, 0.3, caustic_kernel::glam::Vec2::new(0.4, 0.6)).pdf, 0.0);
+        assert_eq!(b.eval(below, above, RADIANCE), Vec3::ZERO);
+        assert_eq!(b.eval(above, below, RADIANCE), Vec3::ZERO);
+        assert_eq!(b.pdf(above, below, RADIANCE), 0.0);
+        assert_eq!(b.sample(below, 0.3, caustic_kernel::glam::Vec2::new(0.4, 0.6), RADIANCE).pdf, 0.0);
     }
 }

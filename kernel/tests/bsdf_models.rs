@@ -2,122 +2,59 @@
 //! sampling routine against its pdf, reciprocity, energy conservation, the Fresnel terms' limits,
 //! and finiteness at stiff inputs.
 mod common;
-use caustic_kernel::bsdf::conductor::Conductor;
-use caustic_kernel::bsdf::dielectric::Dielectric;
 use caustic_kernel::bsdf::fresnel::*;
-use caustic_kernel::bsdf::fuzzy_metal::FuzzyMetal;
 use caustic_kernel::bsdf::microfacet::{erf, erfinv, Microfacet};
-use caustic_kernel::bsdf::plastic::{self, Plastic};
+use caustic_kernel::bsdf::plastic::Plastic;
 use caustic_kernel::bsdf::rough_conductor::RoughConductor;
 use caustic_kernel::bsdf::rough_dielectric::RoughDielectric;
 use caustic_kernel::bsdf::rough_plastic::{self, RoughPlastic};
-use caustic_kernel::bsdf::thin_dielectric::ThinDielectric;
-use caustic_kernel::bsdf::BsdfSample;
+use caustic_kernel::bsdf::{Bsdf, BsdfSample, Bxdf, TransportMode};
 use caustic_kernel::glam::{Vec2, Vec3};
+use caustic_kernel::layout::*;
 use caustic_kernel::rng::Sampler;
 use caustic_kernel::sampling::square_to_uniform_sphere;
-use caustic_kernel::layout::*;
 use common::*;
 
 // ---------------------------------------------------------------------------------------------------
 // The models behind one interface.
 
+/// A model as the integrators see it: `Bsdf` (the one dispatch) in a transport mode.
 #[derive(Clone, Copy)]
-enum Model {
-    Conductor(Conductor),
-    RoughConductor(RoughConductor),
-    Dielectric(Dielectric),
-    Thin(ThinDielectric),
-    RoughDielectric(RoughDielectric),
-    Plastic(Plastic),
-    RoughPlastic(RoughPlastic<'static>),
-    FuzzyMetal(FuzzyMetal),
+struct Model {
+    bsdf: Bsdf<'static>,
+    mode: TransportMode,
 }
 
 impl Model {
     /// Builds the model of `m` as the host would: precomputes what it needs, evaluates no textures.
     fn new(m: &Material, adjoint: bool) -> Model {
         let mut m = *m;
-        let refl = rgb(m.reflectance);
-        let spec = rgb(m.specular_reflectance);
-        let mut model = match m.kind {
-            BSDF_CONDUCTOR => Model::Conductor(Conductor::from_material(&m, refl, spec, &[])),
-            BSDF_ROUGH_CONDUCTOR => Model::RoughConductor(RoughConductor::from_material(&m, refl, spec, &[])),
-            BSDF_DIELECTRIC => Model::Dielectric(Dielectric::from_material(&m, refl, spec, &[])),
-            BSDF_THIN_DIELECTRIC => Model::Thin(ThinDielectric::from_material(&m, refl, spec, &[])),
-            BSDF_ROUGH_DIELECTRIC => {
-                Model::RoughDielectric(RoughDielectric::from_material(&m, refl, spec, &[]))
-            }
-            BSDF_PLASTIC => {
-                plastic::precompute(&mut m);
-                Model::Plastic(Plastic::from_material(&m, refl, spec, &[]))
-            }
-            BSDF_ROUGH_PLASTIC => {
-                // Behind some unrelated data, as in the host's table buffer.
-                let mut tables = vec![7.0f32; 5];
-                let table = rough_plastic::precompute(&mut m);
-                m.table = tables.len() as u32;
-                tables.extend(table);
-                let tables: &'static [f32] = Box::leak(tables.into_boxed_slice());
-                Model::RoughPlastic(RoughPlastic::from_material(&m, refl, spec, tables))
-            }
-            BSDF_FUZZY_METAL => Model::FuzzyMetal(FuzzyMetal::from_material(&m, refl, spec, &[])),
-            k => panic!("not a model of this file: {k}"),
-        };
-        model.set_adjoint(adjoint);
-        model
-    }
-
-    fn set_adjoint(&mut self, adjoint: bool) {
-        match self {
-            Model::Conductor(b) => b.adjoint = adjoint,
-            Model::RoughConductor(b) => b.adjoint = adjoint,
-            Model::Dielectric(b) => b.adjoint = adjoint,
-            Model::Thin(b) => b.adjoint = adjoint,
-            Model::RoughDielectric(b) => b.adjoint = adjoint,
-            Model::Plastic(b) => b.adjoint = adjoint,
-            Model::RoughPlastic(b) => b.adjoint = adjoint,
-            Model::FuzzyMetal(b) => b.adjoint = adjoint,
+        // Behind some unrelated data, as in the host's table buffer.
+        let mut tables = vec![7.0f32; 5];
+        if let Some(table) = caustic_kernel::bsdf::precompute(&mut m) {
+            m.table = tables.len() as u32;
+            tables.extend(table);
         }
+        let tables: &'static [f32] = Box::leak(tables.into_boxed_slice());
+        let mode = if adjoint { TransportMode::Importance } else { TransportMode::Radiance };
+        Model { bsdf: Bsdf::from_material(&m, tables), mode }
     }
 
     fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        match self {
-            Model::Conductor(b) => b.eval(wo, wi),
-            Model::RoughConductor(b) => b.eval(wo, wi),
-            Model::Dielectric(b) => b.eval(wo, wi),
-            Model::Thin(b) => b.eval(wo, wi),
-            Model::RoughDielectric(b) => b.eval(wo, wi),
-            Model::Plastic(b) => b.eval(wo, wi),
-            Model::RoughPlastic(b) => b.eval(wo, wi),
-            Model::FuzzyMetal(b) => b.eval(wo, wi),
-        }
+        self.bsdf.eval(wo, wi, self.mode)
     }
 
     fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        match self {
-            Model::Conductor(b) => b.pdf(wo, wi),
-            Model::RoughConductor(b) => b.pdf(wo, wi),
-            Model::Dielectric(b) => b.pdf(wo, wi),
-            Model::Thin(b) => b.pdf(wo, wi),
-            Model::RoughDielectric(b) => b.pdf(wo, wi),
-            Model::Plastic(b) => b.pdf(wo, wi),
-            Model::RoughPlastic(b) => b.pdf(wo, wi),
-            Model::FuzzyMetal(b) => b.pdf(wo, wi),
-        }
+        self.bsdf.pdf(wo, wi, self.mode)
     }
 
     fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
-        match self {
-            Model::Conductor(b) => b.sample(wo, u_lobe, u),
-            Model::RoughConductor(b) => b.sample(wo, u_lobe, u),
-            Model::Dielectric(b) => b.sample(wo, u_lobe, u),
-            Model::Thin(b) => b.sample(wo, u_lobe, u),
-            Model::RoughDielectric(b) => b.sample(wo, u_lobe, u),
-            Model::Plastic(b) => b.sample(wo, u_lobe, u),
-            Model::RoughPlastic(b) => b.sample(wo, u_lobe, u),
-            Model::FuzzyMetal(b) => b.sample(wo, u_lobe, u),
-        }
+        self.bsdf.sample(wo, u_lobe, u, self.mode)
+    }
+
+    /// The concrete model, for tests that look inside it.
+    fn concrete<M: Bxdf<'static>>(&self) -> M {
+        M::from_material(&self.bsdf.material, self.bsdf.reflectance, self.bsdf.specular, self.bsdf.tables)
     }
 }
 
@@ -545,10 +482,11 @@ fn beckmann_correction(d: &Microfacet, w: Vec3) -> f64 {
 /// by `beckmann_correction`.
 fn sampling_density(b: &Model, wo: Vec3, wi: Vec3) -> f64 {
     let pdf = b.pdf(wo, wi) as f64;
-    match b {
-        Model::RoughConductor(r) => pdf * beckmann_correction(&r.distr, wo),
-        Model::RoughDielectric(r) => pdf * beckmann_correction(&r.distr, wo),
-        Model::RoughPlastic(r) if wo.z > 0.0 && wi.z > 0.0 => {
+    match b.bsdf.material.kind {
+        BSDF_ROUGH_CONDUCTOR => pdf * beckmann_correction(&b.concrete::<RoughConductor>().distr, wo),
+        BSDF_ROUGH_DIELECTRIC => pdf * beckmann_correction(&b.concrete::<RoughDielectric>().distr, wo),
+        BSDF_ROUGH_PLASTIC if wo.z > 0.0 && wi.z > 0.0 => {
+            let r = b.concrete::<RoughPlastic>();
             let h = (wo + wi).normalize();
             let glossy =
                 r.specular_probability(r.transmittance(wo.z)) * r.distr.d(h) * r.distr.smith_g1(wo, h)
@@ -739,7 +677,7 @@ fn plastic_smooth_part_chi2_and_delta_mass() {
         let wo = polar(*cos, 0.5);
         chi2_model(&format!("plastic η={eta} wo={wo}"), &b, wo, &sphere_grid(), k as u32);
         // Mirror samples: exact direction, and a frequency that matches the lobe probability.
-        let Model::Plastic(p) = b else { unreachable!() };
+        let p: Plastic = b.concrete();
         let f = fresnel(wo.z, *eta).f;
         let (ps, pd) = (f * p.specular_weight, (1.0 - f) * (1.0 - p.specular_weight));
         let prob = ps / (ps + pd);
@@ -932,7 +870,7 @@ fn reciprocity() {
     for (name, m) in smooth_models() {
         let rad = Model::new(&m, false);
         let mut imp = rad;
-        imp.set_adjoint(true);
+        imp.mode = TransportMode::Importance;
         let mut checked = 0;
         for pair in dirs.chunks(2) {
             let (wo, wi) = (pair[0], pair[1]);
@@ -1045,7 +983,8 @@ fn white_furnace() {
             }
             let wo = polar(cos, 0.9);
             let mut a = albedo(&b, wo);
-            if let Model::Plastic(p) = b {
+            if m.kind == BSDF_PLASTIC {
+                let p: Plastic = b.concrete();
                 a += p.specular.x * fresnel(cos, p.eta).f;
             }
             println!("{name} cos θo={cos}: albedo {a:.4}");
@@ -1067,7 +1006,7 @@ fn sample_weights_equal_eval_over_pdf() {
         let base = Model::new(&m, false);
         for adjoint in [false, true] {
             let mut b = base;
-            b.set_adjoint(adjoint);
+            b.mode = if adjoint { TransportMode::Importance } else { TransportMode::Radiance };
             let mut rng = Sampler::new(3, 3, 3);
             let mut checked = 0;
             for wo in &wos {
@@ -1263,7 +1202,7 @@ fn stiff_inputs_are_finite() {
         let base = Model::new(m, false);
         for adjoint in [false, true] {
             let mut b = base;
-            b.set_adjoint(adjoint);
+            b.mode = if adjoint { TransportMode::Importance } else { TransportMode::Radiance };
             for &wo in &dirs {
                 let mut wis = dirs.clone();
                 wis.extend([wo, -wo, reflect(wo), -reflect(wo)]);

@@ -1,13 +1,16 @@
 //! χ² tests of every sampling routine against its density.
 mod common;
 use caustic_kernel::bsdf::phong::Phong;
+use caustic_kernel::bsdf::Bxdf;
 use caustic_kernel::frame::Frame;
 use caustic_kernel::glam::Vec3;
+use caustic_kernel::layout::*;
 use caustic_kernel::light;
 use caustic_kernel::rng::Sampler;
 use caustic_kernel::sampling::*;
-use caustic_kernel::layout::*;
 use common::*;
+
+const RADIANCE: caustic_kernel::bsdf::TransportMode = caustic_kernel::bsdf::TransportMode::Radiance;
 
 #[test]
 fn cosine_hemisphere() {
@@ -51,10 +54,10 @@ fn phong_lobe_and_mixture() {
             chi2_directions(
                 &format!("phong kd={kd} ks={ks} n={n} wo={wo:?}"),
                 |ul, u| {
-                    let s = bsdf.sample(wo, ul, u);
+                    let s = bsdf.sample(wo, ul, u, RADIANCE);
                     (s.pdf > 0.0).then_some(s.wi)
                 },
-                |wi| bsdf.pdf(wo, wi) as f64,
+                |wi| bsdf.pdf(wo, wi, RADIANCE) as f64,
             );
         }
     }

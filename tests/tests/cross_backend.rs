@@ -147,7 +147,7 @@ fn resumed_renders_match_uninterrupted_ones() {
         render_with_checkpoints(second.as_mut(), &buffers, 3, 6, 7, &[], |_, _, _| Ok(Continue(()))).unwrap();
         let whole = render_buffers(&buffers, choice, 6, 7);
         let resumed =
-            caustic::film::Film::from_accum(whole.width, whole.height, second.read_accum().unwrap());
+            caustic::film::Film::from_accum(whole.width, whole.height, &second.read_accum().unwrap());
         for (p, q) in resumed.rgb.iter().zip(&whole.rgb) {
             for c in 0..3 {
                 assert!(

@@ -2,18 +2,17 @@
 use super::Backend;
 use crate::buffers::SceneBuffers;
 use anyhow::Result;
-use caustic_kernel::integrator::ACCUM_STRIDE;
-use caustic_kernel::layout::FrameParams;
+use caustic_kernel::layout::{FrameParams, PixelAccum};
 
 pub struct CpuBackend {
     buffers: SceneBuffers,
-    accum: Vec<f32>,
+    accum: Vec<PixelAccum>,
 }
 
 impl CpuBackend {
     pub fn new(buffers: SceneBuffers) -> Self {
         let pixels = (buffers.params.width * buffers.params.height) as usize;
-        CpuBackend { buffers, accum: vec![0.0; pixels * ACCUM_STRIDE] }
+        CpuBackend { buffers, accum: vec![PixelAccum::default(); pixels] }
     }
 }
 
@@ -27,14 +26,14 @@ impl Backend for CpuBackend {
         Ok(())
     }
 
-    fn read_accum(&mut self) -> Result<Vec<f32>> {
+    fn read_accum(&mut self) -> Result<Vec<PixelAccum>> {
         Ok(self.accum.clone())
     }
 
-    fn write_accum(&mut self, accum: &[f32]) -> Result<()> {
+    fn write_accum(&mut self, accum: &[PixelAccum]) -> Result<()> {
         anyhow::ensure!(
             accum.len() == self.accum.len(),
-            "accumulation buffer of {} floats, expected {}",
+            "accumulation buffer of {} pixels, expected {}",
             accum.len(),
             self.accum.len()
         );

@@ -6,14 +6,12 @@
 use super::Backend;
 use crate::buffers::SceneBuffers;
 use anyhow::{anyhow, bail, Context, Result};
-use caustic_kernel::integrator::ACCUM_STRIDE;
-use caustic_kernel::layout::FrameParams;
+use caustic_kernel::layout::{binding, FrameParams, PixelAccum, TILE};
 use wgpu::util::DeviceExt;
 
 /// The kernel compiled by `shaders-build` (committed; CI checks it matches the source).
 static KERNEL_SPV: &[u8] = include_bytes!("../../shaders/caustic-kernel.spv");
 const ENTRY_POINT: &str = "entry::render";
-const TILE: u32 = 8;
 
 pub struct GpuBackend {
     device: wgpu::Device,
@@ -124,7 +122,7 @@ impl GpuBackend {
         let tables = storage("tables", bytemuck::cast_slice(&buffers.tables));
         let textures = storage("textures", bytemuck::cast_slice(&buffers.textures));
         let pixels = (buffers.params.width * buffers.params.height) as u64;
-        let accum_size = pixels * ACCUM_STRIDE as u64 * 4;
+        let accum_size = pixels * std::mem::size_of::<PixelAccum>() as u64;
         let accum_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("accum"),
             size: accum_size,
@@ -132,19 +130,18 @@ impl GpuBackend {
             mapped_at_creation: false,
         });
         let entries: Vec<wgpu::BindGroupEntry> = [
-            &params_buffer,
-            &nodes,
-            &prims,
-            &attributes,
-            &materials,
-            &lights,
-            &tables,
-            &accum_buffer,
-            &textures,
+            (binding::PARAMS, &params_buffer),
+            (binding::NODES, &nodes),
+            (binding::PRIMS, &prims),
+            (binding::ATTRIBUTES, &attributes),
+            (binding::MATERIALS, &materials),
+            (binding::LIGHTS, &lights),
+            (binding::TABLES, &tables),
+            (binding::ACCUM, &accum_buffer),
+            (binding::TEXTURES, &textures),
         ]
         .iter()
-        .enumerate()
-        .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+        .map(|(binding, b)| wgpu::BindGroupEntry { binding: *binding, resource: b.as_entire_binding() })
         .collect();
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("scene"),
@@ -194,19 +191,19 @@ impl Backend for GpuBackend {
         self.wait()
     }
 
-    fn write_accum(&mut self, accum: &[f32]) -> Result<()> {
+    fn write_accum(&mut self, accum: &[PixelAccum]) -> Result<()> {
         anyhow::ensure!(
-            accum.len() as u64 * 4 == self.accum_size,
-            "accumulation buffer of {} floats, expected {}",
+            std::mem::size_of_val(accum) as u64 == self.accum_size,
+            "accumulation buffer of {} pixels, expected {}",
             accum.len(),
-            self.accum_size / 4
+            self.accum_size / std::mem::size_of::<PixelAccum>() as u64
         );
         self.queue.write_buffer(&self.accum_buffer, 0, bytemuck::cast_slice(accum));
         self.queue.submit([]);
         self.wait()
     }
 
-    fn read_accum(&mut self) -> Result<Vec<f32>> {
+    fn read_accum(&mut self) -> Result<Vec<PixelAccum>> {
         let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
             size: self.accum_size,

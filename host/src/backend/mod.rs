@@ -3,18 +3,18 @@ pub mod cpu;
 pub mod gpu;
 
 use anyhow::Result;
-use caustic_kernel::layout::FrameParams;
+use caustic_kernel::layout::{FrameParams, PixelAccum};
 
-/// A device that can add samples to an accumulation buffer (`ACCUM_STRIDE` floats per pixel).
+/// A device that can add samples to an accumulation buffer (one `PixelAccum` per pixel).
 pub trait Backend {
     /// A short description: backend and adapter.
     fn describe(&self) -> String;
     /// Adds `params.sample_count` samples per pixel, starting at sample `params.sample_base`.
     fn pass(&mut self, params: &FrameParams) -> Result<()>;
     /// A copy of the accumulation buffer.
-    fn read_accum(&mut self) -> Result<Vec<f32>>;
+    fn read_accum(&mut self) -> Result<Vec<PixelAccum>>;
     /// Replaces the accumulation buffer (resuming from a checkpoint); `accum` has its exact size.
-    fn write_accum(&mut self, accum: &[f32]) -> Result<()>;
+    fn write_accum(&mut self, accum: &[PixelAccum]) -> Result<()>;
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]

@@ -2,10 +2,10 @@
 //! Fresnel term of the complex IOR `eta + i·k`, per channel, times `specular_reflectance`.
 //! One-sided: light arriving from below is absorbed.
 use super::fresnel::{fresnel_conductor_rgb, reflect};
-use super::BsdfSample;
+use super::{BsdfFlags, BsdfSample, Bxdf, TransportMode};
 use crate::glam::{Vec2, Vec3};
-use crate::math::vec3;
 use crate::layout::Material;
+use crate::math::vec3;
 use crate::spectrum::Rgb;
 
 #[derive(Clone, Copy)]
@@ -13,28 +13,30 @@ pub struct Conductor {
     pub eta: Rgb,
     pub k: Rgb,
     pub specular: Rgb,
-    /// Importance transport (light tracing); reflection does not depend on it.
-    pub adjoint: bool,
 }
 
-impl Conductor {
+impl<'a> Bxdf<'a> for Conductor {
     /// Reads `conductor_eta`, `conductor_k`; `specular` is the evaluated `specular_reflectance`.
-    pub fn from_material(m: &Material, _reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
+    fn from_material(m: &Material, _reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
         let eta = vec3([m.conductor_eta[0], m.conductor_eta[1], m.conductor_eta[2]]);
         let k = vec3([m.conductor_k[0], m.conductor_k[1], m.conductor_k[2]]);
-        Conductor { eta, k, specular, adjoint: false }
+        Conductor { eta, k, specular }
+    }
+
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::of(BsdfFlags::REFLECTION | BsdfFlags::SPECULAR)
     }
 
     /// The mirror lobe is a Dirac delta: nothing to evaluate for a given pair of directions.
-    pub fn eval(&self, _wo: Vec3, _wi: Vec3) -> Rgb {
+    fn eval(&self, _wo: Vec3, _wi: Vec3, _mode: TransportMode) -> Rgb {
         Rgb::ZERO
     }
 
-    pub fn pdf(&self, _wo: Vec3, _wi: Vec3) -> f32 {
+    fn pdf(&self, _wo: Vec3, _wi: Vec3, _mode: TransportMode) -> f32 {
         0.0
     }
 
-    pub fn sample(&self, wo: Vec3, _u_lobe: f32, _u: Vec2) -> BsdfSample {
+    fn sample(&self, wo: Vec3, _u_lobe: f32, _u: Vec2, _mode: TransportMode) -> BsdfSample {
         if wo.z <= 0.0 {
             return BsdfSample::invalid();
         }

@@ -3,10 +3,10 @@
 //! relative IOR is inverted. Transmitted radiance is scaled by `1/η²` (solid-angle compression) in
 //! radiance transport only, as Mitsuba does.
 use super::fresnel::{fresnel, reflect, refract};
-use super::BsdfSample;
+use super::{BsdfFlags, BsdfSample, Bxdf, TransportMode};
 use crate::glam::{Vec2, Vec3};
-use crate::math::vec3;
 use crate::layout::Material;
+use crate::math::vec3;
 use crate::spectrum::Rgb;
 
 #[derive(Clone, Copy)]
@@ -15,28 +15,30 @@ pub struct Dielectric {
     pub eta: f32,
     pub specular_reflectance: Rgb,
     pub specular_transmittance: Rgb,
-    /// Importance transport: no `1/η²` on refraction.
-    pub adjoint: bool,
 }
 
-impl Dielectric {
+impl<'a> Bxdf<'a> for Dielectric {
     /// Reads `eta` and `specular_transmittance`; `specular` is the evaluated `specular_reflectance`.
-    pub fn from_material(m: &Material, _reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
+    fn from_material(m: &Material, _reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
         let t = vec3([m.specular_transmittance[0], m.specular_transmittance[1], m.specular_transmittance[2]]);
-        Dielectric { eta: m.eta, specular_reflectance: specular, specular_transmittance: t, adjoint: false }
+        Dielectric { eta: m.eta, specular_reflectance: specular, specular_transmittance: t }
+    }
+
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::of(BsdfFlags::REFLECTION | BsdfFlags::TRANSMISSION | BsdfFlags::SPECULAR)
     }
 
     /// Both lobes are Dirac deltas.
-    pub fn eval(&self, _wo: Vec3, _wi: Vec3) -> Rgb {
+    fn eval(&self, _wo: Vec3, _wi: Vec3, _mode: TransportMode) -> Rgb {
         Rgb::ZERO
     }
 
-    pub fn pdf(&self, _wo: Vec3, _wi: Vec3) -> f32 {
+    fn pdf(&self, _wo: Vec3, _wi: Vec3, _mode: TransportMode) -> f32 {
         0.0
     }
 
     /// Reflects with probability F, refracts otherwise, so that the Fresnel factor cancels in the weight.
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, _u: Vec2) -> BsdfSample {
+    fn sample(&self, wo: Vec3, u_lobe: f32, _u: Vec2, mode: TransportMode) -> BsdfSample {
         let fr = fresnel(wo.z, self.eta);
         // Strict comparison: F = 0 (matched indices) never picks the mirror with probability 0.
         if u_lobe < fr.f {
@@ -48,7 +50,7 @@ impl Dielectric {
                 delta: true,
             };
         }
-        let scale = if self.adjoint { 1.0 } else { fr.eta_ti * fr.eta_ti };
+        let scale = if mode == TransportMode::Importance { 1.0 } else { fr.eta_ti * fr.eta_ti };
         BsdfSample {
             wi: refract(wo, fr.cos_theta_t, fr.eta_ti),
             weight: self.specular_transmittance * scale,

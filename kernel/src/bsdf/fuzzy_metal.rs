@@ -11,13 +11,13 @@
 //! (`fuzz ≤ 1`, as the book clamps it, keeps the origin outside the ball).
 //!
 //! `eval = albedo · p(ω)` (the cosine included): the model is energy-conserving but not reciprocal —
-//! `f·cos θi`, not `f`, is symmetric — so importance transport (`adjoint`) uses `f(wi, wo)`.
+//! `f·cos θi`, not `f`, is symmetric — so importance transport (`TransportMode::Importance`) uses `f(wi, wo)`.
 //! One-sided like Mitsuba's conductors; `fuzz = 0` is a Dirac mirror of reflectance `albedo`.
 use super::fresnel::reflect;
-use super::{same_hemisphere_above, BsdfSample};
+use super::{same_hemisphere_above, BsdfFlags, BsdfSample, Bxdf, TransportMode};
 use crate::glam::{Vec2, Vec3};
-use crate::sampling::square_to_uniform_sphere;
 use crate::layout::Material;
+use crate::sampling::square_to_uniform_sphere;
 use crate::spectrum::Rgb;
 use core::f32::consts::PI;
 #[cfg(target_arch = "spirv")]
@@ -28,16 +28,9 @@ pub struct FuzzyMetal {
     pub albedo: Rgb,
     /// Radius of the displacement ball, in [0, 1].
     pub fuzz: f32,
-    /// Importance transport (light tracing): the adjoint BSDF `f(wi, wo)`.
-    pub adjoint: bool,
 }
 
 impl FuzzyMetal {
-    /// Reads `alpha_u` as the fuzz; `reflectance` is the evaluated albedo.
-    pub fn from_material(m: &Material, reflectance: Rgb, _specular: Rgb, _tables: &[f32]) -> Self {
-        FuzzyMetal { albedo: reflectance, fuzz: m.alpha_u, adjoint: false }
-    }
-
     /// Whether the model is the plain mirror (fuzz 0), which only sampling can use.
     pub fn is_delta(fuzz: f32) -> bool {
         fuzz <= 0.0
@@ -54,22 +47,34 @@ impl FuzzyMetal {
     }
 
     /// `wi.z / wo.z` in importance transport, 1 in radiance transport.
-    fn adjoint_factor(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if self.adjoint {
+    fn adjoint_factor(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        if mode == TransportMode::Importance {
             wi.z / wo.z
         } else {
             1.0
         }
     }
+}
 
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
+impl<'a> Bxdf<'a> for FuzzyMetal {
+    /// Reads `alpha_u` as the fuzz; `reflectance` is the evaluated albedo.
+    fn from_material(m: &Material, reflectance: Rgb, _specular: Rgb, _tables: &[f32]) -> Self {
+        FuzzyMetal { albedo: reflectance, fuzz: m.alpha_u }
+    }
+
+    fn flags(&self) -> BsdfFlags {
+        let lobe = if Self::is_delta(self.fuzz) { BsdfFlags::SPECULAR } else { BsdfFlags::GLOSSY };
+        BsdfFlags::of(BsdfFlags::REFLECTION | lobe)
+    }
+
+    fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
         if Self::is_delta(self.fuzz) || !same_hemisphere_above(wo, wi) {
             return Rgb::ZERO;
         }
-        self.albedo * (self.density(reflect(wo), wi) * self.adjoint_factor(wo, wi))
+        self.albedo * (self.density(reflect(wo), wi) * self.adjoint_factor(wo, wi, mode))
     }
 
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+    fn pdf(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> f32 {
         if Self::is_delta(self.fuzz) || !same_hemisphere_above(wo, wi) {
             return 0.0;
         }
@@ -78,7 +83,7 @@ impl FuzzyMetal {
 
     /// The book's procedure: `u_lobe` sets the radius (cube root: uniform in volume), `u` the
     /// direction of the displacement.
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
+    fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2, mode: TransportMode) -> BsdfSample {
         if wo.z <= 0.0 {
             return BsdfSample::invalid();
         }
@@ -97,6 +102,12 @@ impl FuzzyMetal {
         if pdf <= 0.0 {
             return BsdfSample::invalid();
         }
-        BsdfSample { wi, weight: self.albedo * self.adjoint_factor(wo, wi), pdf, eta: 1.0, delta: false }
+        BsdfSample {
+            wi,
+            weight: self.albedo * self.adjoint_factor(wo, wi, mode),
+            pdf,
+            eta: 1.0,
+            delta: false,
+        }
     }
 }

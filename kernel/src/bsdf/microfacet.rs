@@ -8,9 +8,9 @@
 use spirv_std::num_traits::Float;
 
 use crate::glam::{Vec2, Vec3};
+use crate::layout::{Material, MATERIAL_BECKMANN};
 use crate::math::{is_finite, is_finite3, safe_sqrt, PI};
 use crate::sampling::square_to_concentric_disk;
-use crate::layout::{Material, MATERIAL_BECKMANN};
 
 /// Mitsuba clamps roughness to this: at zero the distribution is a Dirac delta that `D` cannot express.
 pub const MIN_ALPHA: f32 = 1e-4;
@@ -105,10 +105,16 @@ impl Microfacet {
     /// Density of `sample(w, ·)` producing the normal `m`: the visible normals `D·G1·|w·m|/cos θw`
     /// (`w` in the upper hemisphere).
     pub fn pdf(&self, w: Vec3, m: Vec3) -> f32 {
+        self.pdf_with_d(self.d(m), w, m)
+    }
+
+    /// `pdf` for a caller that has `d = D(m)` already.
+    #[inline]
+    pub fn pdf_with_d(&self, d: f32, w: Vec3, m: Vec3) -> f32 {
         if w.z <= 0.0 {
             return 0.0;
         }
-        self.d(m) * self.smith_g1(w, m) * w.dot(m).abs() / w.z
+        d * self.smith_g1(w, m) * w.dot(m).abs() / w.z
     }
 
     /// Samples a normal visible from `w` (upper hemisphere): stretch `w` to the unit-roughness

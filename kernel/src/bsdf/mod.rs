@@ -1,6 +1,7 @@
-//! BSDFs. Every model works in the local shading frame (normal = +z) with `wo` pointing towards the
-//! viewer (or the previous vertex) and `wi` towards the light; `eval` includes the cosine factor
-//! `|cos θi|` so that sampling weights are `eval / pdf`.
+//! BSDFs: the `Bxdf` interface every model implements (one model per file) and `Bsdf`, which picks a
+//! material's model. Every model works in the local shading frame (normal = +z) with `wo` pointing
+//! towards the viewer (or the previous vertex) and `wi` towards the light; `eval` includes the cosine
+//! factor `|cos θi|` so that sampling weights are `eval / pdf`.
 pub mod conductor;
 pub mod dielectric;
 pub mod diffuse;
@@ -19,6 +20,52 @@ use crate::glam::{Vec2, Vec3};
 use crate::layout::*;
 use crate::spectrum::Rgb;
 use crate::texture;
+
+/// Which quantity a path carries (pbrt-v4's `TransportMode`): radiance, traced from the camera, or
+/// importance, traced from the lights. Scattering that is not reciprocal depends on it: refraction
+/// scales radiance by `1/η²` but not importance, and a BSDF whose `f·cos` is symmetric but `f` is not
+/// (fuzzy metal) swaps the cosine. Light tracing passes `Importance`; everything else `Radiance`.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum TransportMode {
+    Radiance,
+    Importance,
+}
+
+/// What kinds of lobes a model has (pbrt-v4's `BxDFFlags`): integrators ask it, never the model's
+/// kind, whether light sampling can contribute (`has_smooth`) or a vertex can be connected at all.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub struct BsdfFlags(pub u32);
+
+impl BsdfFlags {
+    pub const REFLECTION: u32 = 1;
+    pub const TRANSMISSION: u32 = 2;
+    pub const DIFFUSE: u32 = 4;
+    pub const GLOSSY: u32 = 8;
+    /// Dirac-delta lobes: `eval` and `pdf` are zero for them, only `sample` finds them.
+    pub const SPECULAR: u32 = 16;
+
+    #[inline]
+    pub const fn of(bits: u32) -> Self {
+        BsdfFlags(bits)
+    }
+
+    /// A lobe that `eval` and `pdf` see (diffuse or glossy): next-event estimation and connections
+    /// to the camera can contribute.
+    #[inline]
+    pub fn has_smooth(self) -> bool {
+        self.0 & (Self::DIFFUSE | Self::GLOSSY) != 0
+    }
+
+    #[inline]
+    pub fn has_specular(self) -> bool {
+        self.0 & Self::SPECULAR != 0
+    }
+
+    #[inline]
+    pub fn has_transmission(self) -> bool {
+        self.0 & Self::TRANSMISSION != 0
+    }
+}
 
 /// A sampled direction with its weight `f·cos/pdf` and solid-angle density.
 #[derive(Clone, Copy)]
@@ -40,33 +87,97 @@ impl BsdfSample {
     }
 }
 
-/// Builds the model of `$bsdf`'s record kind and calls the method on it: one `match` (rust-gpu needs
-/// the models as plain structs, not a data-carrying enum) shared by `eval`, `pdf` and `sample`. Lambert,
-/// the fallback kind, takes its own argument list (its sampling has no lobe choice). Each arm is
-/// guarded by its feature bit, so a specialised kernel keeps only the scene's models. (Measured on the
-/// H100 in one run against testing the bit inside each arm, which keeps a ten-way switch: +3–11% on
-/// five of six material previews and the Cornell box, −4% on the diamond; BENCHMARKS.md.)
-macro_rules! dispatch {
-    ($bsdf:ident, diffuse => $d:ident($($da:expr),*), other => $f:ident($($a:expr),*)) => {{
-        let (m, r, s, t) = (&$bsdf.material, $bsdf.reflectance, $bsdf.specular, $bsdf.tables);
+/// `eval` and `pdf` of one direction pair, from one evaluation (Mitsuba's `eval_pdf`).
+#[derive(Clone, Copy)]
+pub struct EvalPdf {
+    /// `f·|cos θi|`.
+    pub f: Rgb,
+    pub pdf: f32,
+}
+
+impl EvalPdf {
+    pub const ZERO: EvalPdf = EvalPdf { f: Rgb::ZERO, pdf: 0.0 };
+}
+
+/// One scattering model: what every file in this folder implements. Directions are in the local
+/// shading frame (normal +z), `wo` towards the viewer (the previous vertex), `wi` towards the light
+/// (the next vertex) whatever the transport mode, as in pbrt-v4. Static dispatch only (rust-gpu has no
+/// trait objects): `Bsdf` picks the model by the material's kind.
+pub trait Bxdf<'a>: Sized {
+    /// The model of a material record whose textured colours are already evaluated: `reflectance` and
+    /// `specular` replace the record's `reflectance` and `specular_reflectance`; `tables` holds the
+    /// precomputed data some models read (`Material::table`).
+    fn from_material(m: &Material, reflectance: Rgb, specular: Rgb, tables: &'a [f32]) -> Self;
+    fn flags(&self) -> BsdfFlags;
+    /// `f(wo, wi)·|cos θi|` (zero for Dirac lobes).
+    fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb;
+    /// Solid-angle density with which `sample` produces `wi` (zero for Dirac lobes).
+    fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32;
+    /// Both at once; models override it where the two share work (half vector, `D`, Fresnel).
+    fn eval_pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> EvalPdf {
+        EvalPdf { f: self.eval(wo, wi, mode), pdf: self.pdf(wo, wi, mode) }
+    }
+    /// `u_lobe` picks a lobe of multi-lobe models; `u` warps to a direction.
+    fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2, mode: TransportMode) -> BsdfSample;
+}
+
+/// Builds the model of `$bsdf`'s record kind as `$model` and evaluates `$body` with it: the one `match`
+/// over models. Lambert is the fallback kind. Each arm is guarded by its feature bit, so a specialised
+/// kernel keeps only the scene's models. (Measured on the H100 in one run against testing the bit
+/// inside each arm, which keeps a ten-way switch: +3–11% on five of six material previews and the
+/// Cornell box, −4% on the diamond; BENCHMARKS.md.)
+macro_rules! with_model {
+    ($bsdf:expr, |$model:ident| $body:expr) => {{
+        let b = $bsdf;
+        let (m, r, s, t) = (&b.material, b.reflectance, b.specular, b.tables);
         match m.kind {
-            BSDF_PHONG if features::has($bsdf.features, features::bsdf(BSDF_PHONG)) => $bsdf.phong().$f($($a),*),
-            BSDF_CONDUCTOR if features::has($bsdf.features, features::bsdf(BSDF_CONDUCTOR)) => conductor::Conductor::from_material(m, r, s, t).$f($($a),*),
-            BSDF_ROUGH_CONDUCTOR if features::has($bsdf.features, features::bsdf(BSDF_ROUGH_CONDUCTOR)) => rough_conductor::RoughConductor::from_material(m, r, s, t).$f($($a),*),
-            BSDF_DIELECTRIC if features::has($bsdf.features, features::bsdf(BSDF_DIELECTRIC)) => dielectric::Dielectric::from_material(m, r, s, t).$f($($a),*),
-            BSDF_THIN_DIELECTRIC if features::has($bsdf.features, features::bsdf(BSDF_THIN_DIELECTRIC)) => thin_dielectric::ThinDielectric::from_material(m, r, s, t).$f($($a),*),
-            BSDF_ROUGH_DIELECTRIC if features::has($bsdf.features, features::bsdf(BSDF_ROUGH_DIELECTRIC)) => rough_dielectric::RoughDielectric::from_material(m, r, s, t).$f($($a),*),
-            BSDF_PLASTIC if features::has($bsdf.features, features::bsdf(BSDF_PLASTIC)) => plastic::Plastic::from_material(m, r, s, t).$f($($a),*),
-            BSDF_ROUGH_PLASTIC if features::has($bsdf.features, features::bsdf(BSDF_ROUGH_PLASTIC)) => rough_plastic::RoughPlastic::from_material(m, r, s, t).$f($($a),*),
-            BSDF_FUZZY_METAL if features::has($bsdf.features, features::bsdf(BSDF_FUZZY_METAL)) => fuzzy_metal::FuzzyMetal::from_material(m, r, s, t).$f($($a),*),
-            _ => $bsdf.diffuse().$d($($da),*),
+            BSDF_PHONG if b.uses(BSDF_PHONG) => {
+                let $model = phong::Phong::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_CONDUCTOR if b.uses(BSDF_CONDUCTOR) => {
+                let $model = conductor::Conductor::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_ROUGH_CONDUCTOR if b.uses(BSDF_ROUGH_CONDUCTOR) => {
+                let $model = rough_conductor::RoughConductor::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_DIELECTRIC if b.uses(BSDF_DIELECTRIC) => {
+                let $model = dielectric::Dielectric::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_THIN_DIELECTRIC if b.uses(BSDF_THIN_DIELECTRIC) => {
+                let $model = thin_dielectric::ThinDielectric::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_ROUGH_DIELECTRIC if b.uses(BSDF_ROUGH_DIELECTRIC) => {
+                let $model = rough_dielectric::RoughDielectric::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_PLASTIC if b.uses(BSDF_PLASTIC) => {
+                let $model = plastic::Plastic::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_ROUGH_PLASTIC if b.uses(BSDF_ROUGH_PLASTIC) => {
+                let $model = rough_plastic::RoughPlastic::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_FUZZY_METAL if b.uses(BSDF_FUZZY_METAL) => {
+                let $model = fuzzy_metal::FuzzyMetal::from_material(m, r, s, t);
+                $body
+            }
+            _ => {
+                let $model = diffuse::Diffuse::from_material(m, r, s, t);
+                $body
+            }
         }
     }};
 }
 
-/// A surface's BSDF: the material record with its textures evaluated at the hit, dispatched on the
-/// record's `kind` with `match`. (The models are built per call from the record rather than held in a
-/// data-carrying enum: rust-gpu 0.11 cannot cast between variants of different layouts.)
+/// A surface's BSDF: the material record with its textures evaluated at the hit; each call builds the
+/// record's model and forwards to it. (The models are built per call from the record rather than held
+/// in a data-carrying enum: rust-gpu 0.11 cannot cast between variants of different layouts.)
 #[derive(Clone, Copy)]
 pub struct Bsdf<'a> {
     pub material: Material,
@@ -101,39 +212,35 @@ impl<'a> Bsdf<'a> {
         }
     }
 
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
-        dispatch!(self, diffuse => eval(wo, wi), other => eval(wo, wi))
+    pub fn flags(&self) -> BsdfFlags {
+        with_model!(self, |model| model.flags())
     }
 
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        dispatch!(self, diffuse => pdf(wo, wi), other => pdf(wo, wi))
+    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        with_model!(self, |model| model.eval(wo, wi, mode))
     }
 
-    /// `u_lobe` picks a lobe of multi-lobe models; `u` warps to a direction.
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
-        dispatch!(self, diffuse => sample(wo, u), other => sample(wo, u_lobe, u))
+    pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        with_model!(self, |model| model.pdf(wo, wi, mode))
     }
 
-    /// Whether next-event estimation can contribute (false for purely specular models).
-    pub fn has_smooth_component(&self) -> bool {
-        match self.material.kind {
-            BSDF_CONDUCTOR | BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC => false,
-            BSDF_FUZZY_METAL => !fuzzy_metal::FuzzyMetal::is_delta(self.material.alpha_u),
-            _ => true,
-        }
+    pub fn eval_pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> EvalPdf {
+        with_model!(self, |model| model.eval_pdf(wo, wi, mode))
+    }
+
+    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2, mode: TransportMode) -> BsdfSample {
+        with_model!(self, |model| model.sample(wo, u_lobe, u, mode))
+    }
+
+    /// Whether the scene uses BSDF model `kind` (`features`).
+    #[inline]
+    fn uses(&self, kind: u32) -> bool {
+        features::has(self.features, features::bsdf(kind))
     }
 
     /// Whether both sides of the surface reflect like the front (Mitsuba's `twosided`).
     pub fn two_sided(&self) -> bool {
         self.material.flags & MATERIAL_TWO_SIDED != 0
-    }
-
-    fn diffuse(&self) -> diffuse::Diffuse {
-        diffuse::Diffuse { reflectance: self.reflectance }
-    }
-
-    fn phong(&self) -> phong::Phong {
-        phong::Phong::new(self.reflectance, self.specular, self.material.eta)
     }
 }
 

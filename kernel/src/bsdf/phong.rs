@@ -5,9 +5,10 @@
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
-use super::{same_hemisphere_above, BsdfSample};
+use super::{same_hemisphere_above, BsdfFlags, BsdfSample, Bxdf, EvalPdf, TransportMode};
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
+use crate::layout::Material;
 use crate::math::{INV_2PI, INV_PI};
 use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::spectrum::{luminance, Rgb};
@@ -39,35 +40,43 @@ impl Phong {
     fn cos_alpha(&self, wo: Vec3, wi: Vec3) -> f32 {
         reflect_local(wo).dot(wi).max(0.0)
     }
+}
 
-    /// Density of the cosine-power lobe around the mirror direction, `(n+1)/(2π)·cosⁿα`.
-    #[inline]
-    fn lobe_pdf(&self, cos_alpha: f32) -> f32 {
-        if cos_alpha <= 0.0 {
-            0.0
-        } else {
-            (self.exponent + 1.0) * INV_2PI * cos_alpha.powf(self.exponent)
-        }
+impl<'a> Bxdf<'a> for Phong {
+    /// Reads `eta` (the exponent); `reflectance` and `specular` are the evaluated `kd` and `ks`.
+    fn from_material(m: &Material, reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
+        Phong::new(reflectance, specular, m.eta)
     }
 
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::of(BsdfFlags::REFLECTION | BsdfFlags::DIFFUSE | BsdfFlags::GLOSSY)
+    }
+
+    fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        self.eval_pdf(wo, wi, mode).f
+    }
+
+    fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        self.eval_pdf(wo, wi, mode).pdf
+    }
+
+    /// Value and density share `cosⁿα`.
+    fn eval_pdf(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> EvalPdf {
         if !same_hemisphere_above(wo, wi) {
-            return Rgb::ZERO;
+            return EvalPdf::ZERO;
         }
         let ca = self.cos_alpha(wo, wi);
-        let specular = if ca > 0.0 { (self.exponent + 2.0) * INV_2PI * ca.powf(self.exponent) } else { 0.0 };
-        (self.kd * INV_PI + self.ks * specular) * wi.z
-    }
-
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if !same_hemisphere_above(wo, wi) {
-            return 0.0;
-        }
+        let power = if ca > 0.0 { ca.powf(self.exponent) } else { 0.0 };
+        let specular = (self.exponent + 2.0) * INV_2PI * power;
         let ps = self.specular_prob;
-        (1.0 - ps) * cosine_hemisphere_pdf(wi.z) + ps * self.lobe_pdf(self.cos_alpha(wo, wi))
+        let lobe_pdf = (self.exponent + 1.0) * INV_2PI * power;
+        EvalPdf {
+            f: (self.kd * INV_PI + self.ks * specular) * wi.z,
+            pdf: (1.0 - ps) * cosine_hemisphere_pdf(wi.z) + ps * lobe_pdf,
+        }
     }
 
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
+    fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2, mode: TransportMode) -> BsdfSample {
         if wo.z <= 0.0 {
             return BsdfSample::invalid();
         }
@@ -81,10 +90,10 @@ impl Phong {
         } else {
             square_to_cosine_hemisphere(u)
         };
-        let pdf = self.pdf(wo, wi);
-        if pdf <= 0.0 {
+        let ep = self.eval_pdf(wo, wi, mode);
+        if ep.pdf <= 0.0 {
             return BsdfSample::invalid();
         }
-        BsdfSample { wi, weight: self.eval(wo, wi) / pdf, pdf, eta: 1.0, delta: false }
+        BsdfSample { wi, weight: ep.f / ep.pdf, pdf: ep.pdf, eta: 1.0, delta: false }
     }
 }

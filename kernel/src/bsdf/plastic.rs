@@ -3,11 +3,11 @@
 //! inter-reflections summed in closed form (internal diffuse Fresnel reflectance `Fdr`), and leaves
 //! through `1 - F(θi)`, compressed by `1/η²`. One-sided.
 use super::fresnel::{fresnel, reflect};
-use super::BsdfSample;
+use super::{BsdfFlags, BsdfSample, Bxdf, TransportMode};
 use crate::glam::{Vec2, Vec3};
+use crate::layout::{Material, MATERIAL_NONLINEAR};
 use crate::math::INV_PI;
 use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use crate::layout::{Material, MATERIAL_NONLINEAR};
 use crate::spectrum::Rgb;
 
 /// `params` slots filled by `precompute`.
@@ -26,8 +26,6 @@ pub struct Plastic {
     pub specular_weight: f32,
     /// Account for the colour shift of repeated internal scattering (Mitsuba's `nonlinear`).
     pub nonlinear: bool,
-    /// Importance transport; the model's `1/η²` belongs to its diffuse lobe and stays.
-    pub adjoint: bool,
 }
 
 /// Fills `params[PARAM_FDR_INT]` and `params[PARAM_SPECULAR_WEIGHT]` from `eta`, `reflectance` and
@@ -52,20 +50,6 @@ pub fn specular_sampling_weight(diffuse: [f32; 4], specular: [f32; 4]) -> f32 {
 }
 
 impl Plastic {
-    /// Reads `eta`, `flags & MATERIAL_NONLINEAR` and `params` (see `precompute`); `reflectance` and
-    /// `specular` are the evaluated diffuse and specular reflectances.
-    pub fn from_material(m: &Material, reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
-        Plastic {
-            eta: m.eta,
-            diffuse: reflectance,
-            specular,
-            fdr_int: m.params[PARAM_FDR_INT],
-            specular_weight: m.params[PARAM_SPECULAR_WEIGHT],
-            nonlinear: m.flags & MATERIAL_NONLINEAR != 0,
-            adjoint: false,
-        }
-    }
-
     /// Probability of choosing the mirror lobe when viewed at `cos_theta_o` with reflectance `f_o`.
     #[inline]
     fn specular_probability(&self, f_o: f32) -> f32 {
@@ -88,9 +72,28 @@ impl Plastic {
         };
         self.diffuse / denom / (self.eta * self.eta)
     }
+}
+
+impl<'a> Bxdf<'a> for Plastic {
+    /// Reads `eta`, `flags & MATERIAL_NONLINEAR` and `params` (see `precompute`); `reflectance` and
+    /// `specular` are the evaluated diffuse and specular reflectances.
+    fn from_material(m: &Material, reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
+        Plastic {
+            eta: m.eta,
+            diffuse: reflectance,
+            specular,
+            fdr_int: m.params[PARAM_FDR_INT],
+            specular_weight: m.params[PARAM_SPECULAR_WEIGHT],
+            nonlinear: m.flags & MATERIAL_NONLINEAR != 0,
+        }
+    }
+
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::of(BsdfFlags::REFLECTION | BsdfFlags::DIFFUSE | BsdfFlags::SPECULAR)
+    }
 
     /// The diffuse lobe only; the mirror is a Dirac delta.
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
+    fn eval(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> Rgb {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return Rgb::ZERO;
         }
@@ -100,7 +103,7 @@ impl Plastic {
     }
 
     /// Density of the diffuse lobe (times its selection probability).
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+    fn pdf(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> f32 {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
         }
@@ -108,7 +111,7 @@ impl Plastic {
         (1.0 - ps) * cosine_hemisphere_pdf(wi.z)
     }
 
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
+    fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2, _mode: TransportMode) -> BsdfSample {
         if wo.z <= 0.0 {
             return BsdfSample::invalid();
         }

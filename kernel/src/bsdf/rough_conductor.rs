@@ -3,10 +3,10 @@
 //! sampled through visible normals. One-sided.
 use super::fresnel::{fresnel_conductor_rgb, reflect_about};
 use super::microfacet::Microfacet;
-use super::BsdfSample;
+use super::{BsdfFlags, BsdfSample, Bxdf, EvalPdf, TransportMode};
 use crate::glam::{Vec2, Vec3};
-use crate::math::vec3;
 use crate::layout::Material;
+use crate::math::vec3;
 use crate::spectrum::Rgb;
 
 #[derive(Clone, Copy)]
@@ -15,47 +15,50 @@ pub struct RoughConductor {
     pub eta: Rgb,
     pub k: Rgb,
     pub specular: Rgb,
-    /// Importance transport (light tracing); reflection does not depend on it.
-    pub adjoint: bool,
 }
 
-impl RoughConductor {
+impl<'a> Bxdf<'a> for RoughConductor {
     /// Reads `alpha_u`, `alpha_v`, `flags & MATERIAL_BECKMANN`, `conductor_eta`, `conductor_k`;
     /// `specular` is the evaluated `specular_reflectance`.
-    pub fn from_material(m: &Material, _reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
+    fn from_material(m: &Material, _reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
         let eta = vec3([m.conductor_eta[0], m.conductor_eta[1], m.conductor_eta[2]]);
         let k = vec3([m.conductor_k[0], m.conductor_k[1], m.conductor_k[2]]);
-        RoughConductor { distr: Microfacet::from_material(m), eta, k, specular, adjoint: false }
+        RoughConductor { distr: Microfacet::from_material(m), eta, k, specular }
     }
 
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::of(BsdfFlags::REFLECTION | BsdfFlags::GLOSSY)
+    }
+
+    fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        self.eval_pdf(wo, wi, mode).f
+    }
+
+    fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        self.eval_pdf(wo, wi, mode).pdf
+    }
+
+    /// Value and density share the half vector, `D` and `G1(wo)`.
+    fn eval_pdf(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> EvalPdf {
         if wo.z <= 0.0 || wi.z <= 0.0 {
-            return Rgb::ZERO;
+            return EvalPdf::ZERO;
         }
         let h = (wo + wi).normalize();
         let d = self.distr.d(h);
         if d == 0.0 {
-            return Rgb::ZERO;
+            return EvalPdf::ZERO;
         }
-        let g = self.distr.g(wo, wi, h);
-        let f = fresnel_conductor_rgb(wo.dot(h), self.eta, self.k);
+        let g1_o = self.distr.smith_g1(wo, h);
+        let g = g1_o * self.distr.smith_g1(wi, h);
+        let fresnel = fresnel_conductor_rgb(wo.dot(h), self.eta, self.k);
         // f·cos θi with the 1/cos θi of the BRDF cancelled.
-        self.specular * f * (d * g / (4.0 * wo.z))
-    }
-
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return 0.0;
-        }
-        let h = (wo + wi).normalize();
-        if wo.dot(h) <= 0.0 || wi.dot(h) <= 0.0 {
-            return 0.0;
-        }
+        let f = self.specular * fresnel * (d * g / (4.0 * wo.z));
         // Visible-normal density D·G1(wo)·(wo·h)/cos θo times the reflection Jacobian 1/(4 wi·h).
-        self.distr.d(h) * self.distr.smith_g1(wo, h) / (4.0 * wo.z)
+        let pdf = if wo.dot(h) <= 0.0 || wi.dot(h) <= 0.0 { 0.0 } else { d * g1_o / (4.0 * wo.z) };
+        EvalPdf { f, pdf }
     }
 
-    pub fn sample(&self, wo: Vec3, _u_lobe: f32, u: Vec2) -> BsdfSample {
+    fn sample(&self, wo: Vec3, _u_lobe: f32, u: Vec2, _mode: TransportMode) -> BsdfSample {
         if wo.z <= 0.0 {
             return BsdfSample::invalid();
         }

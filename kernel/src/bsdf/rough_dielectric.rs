@@ -1,16 +1,16 @@
 //! Rough dielectric interface (Mitsuba `roughdielectric`): Walter et al. 2007's microfacet reflection
 //! and refraction, Beckmann or GGX, anisotropic, sampled through visible normals with the lobe chosen
 //! by the facet's Fresnel term. `wo.z < 0` means the viewer is inside (relative IOR inverted).
-//! Transmission carries the `1/η²` of radiance transport unless `adjoint`.
+//! Transmission carries the `1/η²` of radiance transport in radiance transport only (`TransportMode`).
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
 use super::fresnel::{fresnel, reflect_about, refract_about};
 use super::microfacet::Microfacet;
-use super::BsdfSample;
+use super::{BsdfFlags, BsdfSample, Bxdf, EvalPdf, TransportMode};
 use crate::glam::{Vec2, Vec3};
-use crate::math::{sign, sqr, vec3};
 use crate::layout::Material;
+use crate::math::{sign, sqr, vec3};
 use crate::spectrum::Rgb;
 
 #[derive(Clone, Copy)]
@@ -20,8 +20,6 @@ pub struct RoughDielectric {
     pub eta: f32,
     pub specular_reflectance: Rgb,
     pub specular_transmittance: Rgb,
-    /// Importance transport: no `1/η²` on refraction.
-    pub adjoint: bool,
 }
 
 /// The microfacet normal that relates `wo` and `wi`, oriented to the outside, with the relative IOR
@@ -36,19 +34,6 @@ struct HalfVector {
 }
 
 impl RoughDielectric {
-    /// Reads `alpha_u`, `alpha_v`, `flags & MATERIAL_BECKMANN`, `eta`, `specular_transmittance`;
-    /// `specular` is the evaluated `specular_reflectance`.
-    pub fn from_material(m: &Material, _reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
-        let t = vec3([m.specular_transmittance[0], m.specular_transmittance[1], m.specular_transmittance[2]]);
-        RoughDielectric {
-            distr: Microfacet::from_material(m),
-            eta: m.eta,
-            specular_reflectance: specular,
-            specular_transmittance: t,
-            adjoint: false,
-        }
-    }
-
     /// Generalised half vector `wo + η·wi` (η = 1 for reflection), flipped to the upper hemisphere.
     fn half_vector(&self, wo: Vec3, wi: Vec3) -> HalfVector {
         let reflect = wo.z * wi.z > 0.0;
@@ -72,53 +57,71 @@ impl RoughDielectric {
             (eta * eta * wi_m / sqr(wo_m + eta * wi_m)).abs()
         }
     }
+}
 
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
+impl<'a> Bxdf<'a> for RoughDielectric {
+    /// Reads `alpha_u`, `alpha_v`, `flags & MATERIAL_BECKMANN`, `eta`, `specular_transmittance`;
+    /// `specular` is the evaluated `specular_reflectance`.
+    fn from_material(m: &Material, _reflectance: Rgb, specular: Rgb, _tables: &[f32]) -> Self {
+        let t = vec3([m.specular_transmittance[0], m.specular_transmittance[1], m.specular_transmittance[2]]);
+        RoughDielectric {
+            distr: Microfacet::from_material(m),
+            eta: m.eta,
+            specular_reflectance: specular,
+            specular_transmittance: t,
+        }
+    }
+
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::of(BsdfFlags::REFLECTION | BsdfFlags::TRANSMISSION | BsdfFlags::GLOSSY)
+    }
+
+    fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        self.eval_pdf(wo, wi, mode).f
+    }
+
+    fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        self.eval_pdf(wo, wi, mode).pdf
+    }
+
+    /// Value and density share the half vector, `D` and the facet's Fresnel term.
+    fn eval_pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> EvalPdf {
         if wo.z == 0.0 {
-            return Rgb::ZERO;
+            return EvalPdf::ZERO;
         }
         let hv = self.half_vector(wo, wi);
         if !hv.valid {
-            return Rgb::ZERO;
+            return EvalPdf::ZERO;
         }
         let m = hv.m;
+        let (wo_m, wi_m) = (wo.dot(m), wi.dot(m));
         let d = self.distr.d(m);
         let g = self.distr.g(wo, wi, m);
-        if d == 0.0 || g == 0.0 {
-            return Rgb::ZERO;
-        }
-        let (wo_m, wi_m) = (wo.dot(m), wi.dot(m));
-        let f = fresnel(wo_m, self.eta).f;
-        if hv.reflect {
-            return self.specular_reflectance * (f * d * g / (4.0 * wo.z.abs()));
-        }
-        // Radiance is compressed into a smaller solid angle on the denser side.
-        let scale = if self.adjoint { 1.0 } else { 1.0 / (hv.eta * hv.eta) };
-        let value =
-            scale * (1.0 - f) * d * g * hv.eta * hv.eta * wo_m * wi_m / (wo.z * sqr(wo_m + hv.eta * wi_m));
-        self.specular_transmittance * value.abs()
+        let fresnel = fresnel(wo_m, self.eta).f;
+        let f = if d == 0.0 || g == 0.0 {
+            Rgb::ZERO
+        } else if hv.reflect {
+            self.specular_reflectance * (fresnel * d * g / (4.0 * wo.z.abs()))
+        } else {
+            // Radiance is compressed into a smaller solid angle on the denser side.
+            let scale = if mode == TransportMode::Importance { 1.0 } else { 1.0 / (hv.eta * hv.eta) };
+            let value = scale * (1.0 - fresnel) * d * g * hv.eta * hv.eta * wo_m * wi_m
+                / (wo.z * sqr(wo_m + hv.eta * wi_m));
+            self.specular_transmittance * value.abs()
+        };
+        // Facets seen from the wrong side have no density (the same test G1 makes in eval and sample).
+        let pdf = if wo_m * wo.z <= 0.0 || wi_m * wi.z <= 0.0 {
+            0.0
+        } else {
+            let lobe = if hv.reflect { fresnel } else { 1.0 - fresnel };
+            self.distr.pdf_with_d(d, wo * sign(wo.z), m)
+                * lobe
+                * Self::jacobian(hv.reflect, hv.eta, wo_m, wi_m)
+        };
+        EvalPdf { f, pdf }
     }
 
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if wo.z == 0.0 {
-            return 0.0;
-        }
-        let hv = self.half_vector(wo, wi);
-        if !hv.valid {
-            return 0.0;
-        }
-        let m = hv.m;
-        let (wo_m, wi_m) = (wo.dot(m), wi.dot(m));
-        // Facets seen from the wrong side (the same test G1 makes in eval and sample).
-        if wo_m * wo.z <= 0.0 || wi_m * wi.z <= 0.0 {
-            return 0.0;
-        }
-        let f = fresnel(wo_m, self.eta).f;
-        let lobe = if hv.reflect { f } else { 1.0 - f };
-        self.distr.pdf(wo * sign(wo.z), m) * lobe * Self::jacobian(hv.reflect, hv.eta, wo_m, wi_m)
-    }
-
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
+    fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2, mode: TransportMode) -> BsdfSample {
         if wo.z == 0.0 {
             return BsdfSample::invalid();
         }
@@ -133,7 +136,7 @@ impl RoughDielectric {
         let (wi, weight, lobe, eta) = if reflect {
             (reflect_about(wo, m), self.specular_reflectance, fr.f, 1.0)
         } else {
-            let scale = if self.adjoint { 1.0 } else { fr.eta_ti * fr.eta_ti };
+            let scale = if mode == TransportMode::Importance { 1.0 } else { fr.eta_ti * fr.eta_ti };
             (
                 refract_about(wo, m, fr.cos_theta_t, fr.eta_ti),
                 self.specular_transmittance * scale,

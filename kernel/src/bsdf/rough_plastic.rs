@@ -6,11 +6,11 @@
 use super::fresnel::{fresnel, reflect_about};
 use super::microfacet::Microfacet;
 use super::plastic::PARAM_SPECULAR_WEIGHT;
-use super::BsdfSample;
+use super::{BsdfFlags, BsdfSample, Bxdf, EvalPdf, TransportMode};
 use crate::glam::{Vec2, Vec3};
+use crate::layout::{Material, MATERIAL_BECKMANN, MATERIAL_NONLINEAR};
 use crate::math::INV_PI;
 use crate::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use crate::layout::{Material, MATERIAL_BECKMANN, MATERIAL_NONLINEAR};
 use crate::spectrum::Rgb;
 
 /// Entries of the transmittance table, at cos θ = j / (RES - 1) (Mitsuba's `MI_ROUGH_TRANSMITTANCE_RES`).
@@ -34,29 +34,9 @@ pub struct RoughPlastic<'a> {
     /// The external transmittance table: `tables[table .. table + TRANSMITTANCE_RES]`.
     pub tables: &'a [f32],
     pub table: u32,
-    /// Importance transport; the model's `1/η²` belongs to its diffuse lobe and stays.
-    pub adjoint: bool,
 }
 
 impl<'a> RoughPlastic<'a> {
-    /// Reads `alpha_u` (isotropic), `flags & (MATERIAL_BECKMANN | MATERIAL_NONLINEAR)`, `eta`, `table`
-    /// and `params` (see `precompute`); `reflectance` and `specular` are the evaluated diffuse and
-    /// specular reflectances.
-    pub fn from_material(m: &Material, reflectance: Rgb, specular: Rgb, tables: &'a [f32]) -> Self {
-        RoughPlastic {
-            distr: Microfacet::new(m.alpha_u, m.alpha_u, m.flags & MATERIAL_BECKMANN != 0),
-            eta: m.eta,
-            diffuse: reflectance,
-            specular,
-            internal_reflectance: m.params[PARAM_INTERNAL_REFLECTANCE],
-            specular_weight: m.params[PARAM_SPECULAR_WEIGHT],
-            nonlinear: m.flags & MATERIAL_NONLINEAR != 0,
-            tables,
-            table: m.table,
-            adjoint: false,
-        }
-    }
-
     /// The coating's transmittance at `cos_theta` ∈ (0, 1], interpolated linearly in the table.
     pub fn transmittance(&self, cos_theta: f32) -> f32 {
         let x = cos_theta * (TRANSMITTANCE_RES - 1) as f32;
@@ -77,36 +57,64 @@ impl<'a> RoughPlastic<'a> {
             0.0
         }
     }
+}
 
-    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Rgb {
+impl<'a> Bxdf<'a> for RoughPlastic<'a> {
+    /// Reads `alpha_u` (isotropic), `flags & (MATERIAL_BECKMANN | MATERIAL_NONLINEAR)`, `eta`, `table`
+    /// and `params` (see `precompute`); `reflectance` and `specular` are the evaluated diffuse and
+    /// specular reflectances.
+    fn from_material(m: &Material, reflectance: Rgb, specular: Rgb, tables: &'a [f32]) -> Self {
+        RoughPlastic {
+            distr: Microfacet::new(m.alpha_u, m.alpha_u, m.flags & MATERIAL_BECKMANN != 0),
+            eta: m.eta,
+            diffuse: reflectance,
+            specular,
+            internal_reflectance: m.params[PARAM_INTERNAL_REFLECTANCE],
+            specular_weight: m.params[PARAM_SPECULAR_WEIGHT],
+            nonlinear: m.flags & MATERIAL_NONLINEAR != 0,
+            tables,
+            table: m.table,
+        }
+    }
+
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::of(BsdfFlags::REFLECTION | BsdfFlags::DIFFUSE | BsdfFlags::GLOSSY)
+    }
+
+    fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        self.eval_pdf(wo, wi, mode).f
+    }
+
+    fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        self.eval_pdf(wo, wi, mode).pdf
+    }
+
+    /// Value and density share the half vector, `D`, `G1(wo)` and the viewer's transmittance.
+    fn eval_pdf(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> EvalPdf {
         if wo.z <= 0.0 || wi.z <= 0.0 {
-            return Rgb::ZERO;
+            return EvalPdf::ZERO;
         }
         let h = (wo + wi).normalize();
-        let f = fresnel(wo.dot(h), self.eta).f;
-        let glossy = self.specular * (f * self.distr.d(h) * self.distr.g(wo, wi, h) / (4.0 * wo.z));
+        let d = self.distr.d(h);
+        let g1_o = self.distr.smith_g1(wo, h);
+        let fresnel = fresnel(wo.dot(h), self.eta).f;
+        let glossy = self.specular * (fresnel * d * (g1_o * self.distr.smith_g1(wi, h)) / (4.0 * wo.z));
         let denom = if self.nonlinear {
             Rgb::ONE - self.diffuse * self.internal_reflectance
         } else {
             Rgb::splat(1.0 - self.internal_reflectance)
         };
-        let t = self.transmittance(wo.z) * self.transmittance(wi.z);
-        glossy + self.diffuse / denom * (INV_PI / (self.eta * self.eta) * wi.z * t)
-    }
-
-    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return 0.0;
-        }
-        let ps = self.specular_probability(self.transmittance(wo.z));
-        let h = (wo + wi).normalize();
+        let t_o = self.transmittance(wo.z);
+        let t = t_o * self.transmittance(wi.z);
+        let f = glossy + self.diffuse / denom * (INV_PI / (self.eta * self.eta) * wi.z * t);
+        let ps = self.specular_probability(t_o);
         // Visible normals with the reflection Jacobian (wi·h = wo·h): D·G1(wo)/(4 cos θo).
-        let glossy = self.distr.d(h) * self.distr.smith_g1(wo, h) / (4.0 * wo.z);
-        ps * glossy + (1.0 - ps) * cosine_hemisphere_pdf(wi.z)
+        let glossy_pdf = d * g1_o / (4.0 * wo.z);
+        EvalPdf { f, pdf: ps * glossy_pdf + (1.0 - ps) * cosine_hemisphere_pdf(wi.z) }
     }
 
     /// Picks a lobe with `u_lobe`, warps `u` by it, and weighs by the mixture density.
-    pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2) -> BsdfSample {
+    fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2, mode: TransportMode) -> BsdfSample {
         if wo.z <= 0.0 {
             return BsdfSample::invalid();
         }
@@ -116,11 +124,11 @@ impl<'a> RoughPlastic<'a> {
         } else {
             square_to_cosine_hemisphere(u)
         };
-        let pdf = self.pdf(wo, wi);
-        if pdf <= 0.0 {
+        let ep = self.eval_pdf(wo, wi, mode);
+        if ep.pdf <= 0.0 {
             return BsdfSample::invalid();
         }
-        BsdfSample { wi, weight: self.eval(wo, wi) / pdf, pdf, eta: 1.0, delta: false }
+        BsdfSample { wi, weight: ep.f / ep.pdf, pdf: ep.pdf, eta: 1.0, delta: false }
     }
 }
 

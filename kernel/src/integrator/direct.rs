@@ -6,11 +6,11 @@ use super::nee::{
 };
 use super::path::DIM_FIRST_BOUNCE;
 use super::shading_frame;
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
-use crate::rng::Sampler;
 use crate::layout::{FrameParams, SceneView, NONE};
+use crate::rng::Sampler;
 use crate::shape::{offset_origin, surface_point};
 use crate::spectrum::Rgb;
 
@@ -43,7 +43,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features);
     let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, camera_ray.dir);
 
-    if bsdf.has_smooth_component() {
+    if bsdf.flags().has_smooth() {
         let mut i = 0;
         while i < params.emitter_samples {
             let u_select = sampler.next_1d();
@@ -60,7 +60,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         let u_lobe = sampler.next_1d();
         let u_dir = sampler.next_2d();
         i += 1;
-        let bs = bsdf.sample(wo, u_lobe, u_dir);
+        let bs = bsdf.sample(wo, u_lobe, u_dir, TransportMode::Radiance);
         if bs.pdf <= 0.0 {
             continue;
         }

@@ -7,15 +7,12 @@ use crate::features;
 use crate::film;
 use crate::frame::Frame;
 use crate::glam::Vec3;
+pub use crate::layout::SceneView;
+use crate::layout::{FrameParams, PixelAccum, INTEGRATOR_DIRECT};
 use crate::math::is_finite3;
 use crate::rng::Sampler;
-pub use crate::layout::SceneView;
-use crate::layout::{FrameParams, INTEGRATOR_DIRECT};
 use crate::shape::SurfacePoint;
 use crate::spectrum::Rgb;
-
-/// Floats per pixel in the accumulation buffer: RGB sum, sample count, RGB sum of squares, spare.
-pub const ACCUM_STRIDE: usize = 8;
 
 /// What one dispatch adds to a pixel.
 #[derive(Clone, Copy)]
@@ -57,18 +54,15 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
     sums
 }
 
-/// Adds a pixel's sums to its slot of the accumulation buffer.
+/// A pixel's accumulator with one dispatch's sums added.
 #[inline]
-pub fn accumulate(accum: &mut [f32], pixel: u32, sums: &PixelSums, sample_count: u32) {
-    let base = pixel as usize * ACCUM_STRIDE;
-    accum[base] += sums.sum.x;
-    accum[base + 1] += sums.sum.y;
-    accum[base + 2] += sums.sum.z;
-    accum[base + 3] += sample_count as f32;
-    accum[base + 4] += sums.sum_sq.x;
-    accum[base + 5] += sums.sum_sq.y;
-    accum[base + 6] += sums.sum_sq.z;
-    accum[base + 7] += sums.invalid as f32;
+pub fn accumulated(a: PixelAccum, sums: &PixelSums, sample_count: u32) -> PixelAccum {
+    PixelAccum {
+        sum: [a.sum[0] + sums.sum.x, a.sum[1] + sums.sum.y, a.sum[2] + sums.sum.z],
+        count: a.count + sample_count as f32,
+        sum_sq: [a.sum_sq[0] + sums.sum_sq.x, a.sum_sq[1] + sums.sum_sq.y, a.sum_sq[2] + sums.sum_sq.z],
+        invalid: a.invalid + sums.invalid as f32,
+    }
 }
 
 /// The local shading frame at `sp` for a ray arriving along `dir`, the geometric normal on the same

@@ -4,15 +4,15 @@
 //! With `n_l` light samples and `n_b` BSDF samples per vertex (Mitsuba's `direct` takes several; the
 //! path tracer one each) the heuristic compares `n_l·p_light` with `n_b·p_bsdf`, and each strategy's
 //! sum is divided by its own count by the caller.
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
+use crate::layout::{FrameParams, Primitive, SceneView, NONE};
 use crate::light::{self, infinite};
 use crate::math::max_component;
 use crate::sampling::power_heuristic;
-use crate::layout::{FrameParams, Primitive, SceneView, NONE};
 use crate::shape::{offset_origin, Hit, SurfacePoint};
 use crate::spectrum::Rgb;
 
@@ -67,8 +67,10 @@ pub fn next_event(
         return Rgb::ZERO;
     }
     let wi = frame.to_local(ls.wi);
-    let f = bsdf.eval(wo, wi);
-    if max_component(f) <= 0.0 {
+    // One dispatch for both: the density is needed only if the shadow ray is clear, but computing it
+    // with the value shares the model's construction and work (half vector, D, Fresnel).
+    let ep = bsdf.eval_pdf(wo, wi, TransportMode::Radiance);
+    if max_component(ep.f) <= 0.0 {
         return Rgb::ZERO;
     }
     let shadow = Ray {
@@ -80,9 +82,8 @@ pub fn next_event(
     if accel.occluded(&shadow, ls.prim) {
         return Rgb::ZERO;
     }
-    let weight =
-        if ls.delta { 1.0 } else { power_heuristic(counts.light * ls.pdf, counts.bsdf * bsdf.pdf(wo, wi)) };
-    f * ls.radiance * (weight / ls.pdf)
+    let weight = if ls.delta { 1.0 } else { power_heuristic(counts.light * ls.pdf, counts.bsdf * ep.pdf) };
+    ep.f * ls.radiance * (weight / ls.pdf)
 }
 
 /// Radiance of the area emitter on `prim` seen along `dir` at `sp`, weighted against light sampling

@@ -4,12 +4,12 @@ use super::nee::{
     area_emission, environment, first_hit_past_emitters, next_event, PreviousVertex, StrategyCounts,
 };
 use super::shading_frame;
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
+use crate::layout::{FrameParams, SceneView, NONE};
 use crate::math::max_component;
 use crate::rng::Sampler;
-use crate::layout::{FrameParams, SceneView, NONE};
 use crate::shape::{offset_origin, surface_point};
 use crate::spectrum::Rgb;
 
@@ -64,7 +64,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
 
         let u_select = sampler.next_1d();
         let u_light = sampler.next_2d();
-        if bsdf.has_smooth_component() {
+        if bsdf.flags().has_smooth() {
             result += throughput
                 * next_event(scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, ONE_EACH);
         }
@@ -72,7 +72,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         // BSDF sampling.
         let u_lobe = sampler.next_1d();
         let u_dir = sampler.next_2d();
-        let bs = bsdf.sample(wo, u_lobe, u_dir);
+        let bs = bsdf.sample(wo, u_lobe, u_dir, TransportMode::Radiance);
         if bs.pdf <= 0.0 {
             break;
         }

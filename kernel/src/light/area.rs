@@ -1,8 +1,8 @@
 //! Area emitters on flat primitives (triangles and disks), sampled uniformly by area.
 use super::{area_sample_pdf, from_area_sample, LightSample};
 use crate::glam::{Vec2, Vec3};
-use crate::math::vec3;
 use crate::layout::{Light, Primitive, PRIM_DISK, PRIM_FLAG_FLIP};
+use crate::math::vec3;
 use crate::shape::{disk, triangle};
 
 /// The primitive's unnormalised normal (edge cross product, or `u × v` for a disk) and its area.

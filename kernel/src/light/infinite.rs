@@ -7,9 +7,9 @@ use spirv_std::num_traits::Float;
 use super::{beyond_scene, radiance, to_local, to_world, LightSample};
 use crate::features;
 use crate::glam::{Vec2, Vec3};
+use crate::layout::{Light, SceneView, Texture, LIGHT_ENVMAP, NONE};
 use crate::math::{INV_2PI, INV_4PI, INV_PI, PI};
 use crate::sampling::{sample_cdf, square_to_uniform_sphere};
-use crate::layout::{Light, SceneView, Texture, LIGHT_ENVMAP, NONE};
 use crate::spectrum::Rgb;
 use crate::texture::texel;
 

@@ -11,12 +11,12 @@ pub mod sphere;
 
 use crate::features;
 use crate::glam::{Vec2, Vec3};
-use crate::math::vec3;
-use crate::sampling::sample_cdf;
 use crate::layout::{
     FrameParams, Light, Primitive, SceneView, LIGHT_AREA, LIGHT_CONSTANT, LIGHT_DIRECTIONAL, LIGHT_ENVMAP,
     LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, NONE,
 };
+use crate::math::vec3;
+use crate::sampling::sample_cdf;
 use crate::spectrum::Rgb;
 
 /// A direction towards a point on an emitter, with what arrives along it.

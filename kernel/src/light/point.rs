@@ -5,8 +5,8 @@ use spirv_std::num_traits::Float;
 
 use super::{radiance, to_local, LightSample};
 use crate::glam::Vec3;
-use crate::math::vec3;
 use crate::layout::{Light, LIGHT_SPOT, NONE};
+use crate::math::vec3;
 
 /// Mitsuba's spot profile for a unit direction in the light's frame (beam along +z).
 pub fn spot_falloff(light: &Light, local: Vec3) -> f32 {

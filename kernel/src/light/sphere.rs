@@ -8,11 +8,11 @@ use spirv_std::num_traits::Float;
 use super::{area_sample_pdf, from_area_sample, LightSample};
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
+use crate::layout::{Light, Primitive, PRIM_FLAG_FLIP};
 use crate::math::{safe_sqrt, vec3, PI};
 use crate::sampling::{
     one_minus_cos_from_sin2, square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf,
 };
-use crate::layout::{Light, Primitive, PRIM_FLAG_FLIP};
 use crate::spectrum::Rgb;
 
 #[inline]

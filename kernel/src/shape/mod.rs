@@ -5,8 +5,10 @@ pub mod triangle;
 
 use crate::camera::Ray;
 use crate::glam::{Vec2, Vec3};
+use crate::layout::{
+    Primitive, TriangleAttributes, PRIM_DISK, PRIM_FLAG_FLIP, PRIM_FLAG_SMOOTH, PRIM_SPHERE,
+};
 use crate::math::vec3;
-use crate::layout::{Primitive, TriangleAttributes, PRIM_DISK, PRIM_FLAG_FLIP, PRIM_FLAG_SMOOTH, PRIM_SPHERE};
 
 /// The nearest hit found so far: distance, primitive and its parametric coordinates
 /// (barycentrics b1, b2 for triangles; unused for spheres).
