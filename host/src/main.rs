@@ -1,10 +1,12 @@
 //! The `caustic` command line: render, compare, bench, convergence.
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use caustic::backend::{self, BackendChoice};
 use caustic::film::{variance_path, Film};
+use caustic::session::{self, RenderJob};
 use caustic::{buffers, compare, render};
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 #[derive(Parser)]
 #[command(
@@ -75,8 +77,9 @@ enum Command {
         scene: PathBuf,
         #[arg(short = 'D', value_parser = parse_define)]
         define: Vec<(String, String)>,
-        #[arg(long, default_value = "all")]
-        backend: String,
+        /// Backends to measure, one after the other (comma-separated).
+        #[arg(long, value_enum, value_delimiter = ',', default_value = "cpu,gpu")]
+        backend: Vec<BackendChoice>,
         #[arg(long, default_value_t = 64)]
         spp: u32,
     },
@@ -125,9 +128,20 @@ fn main() {
             let output = output.unwrap_or_else(|| {
                 PathBuf::from(run.scene.file_stem().unwrap_or_default()).with_extension("exr")
             });
-            let checkpoint =
-                checkpoint.map(|path| (path, std::time::Duration::from_secs_f64(checkpoint_every.max(0.0))));
-            cmd_render(&run, &output, variance, quiet, checkpoint.as_ref(), tev.as_deref())
+            // An interval too long for a Duration (`inf`) means: never between passes.
+            let every = Duration::try_from_secs_f64(checkpoint_every.max(0.0)).unwrap_or(Duration::MAX);
+            cmd_render(&RenderJob {
+                scene: run.scene,
+                defines: run.define,
+                backend: run.backend,
+                spp: run.spp,
+                seed: run.seed,
+                output,
+                variance,
+                progress_bar: !quiet,
+                checkpoint: checkpoint.map(|path| (path, every)),
+                tev,
+            })
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
             cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref())
@@ -143,149 +157,20 @@ fn main() {
     }
 }
 
-/// How often the image goes to tev: often enough to watch, rarely enough that read-backs cost little.
-const TEV_INTERVAL: std::time::Duration = std::time::Duration::from_millis(500);
-
-fn cmd_render(
-    run: &RunArgs,
-    output: &Path,
-    variance: bool,
-    quiet: bool,
-    checkpoint: Option<&(PathBuf, std::time::Duration)>,
-    tev: Option<&str>,
-) -> Result<()> {
-    let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed } = run;
-    let (choice, seed) = (*choice, *seed);
-    caustic::film::check_output_path(output)?;
-    let scene = caustic::load_scene(scene_path, defines)?;
-    let spp = spp.unwrap_or(scene.sensor.spp);
-    if spp == 0 {
-        bail!("--spp must be at least 1");
-    }
-    let buffers = buffers::build(&scene)
-        .with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
-    let mut backend = backend::create(choice, &buffers)?;
-    // Hashing every scene buffer is only worth it when there is a checkpoint to match.
-    let fingerprint = checkpoint.map(|_| caustic::checkpoint::fingerprint(&buffers, seed, spp));
-    let start = match (checkpoint, fingerprint) {
-        (Some((path, _)), Some(fingerprint)) => resume(path, backend.as_mut(), fingerprint, spp)?,
-        _ => 0,
-    };
-    let bar = if quiet { indicatif::ProgressBar::hidden() } else { indicatif::ProgressBar::new(spp as u64) };
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} spp ({eta} left)")
-            .unwrap()
-            .progress_chars("=> "),
-    );
-    bar.set_position(start as u64);
-    let (width, height) = (buffers.params.width, buffers.params.height);
-    let name = output.file_name().unwrap_or_default().to_string_lossy().to_string();
-    let mut viewer = match tev
-        .map(|address| caustic::tev::TevStream::connect(address, &name, width, height))
-        .transpose()
-    {
-        Ok(v) => v,
-        Err(e) => {
-            eprintln!("warning: {e:#}; rendering without the viewer");
-            None
-        }
-    };
-    let mut last_save = std::time::Instant::now();
-    let mut last_view = std::time::Instant::now();
-    let stats = render::render_with_checkpoints(
-        backend.as_mut(),
-        &buffers,
-        start,
-        spp,
-        seed,
-        &[],
-        |done, _, backend| {
-            bar.set_position(done as u64);
-            if viewer.is_some() && (last_view.elapsed() >= TEV_INTERVAL || done == spp) {
-                let film = Film::from_accum(width, height, &backend.read_accum()?);
-                if let Err(e) = viewer.as_mut().unwrap().update(&film) {
-                    eprintln!("warning: {e:#}; no more updates to the viewer");
-                    viewer = None;
-                }
-                last_view = std::time::Instant::now();
-            }
-            if let (Some((path, every)), Some(fingerprint)) = (checkpoint, fingerprint) {
-                if done < spp && last_save.elapsed() >= *every {
-                    let c = caustic::checkpoint::Checkpoint {
-                        scene: fingerprint,
-                        seed,
-                        spp_total: spp,
-                        spp_done: done,
-                        accum: backend.read_accum()?,
-                    };
-                    // A checkpoint that cannot be written must not cost the render itself.
-                    if let Err(e) = c.save(path) {
-                        eprintln!("warning: {e:#}; the render goes on");
-                    }
-                    last_save = std::time::Instant::now();
-                }
-            }
-            Ok(std::ops::ControlFlow::Continue(()))
-        },
-    )?;
-    bar.finish_and_clear();
-    let mut film = Film::from_accum(buffers.params.width, buffers.params.height, &backend.read_accum()?);
-    sanitize(&mut film);
-    if let Err(e) = film.save(output) {
-        // Keep the finished render: write it where it can be written, then report the failure.
-        let fallback = std::env::temp_dir().join(format!("caustic-recovered-{}.exr", std::process::id()));
-        match film.save(&fallback) {
-            Ok(()) => bail!("{e:#}; the render was saved to {} instead", fallback.display()),
-            Err(_) => return Err(e),
-        }
-    }
-    if variance {
-        film.save_variance(&variance_path(output))?;
-    }
-    if let Some((path, _)) = checkpoint {
-        // The image is safe on disk: the checkpoint has served.
-        std::fs::remove_file(path).ok();
-    }
-    let (w, h) = (film.width, film.height);
-    let msps = w as f64 * h as f64 * (spp - start) as f64 / stats.seconds.max(1e-9) / 1e6;
-    let resumed = if start > 0 { format!(" (resumed at {start})") } else { String::new() };
+fn cmd_render(job: &RenderJob) -> Result<()> {
+    let r = session::render_to_file(job)?;
+    let resumed = if r.resumed_at > 0 { format!(" (resumed at {})", r.resumed_at) } else { String::new() };
     say!(
-        "{} | {w}x{h} | {spp} spp{resumed} | {:.2} s | {msps:.2} Msamples/s | {}",
-        backend.describe(),
-        stats.seconds,
-        output.display()
+        "{} | {}x{} | {} spp{resumed} | {:.2} s | {:.2} Msamples/s | {}",
+        r.backend,
+        r.width,
+        r.height,
+        r.spp,
+        r.seconds,
+        r.msamples_per_second(),
+        job.output.display()
     );
     Ok(())
-}
-
-/// Loads `path` into the backend if it exists and carries this render's `fingerprint` (scene, seed
-/// and sample count); returns the samples per pixel it holds (0 without a checkpoint).
-fn resume(path: &Path, backend: &mut dyn backend::Backend, fingerprint: u64, spp: u32) -> Result<u32> {
-    if !path.exists() {
-        return Ok(0);
-    }
-    let c = caustic::checkpoint::Checkpoint::load(path)?;
-    if c.scene != fingerprint || c.spp_done > spp {
-        bail!(
-            "{} was written for another scene, seed or sample count; remove it to start afresh",
-            path.display()
-        );
-    }
-    backend.write_accum(&c.accum)?;
-    eprintln!("resuming from {} ({} of {spp} spp done)", path.display(), c.spp_done);
-    Ok(c.spp_done)
-}
-
-/// Guarantees a finite image. The kernel already drops non-finite samples; report them.
-fn sanitize(film: &mut Film) {
-    if film.invalid_samples > 0 {
-        eprintln!("warning: {} samples were not finite and were counted as black", film.invalid_samples);
-    }
-    for p in film.rgb.iter_mut().flatten() {
-        if !p.is_finite() {
-            *p = 0.0;
-        }
-    }
 }
 
 fn cmd_compare(
@@ -363,18 +248,17 @@ fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Op
     Ok(())
 }
 
-fn cmd_bench(scene_path: &Path, defines: &[(String, String)], which: &str, spp: u32) -> Result<()> {
+fn cmd_bench(
+    scene_path: &Path,
+    defines: &[(String, String)],
+    choices: &[BackendChoice],
+    spp: u32,
+) -> Result<()> {
     let scene = caustic::load_scene(scene_path, defines)?;
     let buffers = buffers::build(&scene)?;
-    let choices: Vec<BackendChoice> = match which {
-        "all" => vec![BackendChoice::Cpu, BackendChoice::Gpu],
-        "cpu" => vec![BackendChoice::Cpu],
-        "gpu" => vec![BackendChoice::Gpu],
-        other => bail!("--backend must be all, cpu or gpu, not '{other}'"),
-    };
     say!("| backend | resolution | spp | seconds | Msamples/s |");
     say!("|---|---|---|---|---|");
-    for choice in choices {
+    for &choice in choices {
         let mut backend = match backend::create(choice, &buffers) {
             Ok(b) => b,
             Err(e) => {
