@@ -1,7 +1,9 @@
 //! The CPU backend: the kernel's per-pixel function, called natively on every core.
-use caustic_kernel::integrator::{accumulated, render_pixel, SceneView};
+use caustic_kernel::integrator::{accumulated, render_pixel, trace_light_paths, SceneView};
 use caustic_kernel::layout::{FrameParams, PixelAccum};
+use caustic_kernel::splat::{AtomicWords, SPLAT_STRIDE};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Adds `params.sample_count` samples to every pixel of `accum` (one `PixelAccum` per pixel), exactly
 /// as one GPU dispatch does.
@@ -15,4 +17,26 @@ pub fn render_pass(scene: &SceneView, params: &FrameParams, accum: &mut [PixelAc
             *slot = accumulated(*slot, &render_pixel(scene, params, pixel), params.sample_count);
         }
     });
+}
+
+/// The CPU's splat words: `u32` atomics shared by every thread.
+struct CpuWords<'a>(&'a [AtomicU32]);
+
+impl AtomicWords for CpuWords<'_> {
+    #[inline]
+    fn fetch_add(&mut self, index: u32, value: u32) -> u32 {
+        // Relaxed: the sums are read only after the pass has joined every thread.
+        self.0[index as usize].fetch_add(value, Ordering::Relaxed)
+    }
+}
+
+/// Traces `params.sample_count` light paths per pixel, exactly as one GPU dispatch does, and returns
+/// the splat words (`caustic_kernel::splat` layout) for the host to resolve.
+pub fn light_pass(scene: &SceneView, params: &FrameParams) -> Vec<u32> {
+    let pixels = params.width * params.height;
+    let words: Vec<AtomicU32> = (0..pixels * SPLAT_STRIDE).map(|_| AtomicU32::new(0)).collect();
+    (0..pixels).into_par_iter().for_each(|pixel| {
+        trace_light_paths(scene, params, pixel, &mut CpuWords(&words));
+    });
+    words.into_iter().map(AtomicU32::into_inner).collect()
 }

@@ -506,6 +506,10 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         IntegratorKind::Direct { emitter_samples, bsdf_samples } => {
             (INTEGRATOR_DIRECT, emitter_samples, bsdf_samples)
         }
+        IntegratorKind::Ptracer => {
+            check_light_tracing(scene, &lights)?;
+            (INTEGRATOR_PTRACER, 1, 1)
+        }
     };
     let params = FrameParams {
         width: crop.width,
@@ -568,5 +572,33 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     if integrator == INTEGRATOR_DIRECT {
         f |= features::DIRECT_INTEGRATOR;
     }
+    if integrator == INTEGRATOR_PTRACER {
+        f |= features::LIGHT_TRACER;
+    }
     f
+}
+
+/// What light tracing does not cover yet is refused, never rendered without it: infinite emitters
+/// (directional, constant, envmap) and cameras other than the pinhole perspective one. A film filter
+/// other than the box is replaced by the box for the splats (said once).
+fn check_light_tracing(scene: &Scene, lights: &[Light]) -> Result<()> {
+    for l in lights {
+        let name = match l.kind {
+            LIGHT_DIRECTIONAL => "directional",
+            LIGHT_CONSTANT => "constant",
+            LIGHT_ENVMAP => "envmap",
+            _ => continue,
+        };
+        bail!("ptracer: {name} emitters are not light-traced yet (render this scene with path)");
+    }
+    if camera(scene).kind != CAMERA_PERSPECTIVE {
+        bail!("ptracer: only the perspective (pinhole) sensor is supported (render this scene with path)");
+    }
+    if !matches!(scene.sensor.filter, Filter::Box { .. }) {
+        eprintln!(
+            "warning: ptracer splats with a box filter over each pixel (the scene's {:?} filter is not used)",
+            scene.sensor.filter
+        );
+    }
+    Ok(())
 }

@@ -17,17 +17,56 @@ pub struct Film {
     pub invalid_samples: u64,
 }
 
+/// A backend's accumulated sums: one `PixelAccum` per pixel, and how their squares were summed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Accumulation {
+    pub pixels: Vec<PixelAccum>,
+    /// `None`: `sum_sq` sums each sample's square (camera paths). `Some(b)`: the sums came in `b`
+    /// batches (passes) whose pixel sums `S` were resolved from splats, `sum_sq` summing `S²/k` for a
+    /// pass of `k` samples, and the film estimates the variance from batch means: a light path adds
+    /// to arbitrary pixels, so no per-sample square exists for a pixel.
+    pub batches: Option<u32>,
+}
+
+impl Accumulation {
+    pub fn new(pixels: usize, splatted: bool) -> Self {
+        Accumulation { pixels: vec![PixelAccum::default(); pixels], batches: splatted.then_some(0) }
+    }
+
+    /// Adds one pass of `sample_count` samples per pixel from the splat words (`caustic_kernel::splat`
+    /// layout), in `f64` from the exact fixed-point sums.
+    pub fn add_splats(&mut self, words: &[u32], sample_count: u32) {
+        use caustic_kernel::splat::{fixed_to_f64, SPLAT_INVALID, SPLAT_STRIDE};
+        let k = sample_count as f64;
+        for (px, w) in self.pixels.iter_mut().zip(words.chunks_exact(SPLAT_STRIDE as usize)) {
+            for c in 0..3 {
+                let s = fixed_to_f64(w[2 * c], w[2 * c + 1]);
+                px.sum[c] = (px.sum[c] as f64 + s) as f32;
+                px.sum_sq[c] = (px.sum_sq[c] as f64 + s * s / k) as f32;
+            }
+            px.count += sample_count as f32;
+            px.invalid += w[SPLAT_INVALID as usize] as f32;
+        }
+        self.batches = Some(self.batches.unwrap_or(0) + 1);
+    }
+}
+
 impl Film {
-    pub fn from_accum(width: u32, height: u32, accum: &[PixelAccum]) -> Film {
+    pub fn from_accum(width: u32, height: u32, accum: &Accumulation) -> Film {
         let mut rgb = Vec::with_capacity((width * height) as usize);
         let mut variance = Vec::with_capacity(rgb.capacity());
         let mut invalid = 0u64;
-        for px in accum {
+        for px in &accum.pixels {
             let n = px.count.max(1.0) as f64;
             let mean: [f64; 3] = std::array::from_fn(|c| px.sum[c] as f64 / n);
+            // Variance of the mean: per sample, (Σx² − n·x̄²) / (n(n−1)); from b batch means weighted
+            // by their sizes, (Σ S²/k − n·x̄²) / (n(b−1)).
+            let dof = match accum.batches {
+                None => (n - 1.0).max(1.0),
+                Some(b) => (b as f64 - 1.0).max(1.0),
+            };
             let var: [f32; 3] = std::array::from_fn(|c| {
-                let second = px.sum_sq[c] as f64 / n;
-                (((second - mean[c] * mean[c]).max(0.0)) * n / (n - 1.0).max(1.0) / n) as f32
+                ((px.sum_sq[c] as f64 - n * mean[c] * mean[c]).max(0.0) / (n * dof)) as f32
             });
             rgb.push(mean.map(|m| m as f32));
             variance.push(var);

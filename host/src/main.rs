@@ -2,6 +2,7 @@
 use anyhow::{Context, Result};
 use caustic::backend::{self, BackendChoice};
 use caustic::film::{variance_path, Film};
+use caustic::scene::IntegratorChoice;
 use caustic::session::{self, RenderJob};
 use caustic::{buffers, compare, render};
 use clap::{Parser, Subcommand};
@@ -101,6 +102,9 @@ struct RunArgs {
     /// Random seed; different seeds give statistically independent images.
     #[arg(long, default_value_t = 0)]
     seed: u32,
+    /// Render with this integrator instead of the scene's (its max_depth, rr_depth, hide_emitters kept).
+    #[arg(long, value_enum)]
+    integrator: Option<IntegratorChoice>,
 }
 
 /// `println!` that ends the program quietly when stdout is closed (`caustic compare … | head`), as
@@ -141,6 +145,7 @@ fn main() {
                 progress_bar: !quiet,
                 checkpoint: checkpoint.map(|path| (path, every)),
                 tev,
+                integrator: run.integrator,
             })
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
@@ -204,9 +209,12 @@ fn cmd_compare(
 
 fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Option<&Path>) -> Result<()> {
     use caustic::convergence;
-    let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed } = run;
+    let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed, integrator } = run;
     let (choice, seed) = (*choice, *seed);
-    let scene = caustic::load_scene(scene_path, defines)?;
+    let mut scene = caustic::load_scene(scene_path, defines)?;
+    if let Some(choice) = *integrator {
+        scene.integrator = scene.integrator.overridden(choice);
+    }
     let spp = spp.unwrap_or(scene.sensor.spp);
     let reference_film = Film::load_exr(reference)?;
     let buffers = buffers::build(&scene)

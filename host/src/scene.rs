@@ -99,6 +99,33 @@ impl Default for Integrator {
     }
 }
 
+/// An integrator chosen on the command line (`--integrator`), overriding the scene's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum IntegratorChoice {
+    /// Path tracing with next-event estimation.
+    Path,
+    /// Direct illumination, one light and one BSDF sample per shading point.
+    Direct,
+    /// Light tracing (Mitsuba's `ptracer`).
+    Ptracer,
+}
+
+impl Integrator {
+    /// The scene's integrator with its kind replaced by `choice`; `max_depth`, `rr_depth` and
+    /// `hide_emitters` carry over (`direct` has its own depth of 2).
+    pub fn overridden(self, choice: IntegratorChoice) -> Integrator {
+        match choice {
+            IntegratorChoice::Path => Integrator { kind: IntegratorKind::Path, ..self },
+            IntegratorChoice::Ptracer => Integrator { kind: IntegratorKind::Ptracer, ..self },
+            IntegratorChoice::Direct => Integrator {
+                kind: IntegratorKind::Direct { emitter_samples: 1, bsdf_samples: 1 },
+                max_depth: 2,
+                ..self
+            },
+        }
+    }
+}
+
 /// Which estimator renders the image.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum IntegratorKind {
@@ -108,6 +135,8 @@ pub enum IntegratorKind {
         emitter_samples: u32,
         bsdf_samples: u32,
     },
+    /// Light tracing (Mitsuba's `ptracer`).
+    Ptracer,
 }
 
 #[derive(Clone, Debug)]

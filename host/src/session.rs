@@ -5,6 +5,7 @@
 use crate::backend::{self, Backend, BackendChoice};
 use crate::checkpoint::{self, Checkpoint};
 use crate::film::{self, Film};
+use crate::scene::IntegratorChoice;
 use crate::{buffers, render, tev};
 use anyhow::{bail, Context, Result};
 use std::ops::ControlFlow::Continue;
@@ -35,6 +36,8 @@ pub struct RenderJob {
     pub checkpoint: Option<(PathBuf, Duration)>,
     /// Address of a tev viewer to stream the image to while rendering.
     pub tev: Option<String>,
+    /// Replaces the scene's integrator.
+    pub integrator: Option<IntegratorChoice>,
 }
 
 /// What a finished session did.
@@ -66,7 +69,10 @@ impl RenderReport {
 pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
     let output = job.output.as_path();
     film::check_output_path(output)?;
-    let scene = crate::load_scene(&job.scene, &job.defines)?;
+    let mut scene = crate::load_scene(&job.scene, &job.defines)?;
+    if let Some(choice) = job.integrator {
+        scene.integrator = scene.integrator.overridden(choice);
+    }
     let spp = job.spp.unwrap_or(scene.sensor.spp);
     if spp == 0 {
         bail!("--spp must be at least 1");

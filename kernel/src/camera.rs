@@ -1,4 +1,7 @@
 //! Cameras with Mitsuba's sensor conventions: `perspective` (pinhole), `thinlens` and `orthographic`.
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
 use crate::glam::{Vec2, Vec3};
 use crate::math::vec3;
 use crate::sampling::square_to_concentric_disk;
@@ -30,6 +33,18 @@ pub struct Camera {
     /// Thin lens: distance of the plane in focus along local +z.
     pub focus_distance: f32,
     pub _pad: u32,
+}
+
+/// A connection from a scene point to the camera (`Camera::connect`).
+#[derive(Clone, Copy)]
+pub struct CameraConnection {
+    /// Film position (fractions of the full image's width and height, origin top-left).
+    pub film: Vec2,
+    /// Unit direction from the point towards the camera.
+    pub dir: Vec3,
+    pub dist: f32,
+    /// `We·cos θc / d²`: what the connection contributes per unit of `f·cos` arriving at the camera.
+    pub importance: f32,
 }
 
 /// A ray with its valid parameter interval.
@@ -66,6 +81,35 @@ impl Camera {
             t_min: self.near_clip * inv_z,
             t_max: self.far_clip * inv_z,
         }
+    }
+
+    /// The pinhole camera seen from a world point `p`, for light tracing: where `p` lands on the film
+    /// (fractions of width and height) and the importance `We·cos θc / d²` that the connection carries,
+    /// with `We = 1 / (A·cos⁴θc)` normalised over the whole film (`A`: the image plane's area at unit
+    /// distance), so that a pixel of a `W×H` film receives `1/(W·H)` of it in expectation. `None` when
+    /// `p` is behind the camera, outside the film or the clip range.
+    pub fn connect(&self, p: Vec3) -> Option<CameraConnection> {
+        if self.kind != CAMERA_PERSPECTIVE {
+            return None;
+        }
+        let d = p - vec3(self.origin);
+        let local = Vec3::new(d.dot(vec3(self.axis_x)), d.dot(vec3(self.axis_y)), d.dot(vec3(self.axis_z)));
+        if !(local.z > 0.0) || local.z < self.near_clip || local.z > self.far_clip {
+            return None;
+        }
+        let film = Vec2::new(
+            0.5 * (1.0 - local.x / (local.z * self.tan_half_x)),
+            0.5 * (1.0 - local.y / (local.z * self.tan_half_y)),
+        );
+        if !(film.x >= 0.0 && film.x < 1.0 && film.y >= 0.0 && film.y < 1.0) {
+            return None;
+        }
+        let dist2 = local.length_squared();
+        let dist = dist2.sqrt();
+        let cos_theta = local.z / dist;
+        let area = 4.0 * self.tan_half_x * self.tan_half_y;
+        let importance = 1.0 / (area * cos_theta * cos_theta * cos_theta * dist2);
+        Some(CameraConnection { film, dir: -d / dist, dist, importance })
     }
 
     #[inline]

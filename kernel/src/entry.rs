@@ -1,10 +1,11 @@
 //! GPU compute entry points (SPIR-V only). They do nothing but fetch the buffers and call the same
 //! functions the CPU runner calls. Binding numbers and the workgroup size are the literals rust-gpu's
 //! attributes need; their names live in `layout` (`binding::*`, `TILE`), which the host uses.
-use crate::integrator::{accumulated, render_pixel, SceneView};
+use crate::integrator::{accumulated, render_pixel, trace_light_paths, traces_light_paths, SceneView};
 use crate::layout::{
     BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
 };
+use crate::splat::GpuWords;
 use spirv_std::glam::UVec3;
 use spirv_std::spirv;
 
@@ -22,6 +23,7 @@ pub fn render(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] tables: &[f32],       // TABLES
     #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] accum: &mut [PixelAccum], // ACCUM
     #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] textures: &[Texture], // TEXTURES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] splat: &mut [u32],    // SPLAT
     // The scene's `features` mask, fixed when the pipeline is created (default: everything).
     #[spirv(spec_constant(id = 0, default = 4294967295))] features: u32,
 ) {
@@ -30,6 +32,10 @@ pub fn render(
     }
     let scene = SceneView { nodes, prims, attributes, materials, lights, textures, tables, features };
     let pixel = id.y * params.width + id.x;
+    if traces_light_paths(&scene, params) {
+        trace_light_paths(&scene, params, pixel, &mut GpuWords(splat));
+        return;
+    }
     let sums = render_pixel(&scene, params, pixel);
     accum[pixel as usize] = accumulated(accum[pixel as usize], &sums, params.sample_count);
 }

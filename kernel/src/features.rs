@@ -25,6 +25,8 @@ pub const fn light(kind: u32) -> u32 {
 pub const TEXTURES: u32 = 1 << 20;
 /// Mitsuba's `direct` integrator.
 pub const DIRECT_INTEGRATOR: u32 = 1 << 21;
+/// Light tracing (`ptracer`).
+pub const LIGHT_TRACER: u32 = 1 << 22;
 
 // The kinds must fit their bit ranges.
 const _: () = assert!(BSDF_FUZZY_METAL < 12 && LIGHT_ENVMAP < 8);

@@ -237,10 +237,14 @@ pub mod binding {
     pub const TABLES: u32 = 6;
     pub const ACCUM: u32 = 7;
     pub const TEXTURES: u32 = 8;
+    /// Light tracing's fixed-point splat sums (`splat`); a placeholder word for the other integrators.
+    pub const SPLAT: u32 = 9;
 }
 
 pub const INTEGRATOR_PATH: u32 = 0;
 pub const INTEGRATOR_DIRECT: u32 = 1;
+/// Light tracing (Mitsuba's `ptracer`): splats into the `SPLAT` buffer instead of accumulating.
+pub const INTEGRATOR_PTRACER: u32 = 2;
 
 pub const SAMPLER_INDEPENDENT: u32 = 0;
 pub const SAMPLER_STRATIFIED: u32 = 1;
@@ -284,7 +288,7 @@ pub struct FrameParams {
     pub full_width: u32,
     pub full_height: u32,
 
-    /// `INTEGRATOR_PATH` or `INTEGRATOR_DIRECT`.
+    /// `INTEGRATOR_PATH`, `INTEGRATOR_DIRECT` or `INTEGRATOR_PTRACER`.
     pub integrator: u32,
     /// Light and BSDF samples per shading point of the direct integrator.
     pub emitter_samples: u32,

@@ -23,6 +23,7 @@ pub mod rng;
 pub mod sampling;
 pub mod shape;
 pub mod spectrum;
+pub mod splat;
 pub mod texture;
 
 #[cfg(target_arch = "spirv")]

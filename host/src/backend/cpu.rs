@@ -1,18 +1,20 @@
 //! The CPU backend: the kernel linked natively, over all cores.
 use super::Backend;
 use crate::buffers::SceneBuffers;
+use crate::film::Accumulation;
 use anyhow::Result;
-use caustic_kernel::layout::{FrameParams, PixelAccum};
+use caustic_kernel::layout::{FrameParams, INTEGRATOR_PTRACER};
 
 pub struct CpuBackend {
     buffers: SceneBuffers,
-    accum: Vec<PixelAccum>,
+    accum: Accumulation,
 }
 
 impl CpuBackend {
     pub fn new(buffers: SceneBuffers) -> Self {
         let pixels = (buffers.params.width * buffers.params.height) as usize;
-        CpuBackend { buffers, accum: vec![PixelAccum::default(); pixels] }
+        let splatted = buffers.params.integrator == INTEGRATOR_PTRACER;
+        CpuBackend { buffers, accum: Accumulation::new(pixels, splatted) }
     }
 }
 
@@ -22,22 +24,29 @@ impl Backend for CpuBackend {
     }
 
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
-        caustic_cpu::render_pass(&self.buffers.view(), params, &mut self.accum);
+        if self.accum.batches.is_some() {
+            let words = caustic_cpu::light_pass(&self.buffers.view(), params);
+            self.accum.add_splats(&words, params.sample_count);
+        } else {
+            caustic_cpu::render_pass(&self.buffers.view(), params, &mut self.accum.pixels);
+        }
         Ok(())
     }
 
-    fn read_accum(&mut self) -> Result<Vec<PixelAccum>> {
+    fn read_accum(&mut self) -> Result<Accumulation> {
         Ok(self.accum.clone())
     }
 
-    fn write_accum(&mut self, accum: &[PixelAccum]) -> Result<()> {
+    fn write_accum(&mut self, accum: &Accumulation) -> Result<()> {
         anyhow::ensure!(
-            accum.len() == self.accum.len(),
-            "accumulation buffer of {} pixels, expected {}",
-            accum.len(),
-            self.accum.len()
+            accum.pixels.len() == self.accum.pixels.len()
+                && accum.batches.is_some() == self.accum.batches.is_some(),
+            "accumulation buffer of {} pixels ({}), expected {}",
+            accum.pixels.len(),
+            if accum.batches.is_some() { "splatted" } else { "per sample" },
+            self.accum.pixels.len()
         );
-        self.accum.copy_from_slice(accum);
+        self.accum = accum.clone();
         Ok(())
     }
 }

@@ -5,8 +5,10 @@
 //! BENCHMARKS.md), and safe because the kernel's own indexing is bounds-checked Rust.
 use super::Backend;
 use crate::buffers::SceneBuffers;
+use crate::film::Accumulation;
 use anyhow::{anyhow, bail, Context, Result};
-use caustic_kernel::layout::{binding, FrameParams, PixelAccum, TILE};
+use caustic_kernel::layout::{binding, FrameParams, PixelAccum, INTEGRATOR_PTRACER, TILE};
+use caustic_kernel::splat::SPLAT_STRIDE;
 use wgpu::util::DeviceExt;
 
 /// The kernel compiled by `shaders-build` (committed; CI checks it matches the source).
@@ -21,6 +23,9 @@ pub struct GpuBackend {
     params_buffer: wgpu::Buffer,
     accum_buffer: wgpu::Buffer,
     accum_size: u64,
+    /// Light tracing: the splat words (cleared before every pass) and the host-side accumulation they
+    /// are resolved into after it. `None` for camera integrators, whose `accum_buffer` holds the sums.
+    splats: Option<(wgpu::Buffer, Accumulation)>,
     adapter_name: String,
     width: u32,
     height: u32,
@@ -129,6 +134,15 @@ impl GpuBackend {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        // Light tracing splats into fixed-point words; the other integrators get a placeholder word.
+        let splatted = buffers.params.integrator == INTEGRATOR_PTRACER;
+        let splat_size = if splatted { pixels * SPLAT_STRIDE as u64 * 4 } else { 4 * SPLAT_STRIDE as u64 };
+        let splat_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("splat"),
+            size: splat_size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let entries: Vec<wgpu::BindGroupEntry> = [
             (binding::PARAMS, &params_buffer),
             (binding::NODES, &nodes),
@@ -139,6 +153,7 @@ impl GpuBackend {
             (binding::TABLES, &tables),
             (binding::ACCUM, &accum_buffer),
             (binding::TEXTURES, &textures),
+            (binding::SPLAT, &splat_buffer),
         ]
         .iter()
         .map(|(binding, b)| wgpu::BindGroupEntry { binding: *binding, resource: b.as_entire_binding() })
@@ -157,10 +172,40 @@ impl GpuBackend {
             params_buffer,
             accum_buffer,
             accum_size,
+            splats: splatted.then(|| (splat_buffer, Accumulation::new(pixels as usize, true))),
             adapter_name,
             width: buffers.params.width,
             height: buffers.params.height,
         })
+    }
+
+    /// A copy of `buffer`'s first `size` bytes.
+    fn read_buffer(&self, buffer: &wgpu::Buffer, size: u64) -> Result<Vec<u8>> {
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder =
+            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+        self.queue.submit([encoder.finish()]);
+        let slice = staging.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.wait()?;
+        rx.recv()
+            .context("GPU readback was dropped")?
+            .map_err(|e| anyhow!("cannot map a GPU buffer: {e}"))?;
+        let data = {
+            let view = slice.get_mapped_range().map_err(|e| anyhow!("cannot read a GPU buffer: {e:?}"))?;
+            view.to_vec()
+        };
+        staging.unmap();
+        Ok(data)
     }
 
     fn wait(&self) -> Result<()> {
@@ -178,6 +223,9 @@ impl Backend for GpuBackend {
         self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(params));
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pass") });
+        if let Some((splat, _)) = &self.splats {
+            encoder.clear_buffer(splat, 0, None);
+        }
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("render"),
@@ -188,48 +236,38 @@ impl Backend for GpuBackend {
             pass.dispatch_workgroups(self.width.div_ceil(TILE), self.height.div_ceil(TILE), 1);
         }
         self.queue.submit([encoder.finish()]);
-        self.wait()
+        self.wait()?;
+        if let Some((splat, _)) = &self.splats {
+            let words: Vec<u32> = bytemuck::pod_collect_to_vec(&self.read_buffer(splat, splat.size())?);
+            if let Some((_, accum)) = &mut self.splats {
+                accum.add_splats(&words, params.sample_count);
+            }
+        }
+        Ok(())
     }
 
-    fn write_accum(&mut self, accum: &[PixelAccum]) -> Result<()> {
+    fn write_accum(&mut self, accum: &Accumulation) -> Result<()> {
+        let pixels = self.accum_size / std::mem::size_of::<PixelAccum>() as u64;
         anyhow::ensure!(
-            std::mem::size_of_val(accum) as u64 == self.accum_size,
-            "accumulation buffer of {} pixels, expected {}",
-            accum.len(),
-            self.accum_size / std::mem::size_of::<PixelAccum>() as u64
+            accum.pixels.len() as u64 == pixels && accum.batches.is_some() == self.splats.is_some(),
+            "accumulation buffer of {} pixels ({}), expected {pixels}",
+            accum.pixels.len(),
+            if accum.batches.is_some() { "splatted" } else { "per sample" },
         );
-        self.queue.write_buffer(&self.accum_buffer, 0, bytemuck::cast_slice(accum));
+        if let Some((_, host)) = &mut self.splats {
+            *host = accum.clone();
+            return Ok(());
+        }
+        self.queue.write_buffer(&self.accum_buffer, 0, bytemuck::cast_slice(&accum.pixels));
         self.queue.submit([]);
         self.wait()
     }
 
-    fn read_accum(&mut self) -> Result<Vec<PixelAccum>> {
-        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("readback"),
-            size: self.accum_size,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut encoder =
-            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
-        encoder.copy_buffer_to_buffer(&self.accum_buffer, 0, &staging, 0, self.accum_size);
-        self.queue.submit([encoder.finish()]);
-        let slice = staging.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        self.wait()?;
-        rx.recv()
-            .context("GPU readback was dropped")?
-            .map_err(|e| anyhow!("cannot map the accumulation buffer: {e}"))?;
-        let data = {
-            let view = slice
-                .get_mapped_range()
-                .map_err(|e| anyhow!("cannot read the accumulation buffer: {e:?}"))?;
-            bytemuck::pod_collect_to_vec(&view)
-        };
-        staging.unmap();
-        Ok(data)
+    fn read_accum(&mut self) -> Result<Accumulation> {
+        if let Some((_, host)) = &self.splats {
+            return Ok(host.clone());
+        }
+        let bytes = self.read_buffer(&self.accum_buffer, self.accum_size)?;
+        Ok(Accumulation { pixels: bytemuck::pod_collect_to_vec(&bytes), batches: None })
     }
 }

@@ -2,19 +2,21 @@
 pub mod cpu;
 pub mod gpu;
 
+use crate::film::Accumulation;
 use anyhow::Result;
-use caustic_kernel::layout::{FrameParams, PixelAccum};
+use caustic_kernel::layout::FrameParams;
 
-/// A device that can add samples to an accumulation buffer (one `PixelAccum` per pixel).
+/// A device that can add samples to an accumulation buffer (one `PixelAccum` per pixel). Light
+/// tracing splats into fixed-point sums that the backend resolves into it after every pass.
 pub trait Backend {
     /// A short description: backend and adapter.
     fn describe(&self) -> String;
     /// Adds `params.sample_count` samples per pixel, starting at sample `params.sample_base`.
     fn pass(&mut self, params: &FrameParams) -> Result<()>;
     /// A copy of the accumulation buffer.
-    fn read_accum(&mut self) -> Result<Vec<PixelAccum>>;
+    fn read_accum(&mut self) -> Result<Accumulation>;
     /// Replaces the accumulation buffer (resuming from a checkpoint); `accum` has its exact size.
-    fn write_accum(&mut self, accum: &[PixelAccum]) -> Result<()>;
+    fn write_accum(&mut self, accum: &Accumulation) -> Result<()>;
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]

@@ -1,4 +1,4 @@
-//! Integrator plugins: `path`, `direct`, and `moment` (its nested integrator; caustic always tracks
+//! Integrator plugins: `path`, `direct`, `ptracer` (light tracing) and `moment` (its nested integrator; caustic always tracks
 //! the variance).
 use super::props::Props;
 use super::Loader;
@@ -22,6 +22,27 @@ impl Loader {
                 }
                 Integrator {
                     kind: IntegratorKind::Path,
+                    max_depth: max_depth as i32,
+                    rr_depth: rr_depth as u32,
+                    hide_emitters: props.boolean("hide_emitters", false)?,
+                }
+            }
+            "ptracer" => {
+                let max_depth = props.integer("max_depth", -1)?;
+                let rr_depth = props.integer("rr_depth", 5)?;
+                if max_depth < -1 || max_depth > 1_000_000 {
+                    bail!(
+                        "{}: max_depth must be -1 (unbounded) or in [0, 1000000], got {max_depth}",
+                        props.loc
+                    );
+                }
+                if !(1..=1_000_000).contains(&rr_depth) {
+                    bail!("{}: rr_depth must be in [1, 1000000], got {rr_depth}", props.loc);
+                }
+                // Mitsuba's `samples_per_pass` only splits its own work; the image does not depend on it.
+                props.integer("samples_per_pass", -1)?;
+                Integrator {
+                    kind: IntegratorKind::Ptracer,
                     max_depth: max_depth as i32,
                     rr_depth: rr_depth as u32,
                     hide_emitters: props.boolean("hide_emitters", false)?,

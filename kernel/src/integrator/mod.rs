@@ -2,17 +2,19 @@
 pub mod direct;
 pub mod nee;
 pub mod path;
+pub mod ptracer;
 
 use crate::features;
 use crate::film;
 use crate::frame::Frame;
 use crate::glam::Vec3;
 pub use crate::layout::SceneView;
-use crate::layout::{FrameParams, PixelAccum, INTEGRATOR_DIRECT};
+use crate::layout::{FrameParams, PixelAccum, INTEGRATOR_DIRECT, INTEGRATOR_PTRACER};
 use crate::math::is_finite3;
 use crate::rng::Sampler;
 use crate::shape::SurfacePoint;
 use crate::spectrum::Rgb;
+use crate::splat::AtomicWords;
 
 /// What one dispatch adds to a pixel.
 #[derive(Clone, Copy)]
@@ -52,6 +54,23 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
         s += 1;
     }
     sums
+}
+
+/// Traces the light paths of `params.sample_count` samples of path index `pixel` (one light path per
+/// pixel and sample, whichever pixels they reach) and splats their camera connections into `words`.
+pub fn trace_light_paths<W: AtomicWords>(scene: &SceneView, params: &FrameParams, pixel: u32, words: &mut W) {
+    let mut s = 0;
+    while s < params.sample_count {
+        let mut sampler = Sampler::new(params.seed, pixel, params.sample_base + s);
+        ptracer::trace(scene, params, &mut sampler, words);
+        s += 1;
+    }
+}
+
+/// Whether this dispatch traces light paths (`trace_light_paths`) rather than camera paths.
+#[inline]
+pub fn traces_light_paths(scene: &SceneView, params: &FrameParams) -> bool {
+    params.integrator == INTEGRATOR_PTRACER && features::has(scene.features, features::LIGHT_TRACER)
 }
 
 /// A pixel's accumulator with one dispatch's sums added.

@@ -17,7 +17,7 @@ fn cross_and_area(prim: &Primitive) -> (Vec3, f32) {
 }
 
 /// The emitting side's unit normal and the area.
-fn normal_and_area(prim: &Primitive) -> (Vec3, f32) {
+pub(crate) fn normal_and_area(prim: &Primitive) -> (Vec3, f32) {
     let (c, area) = cross_and_area(prim);
     let n = c.normalize();
     let n = if prim.flags & PRIM_FLAG_FLIP != 0 { -n } else { n };

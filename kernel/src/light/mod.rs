@@ -5,6 +5,7 @@ use spirv_std::num_traits::Float;
 
 pub mod area;
 pub mod directional;
+pub mod emission;
 pub mod infinite;
 pub mod point;
 pub mod sphere;

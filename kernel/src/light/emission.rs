@@ -1,0 +1,151 @@
+//! Sampling where light leaves the emitters, for light tracing: an emitter chosen with the same pmf
+//! that next-event estimation uses, a point on it and a direction of emission, with the weight
+//! `Le·|cos| / (pmf · p(point) · p(direction))` that the light path starts with.
+//!
+//! Supported: area emitters on triangles, disks and spheres (uniform by area, cosine-weighted
+//! directions), point lights (uniform directions) and spots (uniform inside the cutoff cone). The
+//! infinite emitters (directional, constant, envmap) are not traced: the host refuses such scenes for
+//! light tracing rather than render them without that light.
+use super::{area, point, radiance, to_world};
+use crate::frame::Frame;
+use crate::glam::{Vec2, Vec3};
+use crate::layout::{
+    FrameParams, SceneView, LIGHT_AREA, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, NONE, PRIM_DISK,
+    PRIM_FLAG_FLIP,
+};
+use crate::math::{vec3, PI};
+use crate::sampling::{
+    sample_cdf, square_to_cosine_hemisphere, square_to_uniform_cone, square_to_uniform_sphere,
+};
+use crate::shape::{disk, triangle, RAY_EPSILON};
+use crate::spectrum::Rgb;
+
+/// The start of a light path.
+#[derive(Clone, Copy)]
+pub struct EmissionSample {
+    /// Where the light leaves (on the emitter's surface, or the point light's position).
+    pub p: Vec3,
+    /// Where rays leaving the emitter start: `p` moved off the surface to the emitting side by
+    /// Mitsuba's epsilon (`shape::offset_origin`'s), so that they do not re-hit it.
+    pub origin: Vec3,
+    /// The emitting surface's normal (zero for point and spot lights).
+    pub n: Vec3,
+    /// Direction of emission (unit).
+    pub dir: Vec3,
+    /// `Le·|cos θ| / (pmf · p(point) · p(direction))`.
+    pub weight: Rgb,
+    /// `Le` toward any direction is `radiance · area / pmf` per unit `cos`: what connecting the emitter
+    /// point itself to the camera carries, `position_weight · Le(ω)·cos θ` (area emitters only).
+    pub position_weight: f32,
+    /// The emitter is a point (point, spot): the camera cannot see it directly.
+    pub delta_position: bool,
+    /// The emitting primitive (which a ray leaving it must not re-hit), or `NONE`.
+    pub prim: u32,
+    /// The emitter's index in the light list (`NONE`: nothing was sampled).
+    pub light: u32,
+}
+
+impl EmissionSample {
+    pub fn none() -> Self {
+        EmissionSample {
+            p: Vec3::ZERO,
+            origin: Vec3::ZERO,
+            n: Vec3::ZERO,
+            dir: Vec3::Z,
+            weight: Rgb::ZERO,
+            position_weight: 0.0,
+            delta_position: false,
+            prim: NONE,
+            light: NONE,
+        }
+    }
+}
+
+/// Chooses an emitter by `u_select` and samples a point (`u_pos`) and a direction (`u_dir`) on it.
+pub fn sample(
+    scene: &SceneView,
+    params: &FrameParams,
+    u_select: f32,
+    u_pos: Vec2,
+    u_dir: Vec2,
+) -> EmissionSample {
+    if params.light_count == 0 {
+        return EmissionSample::none();
+    }
+    let chosen = sample_cdf(scene.tables, params.light_cdf_offset, params.light_count, u_select);
+    let light = scene.lights[chosen.index as usize];
+    if !(light.pmf > 0.0) {
+        return EmissionSample::none();
+    }
+    let le = radiance(&light);
+    let mut s = EmissionSample::none();
+    s.light = chosen.index;
+    if light.kind == LIGHT_AREA || light.kind == LIGHT_SPHERE {
+        let prim = scene.prims[light.prim as usize];
+        let (p, n, area, scale) = if light.kind == LIGHT_SPHERE {
+            let dir = square_to_uniform_sphere(u_pos);
+            let orientation = if prim.flags & PRIM_FLAG_FLIP != 0 { -1.0 } else { 1.0 };
+            let r = prim.p1[0];
+            (vec3(prim.p0) + dir * r, dir * orientation, 4.0 * PI * r * r, r)
+        } else {
+            let (p0, p1, p2) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
+            let q = if prim.kind == PRIM_DISK {
+                disk::sample_point(p0, p1, p2, u_pos)
+            } else {
+                triangle::sample_point(p0, p1, p2, u_pos)
+            };
+            let (n, area) = area::normal_and_area(&prim);
+            (q, n, area, 0.0)
+        };
+        // Cosine-weighted about the emitting side: Le·cos / (pmf · (1/A) · cos/π) = Le·A·π / pmf.
+        let local = square_to_cosine_hemisphere(u_dir);
+        if !(local.z > 0.0) || !(area > 0.0) {
+            return EmissionSample::none();
+        }
+        s.p = p;
+        s.origin = p + n * ((1.0 + p.abs().max_element().max(scale)) * RAY_EPSILON);
+        s.n = n;
+        s.dir = Frame::from_normal(n).to_world(local);
+        s.position_weight = area / light.pmf;
+        s.weight = le * (s.position_weight * PI);
+        s.prim = light.prim;
+        return s;
+    }
+    if light.kind == LIGHT_POINT || light.kind == LIGHT_SPOT {
+        s.p = vec3([light.position[0], light.position[1], light.position[2]]);
+        s.origin = s.p;
+        s.delta_position = true;
+        if light.kind == LIGHT_POINT {
+            s.dir = square_to_uniform_sphere(u_dir);
+            s.weight = le * (4.0 * PI / light.pmf);
+        } else {
+            // Uniform inside the cutoff cone, weighted by the spot's profile.
+            let one_minus_cos_max = 1.0 - light.params[0];
+            let local = square_to_uniform_cone(u_dir, one_minus_cos_max);
+            let falloff = point::spot_falloff(&light, local);
+            s.dir = to_world(&light, local);
+            s.weight = le * (falloff * 2.0 * PI * one_minus_cos_max / light.pmf);
+        }
+        return s;
+    }
+    EmissionSample::none()
+}
+
+/// What the emitter of `s` sends towards `dir` from its sampled point, per unit of the connection's
+/// geometry: `Le(dir)·|cos θ| / (pmf · p(point))` for area emitters (one-sided), `I(dir) / pmf` for
+/// point and spot lights.
+pub fn emitted_towards(scene: &SceneView, s: &EmissionSample, dir: Vec3) -> Rgb {
+    let light = scene.lights[s.light as usize];
+    let le = radiance(&light);
+    if light.kind == LIGHT_POINT {
+        return le / light.pmf;
+    }
+    if light.kind == LIGHT_SPOT {
+        return le * (point::spot_falloff(&light, super::to_local(&light, dir)) / light.pmf);
+    }
+    let cos = s.n.dot(dir);
+    if cos <= 0.0 {
+        return Rgb::ZERO;
+    }
+    le * (s.position_weight * cos)
+}

@@ -1,0 +1,104 @@
+//! Splatting: adding a light path's contribution to an arbitrary pixel from any thread, so that one
+//! seed gives one image on every backend, run after run.
+//!
+//! Each channel is a 64-bit unsigned fixed-point sum with `SPLAT_FRACTION_BITS` fractional bits, kept
+//! as two `u32` words (low, high) and added with 32-bit integer atomics only (core SPIR-V; no 64-bit
+//! or float atomics needed). Integer sums do not depend on the order of the additions, unlike float
+//! atomics. Values are rounded stochastically with the path's own random number, so the rounding is
+//! unbiased. Resolution 2⁻²⁴ ≈ 6e-8 per splat; range 2⁴⁰ ≈ 1.1e12 per pixel and pass (the host resolves
+//! the sums into its float accumulator after every pass and clears them). Non-finite, negative or
+//! out-of-range contributions are never added: they are counted in the pixel's `invalid` word.
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
+use crate::math::is_finite3;
+use crate::spectrum::Rgb;
+
+/// `u32` words per pixel: (low, high) for R, G, B, then the invalid count and one spare.
+pub const SPLAT_STRIDE: u32 = 8;
+pub const SPLAT_INVALID: u32 = 6;
+/// Fractional bits of the fixed-point sums.
+pub const SPLAT_FRACTION_BITS: u32 = 24;
+const SCALE: f32 = (1u32 << SPLAT_FRACTION_BITS) as f32;
+const TWO_32: f32 = 4_294_967_296.0;
+/// The largest value one splat may add (2⁴⁰⁻¹: the high word must not wrap within a pass).
+pub const SPLAT_MAX: f32 = 1_099_511_627_776.0 / 2.0;
+
+/// A buffer of `u32` words with an atomic add, implemented by each backend.
+pub trait AtomicWords {
+    /// Adds `value` to word `index` and returns the word's previous value.
+    fn fetch_add(&mut self, index: u32, value: u32) -> u32;
+}
+
+/// The GPU's storage buffer of splat words.
+#[cfg(target_arch = "spirv")]
+pub struct GpuWords<'a>(pub &'a mut [u32]);
+
+#[cfg(target_arch = "spirv")]
+impl AtomicWords for GpuWords<'_> {
+    #[inline]
+    fn fetch_add(&mut self, index: u32, value: u32) -> u32 {
+        use spirv_std::memory::{Scope, Semantics};
+        // Queue-family scope: device scope needs a capability (VulkanMemoryModelDeviceScope) that naga
+        // does not take; for one dispatch on one device the two are the same.
+        // SAFETY: an atomic add on a word of a storage buffer; relaxed ordering suffices because the
+        // sums are read only after the dispatch has completed.
+        unsafe {
+            spirv_std::arch::atomic_i_add::<u32, { Scope::QueueFamily as u32 }, { Semantics::NONE.bits() }>(
+                &mut self.0[index as usize],
+                value,
+            )
+        }
+    }
+}
+
+/// Adds one channel's value (finite, in `[0, SPLAT_MAX)`) at word `base` (low) and `base + 1` (high).
+#[inline]
+fn add_fixed<W: AtomicWords>(words: &mut W, base: u32, value: f32, u: f32) {
+    let scaled = value * SCALE;
+    let mut high = (scaled / TWO_32).floor();
+    let low_f = (scaled - high * TWO_32 + u).floor();
+    let low = if low_f >= TWO_32 {
+        high += 1.0;
+        0
+    } else if low_f > 0.0 {
+        low_f as u32
+    } else {
+        0
+    };
+    let mut carry_in = high as u32;
+    if low != 0 {
+        let old = words.fetch_add(base, low);
+        // The low word wrapped: carry one into the high word.
+        if old > u32::MAX - low {
+            carry_in += 1;
+        }
+    }
+    if carry_in != 0 {
+        words.fetch_add(base + 1, carry_in);
+    }
+}
+
+/// Adds `value` to `pixel`'s sums; `u` ∈ [0, 1) rounds stochastically.
+pub fn splat<W: AtomicWords>(words: &mut W, pixel: u32, value: Rgb, u: f32) {
+    let base = pixel * SPLAT_STRIDE;
+    let valid = is_finite3(value) && value.min_element() >= 0.0 && value.max_element() < SPLAT_MAX;
+    if !valid {
+        words.fetch_add(base + SPLAT_INVALID, 1);
+        return;
+    }
+    add_fixed(words, base, value.x, u);
+    add_fixed(words, base + 2, value.y, u);
+    add_fixed(words, base + 4, value.z, u);
+}
+
+/// Counts an invalid (non-finite) estimate at `pixel` without adding anything.
+pub fn count_invalid<W: AtomicWords>(words: &mut W, pixel: u32) {
+    words.fetch_add(pixel * SPLAT_STRIDE + SPLAT_INVALID, 1);
+}
+
+/// The value of one channel's (low, high) words (host side: exact in `f64`).
+#[cfg(not(target_arch = "spirv"))]
+pub fn fixed_to_f64(low: u32, high: u32) -> f64 {
+    ((high as u64) << 32 | low as u64) as f64 / SCALE as f64
+}
