@@ -1,15 +1,12 @@
 //! Rendering an OBJ/MTL file directly: MTL `Kd`/`Ks`/`Ns` become the modified Phong BRDF (`Kd` alone:
 //! Lambert), `Ke` an area emitter; an automatic camera frames the model and a sphere light lights it.
+use crate::buffers::rgba;
 use crate::mesh;
 use crate::scene::{look_at, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape};
 use anyhow::Result;
 use caustic_kernel::layout::{Material, BSDF_DIFFUSE, BSDF_PHONG};
 use glam::Vec3;
 use std::path::Path;
-
-fn rgba(c: [f32; 3]) -> [f32; 4] {
-    [c[0], c[1], c[2], 0.0]
-}
 
 /// The caustic material and emission of an MTL entry.
 fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material, Option<[f32; 3]>) {
