@@ -52,11 +52,10 @@ pub fn load(path: &Path) -> Result<Scene> {
     let mesh::Triangles { triangles, normals, uvs } = with_normals.transformed(glam::Mat4::IDENTITY);
     // One shape per material, so that emission stays per shape.
     let mut shapes = Vec::new();
+    // The triangles `transformed` keeps, by the same test, to index its output.
     let kept: Vec<usize> = (0..mesh.indices.len() / 3)
         .filter(|&t| {
-            let p = [0, 1, 2].map(|k| mesh.positions[mesh.indices[3 * t + k] as usize]);
-            let a2 = (p[1] - p[0]).cross(p[2] - p[0]).length_squared();
-            a2 > 0.0 && a2.is_finite()
+            mesh::face_normal([0, 1, 2].map(|k| mesh.positions[mesh.indices[3 * t + k] as usize])).is_some()
         })
         .collect();
     for (slot, emission) in emissions.iter().enumerate() {
