@@ -2,14 +2,20 @@
 //! Lambert), `Ke` an area emitter; an automatic camera frames the model and a sphere light lights it.
 use crate::buffers::rgba;
 use crate::mesh;
-use crate::scene::{look_at, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape};
+use crate::scene::{
+    look_at, warn, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape,
+};
 use anyhow::Result;
 use caustic_kernel::layout::{Material, BSDF_DIFFUSE, BSDF_PHONG};
 use glam::Vec3;
 use std::path::Path;
 
 /// The caustic material and emission of an MTL entry.
-fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material, Option<[f32; 3]>) {
+fn convert_material(
+    m: &tobj::Material,
+    path: &Path,
+    warnings: &mut Vec<String>,
+) -> (Material, Option<[f32; 3]>) {
     let kd = m.diffuse.unwrap_or([0.5; 3]);
     let ks = m.specular.unwrap_or([0.0; 3]);
     let mut material = if ks.iter().any(|&c| c > 0.0) {
@@ -27,7 +33,11 @@ fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material
     for c in 0..3 {
         let sum = material.reflectance[c] + material.specular_reflectance[c];
         if sum > 1.0 {
-            warnings.push(format!("material '{}': Kd + Ks > 1, scaled down to conserve energy", m.name));
+            let name = &m.name;
+            warn(
+                warnings,
+                format!("{}: material '{name}': Kd + Ks > 1, scaled down to conserve energy", path.display()),
+            );
             material.reflectance[c] /= sum;
             material.specular_reflectance[c] /= sum;
         }
@@ -37,13 +47,17 @@ fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material
 }
 
 pub fn load(path: &Path) -> Result<Scene> {
-    let (mesh, mtl) = mesh::load_obj(path, true)?;
     let mut warnings = Vec::new();
+    let (mesh, mtl) = mesh::load_obj(path, true)?;
+    let mtl = mtl.unwrap_or_else(|message| {
+        warn(&mut warnings, message);
+        Vec::new()
+    });
     let mut materials =
         vec![Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }];
     let mut emissions = vec![None];
     for m in &mtl {
-        let (material, emission) = convert_material(m, &mut warnings);
+        let (material, emission) = convert_material(m, path, &mut warnings);
         materials.push(material);
         emissions.push(emission);
     }
@@ -102,9 +116,6 @@ pub fn load(path: &Path) -> Result<Scene> {
         emission: Some([radiance; 3]),
         flip_normals: false,
     });
-    for w in &warnings {
-        eprintln!("warning: {}: {w}", path.display());
-    }
     Ok(Scene {
         sensor: Sensor {
             projection: Projection::Perspective,

@@ -90,8 +90,7 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
 
 impl Loader {
     pub(crate) fn warn(&mut self, message: &str) {
-        eprintln!("warning: {message}");
-        self.warnings.push(message.to_string());
+        crate::scene::warn(&mut self.warnings, message.to_string());
     }
 
     fn load_file(&mut self, path: &Path) -> Result<()> {
