@@ -308,7 +308,9 @@ fn cdf_of(weights: &[f64]) -> Vec<f32> {
     cdf
 }
 
-fn rgba(c: [f32; 3]) -> [f32; 4] {
+/// An RGB colour as the kernel's layout stores it: four floats, the fourth unused. The loaders build
+/// kernel materials with it too.
+pub(crate) fn rgba(c: [f32; 3]) -> [f32; 4] {
     [c[0], c[1], c[2], 0.0]
 }
 

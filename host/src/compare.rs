@@ -8,6 +8,7 @@
 //! and the reference's sample count) and the reference's storage precision (half floats).
 use crate::film::Film;
 use anyhow::{bail, Result};
+use glam::Vec3;
 use statrs::distribution::{ContinuousCDF, Normal};
 
 /// Relative precision of the reference's storage (half float: 2^-11) plus a small absolute floor,
@@ -31,8 +32,9 @@ pub struct Comparison {
     pub error_map: Vec<f32>,
 }
 
-pub fn luminance(c: [f32; 3]) -> f64 {
-    0.212671 * c[0] as f64 + 0.715160 * c[1] as f64 + 0.072169 * c[2] as f64
+/// The kernel's luminance (one set of weights for the renderer and its statistics), summed in f64.
+fn luminance(c: [f32; 3]) -> f64 {
+    caustic_kernel::spectrum::luminance(Vec3::from(c)) as f64
 }
 
 /// Compares `image` with `reference`. `samples_ratio` = render spp / reference spp estimates the

@@ -24,10 +24,14 @@ pub fn load_scene(path: &Path, defines: &[(String, String)]) -> Result<scene::Sc
     match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("xml") => mitsuba::load(path, defines),
         Some("obj") => {
+            let mut warnings = Vec::new();
             if !defines.is_empty() {
-                eprintln!("warning: -D definitions do not apply to OBJ files");
+                scene::warn(&mut warnings, "-D definitions do not apply to OBJ files".to_string());
             }
-            obj_scene::load(path)
+            let mut scene = obj_scene::load(path)?;
+            warnings.append(&mut scene.warnings);
+            scene.warnings = warnings;
+            Ok(scene)
         }
         _ => anyhow::bail!("{}: unknown scene format (expected .xml or .obj)", path.display()),
     }

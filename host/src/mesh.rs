@@ -47,7 +47,7 @@ impl Mesh {
     /// Checks what a loader must guarantee before anyone indexes the mesh: whole triangles, indices
     /// within the vertex list, attribute lists as long as the position list.
     pub fn validate(&self, path: &Path) -> Result<()> {
-        if self.indices.len() % 3 != 0 {
+        if !self.indices.len().is_multiple_of(3) {
             bail!("{}: {} indices do not make whole triangles", path.display(), self.indices.len());
         }
         let vertex_count = self.positions.len();
@@ -135,11 +135,7 @@ impl Mesh {
         for tri in self.indices.chunks_exact(3) {
             let corner = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
             let p = corner.map(|i| self.positions[i]);
-            let face_normal = (p[1] - p[0]).cross(p[2] - p[0]);
-            let area2 = face_normal.length_squared();
-            if !(area2 > 0.0 && area2.is_finite()) {
-                continue;
-            }
+            let Some(face_normal) = face_normal(p) else { continue };
             out.triangles.push(p);
             if let (Some(out), Some(normals)) = (out.normals.as_mut(), self.normals.as_ref()) {
                 // A corner without a usable normal (zero in the file, or a cancelled sum) takes the
@@ -166,4 +162,13 @@ impl Mesh {
         world.transform(to_world);
         world.triangles()
     }
+}
+
+/// The face normal of the triangle `p`, unnormalised (its length is twice the area), or None if the
+/// triangle is degenerate: zero area, or not finite. `Mesh::triangles` drops those, and `obj_scene`
+/// indexes the kept triangles by the same test, so both call this one.
+pub fn face_normal(p: [Vec3; 3]) -> Option<Vec3> {
+    let n = (p[1] - p[0]).cross(p[2] - p[0]);
+    let area2 = n.length_squared();
+    (area2 > 0.0 && area2.is_finite()).then_some(n)
 }

@@ -1,18 +1,21 @@
 //! Rendering an OBJ/MTL file directly: MTL `Kd`/`Ks`/`Ns` become the modified Phong BRDF (`Kd` alone:
 //! Lambert), `Ke` an area emitter; an automatic camera frames the model and a sphere light lights it.
+use crate::buffers::rgba;
 use crate::mesh;
-use crate::scene::{look_at, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape};
+use crate::scene::{
+    look_at, warn, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape,
+};
 use anyhow::Result;
 use caustic_kernel::layout::{Material, BSDF_DIFFUSE, BSDF_PHONG};
 use glam::Vec3;
 use std::path::Path;
 
-fn rgba(c: [f32; 3]) -> [f32; 4] {
-    [c[0], c[1], c[2], 0.0]
-}
-
 /// The caustic material and emission of an MTL entry.
-fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material, Option<[f32; 3]>) {
+fn convert_material(
+    m: &tobj::Material,
+    path: &Path,
+    warnings: &mut Vec<String>,
+) -> (Material, Option<[f32; 3]>) {
     let kd = m.diffuse.unwrap_or([0.5; 3]);
     let ks = m.specular.unwrap_or([0.0; 3]);
     let mut material = if ks.iter().any(|&c| c > 0.0) {
@@ -30,7 +33,11 @@ fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material
     for c in 0..3 {
         let sum = material.reflectance[c] + material.specular_reflectance[c];
         if sum > 1.0 {
-            warnings.push(format!("material '{}': Kd + Ks > 1, scaled down to conserve energy", m.name));
+            let name = &m.name;
+            warn(
+                warnings,
+                format!("{}: material '{name}': Kd + Ks > 1, scaled down to conserve energy", path.display()),
+            );
             material.reflectance[c] /= sum;
             material.specular_reflectance[c] /= sum;
         }
@@ -40,13 +47,17 @@ fn convert_material(m: &tobj::Material, warnings: &mut Vec<String>) -> (Material
 }
 
 pub fn load(path: &Path) -> Result<Scene> {
-    let (mesh, mtl) = mesh::load_obj(path, true)?;
     let mut warnings = Vec::new();
+    let (mesh, mtl) = mesh::load_obj(path, true)?;
+    let mtl = mtl.unwrap_or_else(|message| {
+        warn(&mut warnings, message);
+        Vec::new()
+    });
     let mut materials =
         vec![Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }];
     let mut emissions = vec![None];
     for m in &mtl {
-        let (material, emission) = convert_material(m, &mut warnings);
+        let (material, emission) = convert_material(m, path, &mut warnings);
         materials.push(material);
         emissions.push(emission);
     }
@@ -55,11 +66,10 @@ pub fn load(path: &Path) -> Result<Scene> {
     let mesh::Triangles { triangles, normals, uvs } = with_normals.transformed(glam::Mat4::IDENTITY);
     // One shape per material, so that emission stays per shape.
     let mut shapes = Vec::new();
+    // The triangles `transformed` keeps, by the same test, to index its output.
     let kept: Vec<usize> = (0..mesh.indices.len() / 3)
         .filter(|&t| {
-            let p = [0, 1, 2].map(|k| mesh.positions[mesh.indices[3 * t + k] as usize]);
-            let a2 = (p[1] - p[0]).cross(p[2] - p[0]).length_squared();
-            a2 > 0.0 && a2.is_finite()
+            mesh::face_normal([0, 1, 2].map(|k| mesh.positions[mesh.indices[3 * t + k] as usize])).is_some()
         })
         .collect();
     for (slot, emission) in emissions.iter().enumerate() {
@@ -106,9 +116,6 @@ pub fn load(path: &Path) -> Result<Scene> {
         emission: Some([radiance; 3]),
         flip_normals: false,
     });
-    for w in &warnings {
-        eprintln!("warning: {}: {w}", path.display());
-    }
     Ok(Scene {
         sensor: Sensor {
             projection: Projection::Perspective,

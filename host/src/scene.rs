@@ -221,6 +221,13 @@ pub struct Scene {
     pub warnings: Vec<String>,
 }
 
+/// Prints a loading warning and records it in `warnings` (which becomes `Scene::warnings`). Every
+/// loader warns through this, so that what stderr shows and what the scene lists agree.
+pub(crate) fn warn(warnings: &mut Vec<String>, message: String) {
+    eprintln!("warning: {message}");
+    warnings.push(message);
+}
+
 /// Look-at transform with Mitsuba's conventions (columns: left, up, forward, origin).
 pub fn look_at(origin: Vec3, target: Vec3, up: Vec3) -> Option<Mat4> {
     let dir = (target - origin).normalize_or_zero();

@@ -2,25 +2,12 @@
 //! normals, texture coordinates, `flip_normals`/`face_normals`, and clean errors for bad files.
 use caustic::mesh::{self, primitives, Mesh};
 use caustic::scene::{Geometry, Scene, Shape};
+use caustic_tests::shared_dir_if_present;
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
 
-/// `shared/` beside the repository (override with CAUSTIC_SHARED); None, with a notice, if absent.
-fn shared_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("CAUSTIC_SHARED") {
-        Some(p) => PathBuf::from(p),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared"),
-    };
-    if dir.join("scenes/mitsuba").is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("notice: {} not found (set CAUSTIC_SHARED); test skipped", dir.display());
-        None
-    }
-}
-
 fn shared_mesh(name: &str) -> Option<PathBuf> {
-    shared_dir().map(|d| d.join("scenes/mitsuba/common/meshes").join(name))
+    shared_dir_if_present().map(|d| d.join("scenes/mitsuba/common/meshes").join(name))
 }
 
 /// A fresh directory for one test's files.
@@ -358,7 +345,7 @@ fn disk_and_cylinder_areas_match_the_analytic_shapes() {
         cylinder < true_cylinder && cylinder > true_cylinder * (1.0 - 1e-5),
         "cylinder area {cylinder}, expected {true_cylinder}"
     );
-    assert!(primitives::SEGMENTS >= 512);
+    const { assert!(primitives::SEGMENTS >= 512) };
 }
 
 /// Geometric and shading normals of a cylinder from (1, 0, 0) to (1, 2, 0), radius 0.5: unit,
@@ -555,7 +542,7 @@ fn bad_mesh_files_in_a_scene_name_the_scene_line_and_the_file() {
 
 #[test]
 fn shared_shape_scenes_load() {
-    let Some(shared) = shared_dir() else { return };
+    let Some(shared) = shared_dir_if_present() else { return };
     let scenes = shared.join("scenes/mitsuba/docs/scenes");
     let disk = caustic::mitsuba::load(&scenes.join("shape_disk.xml"), &[]).expect("shape_disk.xml loads");
     assert!(matches!(disk.shapes[0].geometry, Geometry::Disk { .. }), "the disk is analytic");

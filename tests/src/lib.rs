@@ -6,18 +6,36 @@ use caustic::scene::Scene;
 use caustic::{buffers, render};
 use std::path::PathBuf;
 
-/// `../shared` beside the repository (override with CAUSTIC_SHARED).
-pub fn shared_dir() -> PathBuf {
-    let dir = match std::env::var_os("CAUSTIC_SHARED") {
+/// `../shared` beside the repository (override with CAUSTIC_SHARED), whether it is there or not.
+/// (`CARGO_MANIFEST_DIR` is this crate's folder, one below the repository root.)
+fn shared_path() -> PathBuf {
+    match std::env::var_os("CAUSTIC_SHARED") {
         Some(p) => PathBuf::from(p),
         None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared"),
-    };
+    }
+}
+
+/// The shared data, for tests that need them: panics if the references are absent.
+pub fn shared_dir() -> PathBuf {
+    let dir = shared_path();
     assert!(
         dir.join("refs/mitsuba").is_dir(),
         "reference data not found at {} (set CAUSTIC_SHARED)",
         dir.display()
     );
     dir
+}
+
+/// The shared data, for tests that skip without them: None, with a notice, if the Mitsuba scenes
+/// are absent.
+pub fn shared_dir_if_present() -> Option<PathBuf> {
+    let dir = shared_path();
+    if dir.join("scenes/mitsuba").is_dir() {
+        Some(dir)
+    } else {
+        eprintln!("notice: {} not found (set CAUSTIC_SHARED); test skipped", dir.display());
+        None
+    }
 }
 
 pub fn mitsuba_scene(relative: &str) -> PathBuf {

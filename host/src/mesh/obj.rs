@@ -4,25 +4,28 @@ use anyhow::{Context, Result};
 use glam::{Vec2, Vec3};
 use std::path::Path;
 
+/// An OBJ file's MTL materials, or the warning saying why they did not load.
+pub type Materials = std::result::Result<Vec<tobj::Material>, String>;
+
 /// Loads every object of an OBJ file into one mesh; `with_materials` also reads the MTL library.
+/// A library that does not load is not an error: the materials are then `Err` with the warning to
+/// give (the caller has the warning list), and the mesh loads all the same.
 ///
 /// Like Mitsuba's `obj` plugin, a vertex is one distinct (position, uv, normal) index triple, and
 /// polygons fan out from their first corner. The v coordinate is flipped (Mitsuba's default
 /// `flip_tex_coords = true`, which puts OBJ's bottom-left uv origin at an image's top-left);
 /// `Mesh::flip_tex_coords` undoes it. One difference: tobj welds vertices within each object or
 /// group only, so normals generated for a mesh without them do not blend across group borders.
-pub fn load_obj(path: &Path, with_materials: bool) -> Result<(Mesh, Vec<tobj::Material>)> {
+pub fn load_obj(path: &Path, with_materials: bool) -> Result<(Mesh, Materials)> {
     let options =
         tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
     let (models, materials) =
         tobj::load_obj(path, &options).with_context(|| format!("cannot load OBJ mesh {}", path.display()))?;
     let materials = if with_materials {
-        materials.unwrap_or_else(|e| {
-            eprintln!("warning: {}: material library not loaded ({e}); using defaults", path.display());
-            Vec::new()
-        })
+        materials
+            .map_err(|e| format!("{}: material library not loaded ({e}); using defaults", path.display()))
     } else {
-        Vec::new()
+        Ok(Vec::new())
     };
     let any_normals = models.iter().any(|m| has_one_per_vertex(&m.mesh.normals, 3, &m.mesh));
     let any_uvs = models.iter().any(|m| has_one_per_vertex(&m.mesh.texcoords, 2, &m.mesh));

@@ -6,12 +6,9 @@ use super::props::Props;
 use super::spectrum::SpectrumUse;
 use super::textures::ColorParam;
 use super::Loader;
+use crate::buffers::rgba;
 use anyhow::{bail, Result};
 use caustic_kernel::layout::*;
-
-fn rgba(c: [f32; 3]) -> [f32; 4] {
-    [c[0], c[1], c[2], 0.0]
-}
 
 fn set_reflectance(m: &mut Material, c: ColorParam) {
     m.reflectance = rgba(c.rgb);

@@ -6,8 +6,9 @@
 //! `d65 = false`: the spectrum is integrated against the CIE 1931 curves without a D65 weight and
 //! only negative channels are clamped. That is exactly the conversion `spectrum.rs` applies to
 //! emission spectra, so it is reused here.
-use super::props::{Loc, Props};
+use super::props::Props;
 use super::spectrum::{spectrum_to_rgb, SpectrumUse};
+use super::xml::Loc;
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 

@@ -2,8 +2,10 @@
 //!
 //! One file per family of scene elements, as Mitsuba splits its plugins: `shapes`, `bsdfs`,
 //! `emitters`, `sensors` (sensor, film, filter, sampler), `integrators`; `transform` and `spectrum`
-//! parse values. This module holds the document machinery: `<default>`, `$name` substitution, `-D`
-//! overrides, `<include>`, `<path>`, `id`/`<ref>`, and typed properties with their source locations.
+//! parse values; `props` gives typed properties with their source locations; `xml` holds the XML
+//! primitives all of these share (locations, attributes, number lists, one-or-three-number vectors)
+//! and uses none of them. This module holds the document machinery: `<default>`, `$name`
+//! substitution, `-D` overrides, `<include>`, `<path>`, `id`/`<ref>`.
 mod bsdfs;
 pub mod cie_tables;
 mod emitters;
@@ -15,13 +17,15 @@ mod shapes;
 pub mod spectrum;
 mod textures;
 mod transform;
+mod xml;
 
 use crate::scene::{Integrator, Scene};
 use anyhow::{bail, Context, Result};
 use caustic_kernel::layout::Material;
-use props::{Loc, Props};
+use props::Props;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use xml::Loc;
 
 /// The state of loading one scene (shared by included files).
 pub(crate) struct Loader {
@@ -86,8 +90,7 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
 
 impl Loader {
     pub(crate) fn warn(&mut self, message: &str) {
-        eprintln!("warning: {message}");
-        self.warnings.push(message.to_string());
+        crate::scene::warn(&mut self.warnings, message.to_string());
     }
 
     fn load_file(&mut self, path: &Path) -> Result<()> {
@@ -120,13 +123,13 @@ impl Loader {
             let loc = Loc::of(path, doc, node);
             match node.tag_name().name() {
                 "default" => {
-                    let name = props::attr(node, "name", &loc)?;
-                    let value = props::attr(node, "value", &loc)?;
+                    let name = xml::attr(node, "name", &loc)?;
+                    let value = xml::attr(node, "value", &loc)?;
                     self.params.entry(name.to_string()).or_insert_with(|| value.to_string());
                 }
                 "include" => {
                     let file =
-                        self.resolve(&self.substitute(props::attr(node, "filename", &loc)?, &loc)?, &loc)?;
+                        self.resolve(&self.substitute(xml::attr(node, "filename", &loc)?, &loc)?, &loc)?;
                     self.include_depth += 1;
                     if self.include_depth > 32 {
                         bail!("{loc}: <include> nested more than 32 deep (a cycle?)");
@@ -135,7 +138,7 @@ impl Loader {
                     self.include_depth -= 1;
                 }
                 "path" => {
-                    let value = self.substitute(props::attr(node, "value", &loc)?, &loc)?;
+                    let value = self.substitute(xml::attr(node, "value", &loc)?, &loc)?;
                     let dir = self.resolve_dir(&value);
                     self.search_paths.insert(1.min(self.search_paths.len()), dir);
                 }

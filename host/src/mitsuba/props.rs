@@ -1,45 +1,11 @@
 //! Typed access to a plugin element's properties, each remembered with its file:line for messages.
 use super::spectrum::{spectrum_to_rgb, uniform_spectrum_to_rgb, SpectrumUse};
+use super::xml::{expand_value_to_xyz, vector_from_node, Loc, XyzError};
 use super::Loader;
 use anyhow::{bail, Context, Result};
 use glam::{Mat4, Vec3};
 use std::cell::RefCell;
-use std::fmt;
 use std::path::{Path, PathBuf};
-
-/// A position in a scene file.
-#[derive(Clone, Debug)]
-pub struct Loc {
-    pub file: PathBuf,
-    pub line: u32,
-}
-
-impl Loc {
-    pub fn of(path: &Path, doc: &roxmltree::Document, node: roxmltree::Node) -> Loc {
-        Loc { file: path.to_path_buf(), line: doc.text_pos_at(node.range().start).row }
-    }
-}
-
-impl fmt::Display for Loc {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}", self.file.display(), self.line)
-    }
-}
-
-pub fn attr<'a>(node: roxmltree::Node<'a, '_>, name: &str, loc: &Loc) -> Result<&'a str> {
-    match node.attribute(name) {
-        Some(v) => Ok(v),
-        None => bail!("{loc}: <{}> needs the attribute '{name}'", node.tag_name().name()),
-    }
-}
-
-/// Parses a list of numbers separated by commas and/or whitespace.
-pub fn parse_numbers(text: &str, loc: &Loc) -> Result<Vec<f64>> {
-    text.split(|c: char| c == ',' || c.is_whitespace())
-        .filter(|s| !s.is_empty())
-        .map(|s| s.parse::<f64>().map_err(|_| anyhow::anyhow!("{loc}: '{s}' is not a number")))
-        .collect()
-}
 
 /// One child element of a plugin: a value (`<float name=…>`) or a nested object (`<bsdf>`, `<ref>`).
 pub struct Entry<'a, 'input> {
@@ -164,14 +130,15 @@ impl<'a, 'input> Props<'a, 'input> {
         let e = &self.entries[i];
         let value = self.value_of(i)?;
         let rgb = match e.tag.as_str() {
-            "rgb" => {
-                let v = parse_numbers(value, &e.loc)?;
-                match v.len() {
-                    1 => [v[0] as f32; 3],
-                    3 => [v[0] as f32, v[1] as f32, v[2] as f32],
-                    _ => bail!("{}: <rgb> needs 1 or 3 numbers", e.loc),
-                }
-            }
+            "rgb" => expand_value_to_xyz(e.node, Some(value), 0.0, &e.loc)
+                .map_err(|err| match err {
+                    XyzError::Numbers(err) => err,
+                    // `value` is given, so no x/y/z attribute is read.
+                    XyzError::Count(_) | XyzError::NotANumber(_) => {
+                        anyhow::anyhow!("{}: <rgb> needs 1 or 3 numbers", e.loc)
+                    }
+                })?
+                .to_array(),
             "float" => [self.float(name, 0.0)?; 3],
             "spectrum" => parse_spectrum(value, usage, &e.loc)?,
             other => bail!("{}: '{name}' must be <rgb>, <spectrum> or <float>, not <{other}> (textures are not supported yet)", e.loc),
@@ -185,7 +152,7 @@ impl<'a, 'input> Props<'a, 'input> {
     pub fn transform(&self, name: &str) -> Result<Mat4> {
         let Some(i) = self.find(name) else { return Ok(Mat4::IDENTITY) };
         let e = &self.entries[i];
-        super::transform::parse(self, e.node, &e.loc)
+        super::transform::parse(&self.path, self.doc, e.node, &e.loc)
     }
 
     /// Nested objects with the given tag (e.g. `bsdf`, `emitter`, `ref`), marked as used.
@@ -234,25 +201,6 @@ impl<'a, 'input> Props<'a, 'input> {
             })
             .collect()
     }
-}
-
-/// A point/vector given as `value="x, y, z"` or as `x=… y=… z=…` attributes.
-pub fn vector_from_node(node: roxmltree::Node, value: Option<&str>, loc: &Loc) -> Result<Vec3> {
-    if let Some(v) = value {
-        let n = parse_numbers(v, loc)?;
-        return match n.len() {
-            1 => Ok(Vec3::splat(n[0] as f32)),
-            3 => Ok(Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32)),
-            _ => bail!("{loc}: expected 3 numbers, got {}", n.len()),
-        };
-    }
-    let get = |a: &str| -> Result<f32> {
-        match node.attribute(a) {
-            Some(s) => s.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: '{a}' must be a number")),
-            None => Ok(0.0),
-        }
-    };
-    Ok(Vec3::new(get("x")?, get("y")?, get("z")?))
 }
 
 /// `<spectrum value="0.5"/>` or `value="400:0.1, 500:0.2, …"`.

@@ -3,6 +3,7 @@
 use super::props::{Entry, Props};
 use super::spectrum::SpectrumUse;
 use super::Loader;
+use crate::buffers::rgba;
 use crate::scene::SceneTexture;
 use anyhow::{bail, Result};
 use caustic_kernel::layout::*;
@@ -121,8 +122,4 @@ impl Loader {
         let n = (t.texels.len() / 3).max(1) as f64;
         [0, 1, 2].map(|c| (t.texels.iter().skip(c).step_by(3).map(|&v| v as f64).sum::<f64>() / n) as f32)
     }
-}
-
-fn rgba(c: [f32; 3]) -> [f32; 4] {
-    [c[0], c[1], c[2], 0.0]
 }

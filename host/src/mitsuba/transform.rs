@@ -1,35 +1,25 @@
 //! `<transform>`: translate, rotate, scale, matrix and lookat, composed in document order
 //! (each later operation is applied after the earlier ones).
-use super::props::{parse_numbers, vector_from_node, Loc, Props};
+use super::xml::{expand_value_to_xyz, parse_numbers, vector_from_node, Loc, XyzError};
 use crate::scene::look_at;
 use anyhow::{bail, Result};
 use glam::{Mat4, Vec3};
+use std::path::Path;
 
-pub fn parse(props: &Props, node: roxmltree::Node, loc: &Loc) -> Result<Mat4> {
+/// The transform of the `<transform>` element `node` of the document `doc` read from `path`.
+pub fn parse(path: &Path, doc: &roxmltree::Document, node: roxmltree::Node, loc: &Loc) -> Result<Mat4> {
     let mut m = Mat4::IDENTITY;
     for op in node.children().filter(|n| n.is_element()) {
-        let op_loc = Loc::of(&props.path, props.doc, op);
+        let op_loc = Loc::of(path, doc, op);
         let value = op.attribute("value");
         let step = match op.tag_name().name() {
             "translate" => Mat4::from_translation(vector_from_node(op, value, &op_loc)?),
             "scale" => {
-                let s = if let Some(v) = value {
-                    let n = parse_numbers(v, &op_loc)?;
-                    match n.len() {
-                        1 => Vec3::splat(n[0] as f32),
-                        3 => Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32),
-                        _ => bail!("{op_loc}: <scale> needs 1 or 3 numbers"),
-                    }
-                } else {
-                    let get = |a: &str| op.attribute(a).map(|s| s.trim().parse::<f32>()).transpose();
-                    match (get("x"), get("y"), get("z")) {
-                        (Ok(x), Ok(y), Ok(z)) => {
-                            Vec3::new(x.unwrap_or(1.0), y.unwrap_or(1.0), z.unwrap_or(1.0))
-                        }
-                        _ => bail!("{op_loc}: <scale> values must be numbers"),
-                    }
-                };
-                Mat4::from_scale(s)
+                Mat4::from_scale(expand_value_to_xyz(op, value, 1.0, &op_loc).map_err(|e| match e {
+                    XyzError::Numbers(e) => e,
+                    XyzError::Count(_) => anyhow::anyhow!("{op_loc}: <scale> needs 1 or 3 numbers"),
+                    XyzError::NotANumber(_) => anyhow::anyhow!("{op_loc}: <scale> values must be numbers"),
+                })?)
             }
             "rotate" => {
                 let axis = vector_from_node(op, value, &op_loc)?;

@@ -1,0 +1,89 @@
+//! XML primitives of the loader: source locations (`Loc`), required attributes, number lists, and
+//! vectors given as one or three numbers (Mitsuba's `expand_value_to_xyz`). A leaf module: it uses
+//! nothing else of the loader, so that `props` and `transform` can both build on it.
+use anyhow::{bail, Result};
+use glam::Vec3;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// A position in a scene file.
+#[derive(Clone, Debug)]
+pub struct Loc {
+    pub file: PathBuf,
+    pub line: u32,
+}
+
+impl Loc {
+    pub fn of(path: &Path, doc: &roxmltree::Document, node: roxmltree::Node) -> Loc {
+        Loc { file: path.to_path_buf(), line: doc.text_pos_at(node.range().start).row }
+    }
+}
+
+impl fmt::Display for Loc {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}", self.file.display(), self.line)
+    }
+}
+
+pub fn attr<'a>(node: roxmltree::Node<'a, '_>, name: &str, loc: &Loc) -> Result<&'a str> {
+    match node.attribute(name) {
+        Some(v) => Ok(v),
+        None => bail!("{loc}: <{}> needs the attribute '{name}'", node.tag_name().name()),
+    }
+}
+
+/// Parses a list of numbers separated by commas and/or whitespace.
+pub fn parse_numbers(text: &str, loc: &Loc) -> Result<Vec<f64>> {
+    text.split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse::<f64>().map_err(|_| anyhow::anyhow!("{loc}: '{s}' is not a number")))
+        .collect()
+}
+
+/// Why `expand_value_to_xyz` rejected a value. The callers word their own messages (a `<scale>`, an
+/// `<rgb>` and a point have always said it differently), so the reason is kept apart from the text.
+#[derive(Debug)]
+pub enum XyzError {
+    /// `value` is not a list of numbers (the message is complete).
+    Numbers(anyhow::Error),
+    /// `value` holds this many numbers, neither 1 nor 3.
+    Count(usize),
+    /// This attribute (`x`, `y` or `z`) is not a number.
+    NotANumber(&'static str),
+}
+
+/// A vector given as `value="v"` (all three components), `value="x, y, z"`, or as `x=… y=… z=…`
+/// attributes, each absent one `default` (0 for a translation, 1 for a scale), as Mitsuba's
+/// `expand_value_to_xyz` reads it. `value` is passed separately because some callers substitute
+/// `$name` references in it first; when it is given, `x`/`y`/`z` are not read.
+pub fn expand_value_to_xyz(
+    node: roxmltree::Node,
+    value: Option<&str>,
+    default: f32,
+    loc: &Loc,
+) -> Result<Vec3, XyzError> {
+    if let Some(v) = value {
+        let n = parse_numbers(v, loc).map_err(XyzError::Numbers)?;
+        return match n.len() {
+            1 => Ok(Vec3::splat(n[0] as f32)),
+            3 => Ok(Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32)),
+            count => Err(XyzError::Count(count)),
+        };
+    }
+    let get = |a: &'static str| -> Result<f32, XyzError> {
+        match node.attribute(a) {
+            Some(s) => s.trim().parse().map_err(|_| XyzError::NotANumber(a)),
+            None => Ok(default),
+        }
+    };
+    Ok(Vec3::new(get("x")?, get("y")?, get("z")?))
+}
+
+/// A point or vector (`expand_value_to_xyz` with absent components 0).
+pub fn vector_from_node(node: roxmltree::Node, value: Option<&str>, loc: &Loc) -> Result<Vec3> {
+    expand_value_to_xyz(node, value, 0.0, loc).map_err(|e| match e {
+        XyzError::Numbers(e) => e,
+        XyzError::Count(n) => anyhow::anyhow!("{loc}: expected 3 numbers, got {n}"),
+        XyzError::NotANumber(a) => anyhow::anyhow!("{loc}: '{a}' must be a number"),
+    })
+}
