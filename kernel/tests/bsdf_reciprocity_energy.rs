@@ -1,8 +1,8 @@
 //! Reciprocity and energy conservation of the models with smooth lobes (rough conductor, dielectric
 //! and plastic, plastic, fuzzy metal): the radiance BSDF is the adjoint one with its arguments swapped,
 //! and in a white furnace no model reflects more than it receives while its mean sampling weight
-//! estimates the same albedo as the quadrature of `eval`. (Lambert and Phong: `bsdf.rs`, for now with
-//! its own copies of these checks.)
+//! estimates the same albedo as the quadrature of `eval`. (Lambert and Phong: `bsdf_diffuse_phong.rs`,
+//! through the same checks in `common::bsdf_checks`.)
 mod common;
 use caustic_kernel::bsdf::fresnel::*;
 use caustic_kernel::bsdf::plastic::Plastic;

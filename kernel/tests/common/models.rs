@@ -102,6 +102,25 @@ pub fn copper(m: Material) -> Material {
     Material { conductor_eta: c4(0.2, 0.9, 1.1), conductor_k: c4(3.9, 2.4, 2.2), ..m }
 }
 
+/// Lambert and modified Phong (kd, ks, exponent in `eta`) from a perfect Phong mirror-ish lobe to a
+/// very narrow one and a diffuse-only mixture.
+pub fn diffuse_and_phong() -> Vec<Material> {
+    let mut v =
+        vec![Material { kind: BSDF_DIFFUSE, reflectance: [1.0, 0.5, 0.2, 0.0], ..Default::default() }];
+    for (kd, ks, n) in
+        [(0.0, 1.0, 1.0), (0.0, 1.0, 50.0), (0.5, 0.5, 10.0), (0.3, 0.7, 1000.0), (0.9, 0.1, 0.0)]
+    {
+        v.push(Material {
+            kind: BSDF_PHONG,
+            eta: n,
+            reflectance: [kd; 4],
+            specular_reflectance: [ks; 4],
+            ..Default::default()
+        });
+    }
+    v
+}
+
 /// Models with smooth lobes over a range of parameters.
 pub fn smooth_models() -> Vec<(String, Material)> {
     let mut v = Vec::new();
