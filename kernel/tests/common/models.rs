@@ -165,6 +165,31 @@ pub fn smooth_models() -> Vec<(String, Material)> {
     v
 }
 
+/// At least one material of every model kind, named: the smooth models, Lambert and Phong, the
+/// Dirac-delta models, narrow and fuzz-0 fuzzy metal.
+pub fn every_model() -> Vec<(String, Material)> {
+    let mut v = smooth_models();
+    for m in diffuse_and_phong() {
+        let name = match m.kind {
+            BSDF_PHONG => {
+                format!("phong kd={} ks={} n={}", m.reflectance[0], m.specular_reflectance[0], m.eta)
+            }
+            _ => "diffuse".to_string(),
+        };
+        v.push((name, m));
+    }
+    v.push(("conductor".into(), copper(material(BSDF_CONDUCTOR))));
+    v.push(("conductor (perfect mirror)".into(), material(BSDF_CONDUCTOR)));
+    for eta in [1.5f32, 2.42] {
+        v.push((format!("dielectric η={eta}"), Material { eta, ..material(BSDF_DIELECTRIC) }));
+        v.push((format!("thindielectric η={eta}"), Material { eta, ..material(BSDF_THIN_DIELECTRIC) }));
+    }
+    for fuzz in [0.0f32, 0.05] {
+        v.push((format!("fuzzymetal {fuzz}"), fuzzy(fuzz)));
+    }
+    v
+}
+
 pub fn dir(x: f32, y: f32, z: f32) -> Vec3 {
     Vec3::new(x, y, z).normalize()
 }
