@@ -1,5 +1,6 @@
-//! Helpers shared by the kernel's test files; each file declares `mod common;` and uses what it needs
-//! (so the rest is dead code there, hence the `allow`).
+//! Helpers shared by the kernel's test files (kernel/tests: the kernel's math on the CPU, see its
+//! README.md); each file declares `mod common;` and uses what it needs (so the rest is dead code there,
+//! hence the `allow`).
 //!
 //! - `chi2`: χ² goodness-of-fit of a sampler against its density, and quadrature over the sphere;
 //! - `models`: test materials and `Model` (a BSDF in a transport mode, built as the host builds it);
