@@ -1,4 +1,8 @@
 //! The command line: errors exit non-zero with a message and no panic; a render writes a finite image.
+//!
+//! host/tests holds the host's own behaviour: loading scenes, meshes and images, and the command
+//! line. Kernel math (sampling, BSDFs, lights) is tested in kernel/tests; rendered images as a whole in
+//! tests/tests.
 use std::ops::ControlFlow::{Break, Continue};
 use std::process::Command;
 

@@ -1,5 +1,9 @@
 //! Mesh files (OBJ, PLY, serialized) and built-in shapes load with Mitsuba 3's semantics: counts,
 //! normals, texture coordinates, `flip_normals`/`face_normals`, and clean errors for bad files.
+//!
+//! host/tests holds the host's own behaviour: loading scenes, meshes and images, and the command
+//! line. Kernel math (sampling, BSDFs, lights) is tested in kernel/tests; rendered images as a whole in
+//! tests/tests.
 use caustic::mesh::{self, primitives, Mesh};
 use caustic::scene::{Geometry, Scene, Shape};
 use caustic_tests::shared_dir_if_present;

@@ -1,4 +1,8 @@
 //! χ² tests of every sampling routine against its density.
+//!
+//! kernel/tests holds the kernel's math, run on the CPU without a scene or the host: sampling
+//! routines, BSDFs, lights (README.md there maps the files). Loading and the command line are tested in
+//! host/tests, rendered images in tests/tests.
 mod common;
 use caustic_kernel::bsdf::phong::Phong;
 use caustic_kernel::bsdf::Bxdf;

@@ -1,5 +1,10 @@
 //! Helpers shared by the integration tests: where the reference data live, and rendering a scene to
 //! a film on a chosen backend.
+//!
+//! tests/tests holds end-to-end tests: whole scenes through the `caustic` crate, mostly rendered and
+//! judged by statistics over whole images (against Mitsuba's references, the other backend or an exact
+//! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
+//! files and its command line in host/tests.
 use caustic::backend::{self, BackendChoice};
 use caustic::film::Film;
 use caustic::scene::Scene;

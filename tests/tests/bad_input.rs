@@ -1,5 +1,10 @@
 //! Bad input gives clear errors naming file and line (never a panic); unsupported elements give
 //! warnings naming element and line, and the rest of the scene still loads.
+//!
+//! tests/tests holds end-to-end tests: whole scenes through the `caustic` crate, mostly rendered and
+//! judged by statistics over whole images (against Mitsuba's references, the other backend or an exact
+//! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
+//! files and its command line in host/tests.
 use std::path::PathBuf;
 
 fn write_scene(name: &str, body: &str) -> PathBuf {

@@ -4,6 +4,11 @@
 //! reference) at a fixed sample budget; all scenes on the CPU, a representative subset on the GPU
 //! backend (lavapipe in CI). Set CAUSTIC_CONFORMANCE_BUDGET (samples per scene) for longer runs and
 //! CAUSTIC_CONFORMANCE_ONLY=name,name to select scenes.
+//!
+//! tests/tests holds end-to-end tests: whole scenes through the `caustic` crate, mostly rendered and
+//! judged by statistics over whole images (against Mitsuba's references, the other backend or an exact
+//! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
+//! files and its command line in host/tests.
 use caustic::backend::BackendChoice;
 use caustic::compare::compare;
 use caustic::film::Film;

@@ -1,5 +1,10 @@
 //! The GPU (wgpu; lavapipe in CI) and CPU (rayon) backends run the same kernel: with the same seed they
 //! must agree up to float rounding, and with different seeds statistically.
+//!
+//! tests/tests holds end-to-end tests: whole scenes through the `caustic` crate, mostly rendered and
+//! judged by statistics over whole images (against Mitsuba's references, the other backend or an exact
+//! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
+//! files and its command line in host/tests.
 use caustic::backend::BackendChoice;
 use caustic::compare::compare;
 use caustic_tests::*;

@@ -1,6 +1,11 @@
 //! White furnace: a Lambertian sphere of albedo 1 inside a closed emitter of radiance 1 reflects
 //! exactly what it receives, so every pixel's expected value is 1 — on both backends. Exercises the
 //! path tracer's NEE/MIS bookkeeping, Russian roulette (unbiased), and sphere lights seen from inside.
+//!
+//! tests/tests holds end-to-end tests: whole scenes through the `caustic` crate, mostly rendered and
+//! judged by statistics over whole images (against Mitsuba's references, the other backend or an exact
+//! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
+//! files and its command line in host/tests.
 use caustic::backend::BackendChoice;
 use caustic::scene::*;
 use caustic_kernel::layout::{Material, BSDF_DIFFUSE, BSDF_PHONG};

@@ -1,5 +1,10 @@
 //! Integrator semantics that Mitsuba's scenes rely on beyond what the reference images show:
 //! `hide_emitters` lets camera rays pass through area emitters, on both integrators.
+//!
+//! tests/tests holds end-to-end tests: whole scenes through the `caustic` crate, mostly rendered and
+//! judged by statistics over whole images (against Mitsuba's references, the other backend or an exact
+//! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
+//! files and its command line in host/tests.
 use caustic::backend::BackendChoice;
 use caustic_tests::*;
 

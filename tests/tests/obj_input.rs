@@ -1,5 +1,10 @@
 //! Direct OBJ/MTL input: MTL Kd/Ks/Ns → modified Phong (Kd alone → Lambert), Ke → area emitter, an
 //! automatic camera and sphere light; the result renders to a finite, lit image.
+//!
+//! tests/tests holds end-to-end tests: whole scenes through the `caustic` crate, mostly rendered and
+//! judged by statistics over whole images (against Mitsuba's references, the other backend or an exact
+//! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
+//! files and its command line in host/tests.
 use caustic::backend::BackendChoice;
 use caustic::scene::Geometry;
 use caustic_kernel::layout::{BSDF_DIFFUSE, BSDF_PHONG};

@@ -1,6 +1,11 @@
 //! caustic against Mitsuba 3.9.1 on the Cornell box (`../shared`): per-pixel z-test and mean-luminance
 //! z-score, on the CPU and on the GPU backend (lavapipe in CI), plus a negative control showing that
 //! the test does catch a 3% error.
+//!
+//! tests/tests holds end-to-end tests: whole scenes through the `caustic` crate, mostly rendered and
+//! judged by statistics over whole images (against Mitsuba's references, the other backend or an exact
+//! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
+//! files and its command line in host/tests.
 use caustic::backend::BackendChoice;
 use caustic::compare::compare;
 use caustic::film::Film;
