@@ -45,6 +45,8 @@ impl<'a> Accel<'a> {
         let mut best_t = ray.t_max;
         let mut best_prim = u32::MAX;
         let mut best_uv = Vec2::ZERO;
+        // Not `is_empty()`: in rust-gpu 0.11 it grew the SPIR-V by 220 KB (measured).
+        #[allow(clippy::len_zero)]
         if self.nodes.len() == 0
             || intersect_aabb(&self.nodes[0], ray.origin, inv_dir, ray.t_min, best_t) == MISS
         {

@@ -8,6 +8,8 @@
 //! adaptors, no `.get()`, no sub-slices, no 64-bit types. Buffer data are `#[repr(C)]` plain structs
 //! (`layout`) shared with the host.
 #![cfg_attr(target_arch = "spirv", no_std)]
+// `!(x > 0.0)` is how the kernel rejects NaN along with non-positive values, on purpose.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod bsdf;
 pub mod bvh;

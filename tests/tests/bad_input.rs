@@ -100,7 +100,7 @@ fn unsupported_elements_warn_and_the_rest_loads() {
 
 #[test]
 fn defaults_and_overrides() {
-    let path = write_scene("defaults.xml", &format!("<scene version=\"3.0.0\">\n<default name=\"res\" value=\"8\"/>\n<sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"$res\"/><integer name=\"height\" value=\"$res\"/></film></sensor>\n</scene>\n"));
+    let path = write_scene("defaults.xml", "<scene version=\"3.0.0\">\n<default name=\"res\" value=\"8\"/>\n<sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"$res\"/><integer name=\"height\" value=\"$res\"/></film></sensor>\n</scene>\n");
     let scene = caustic::load_scene(&path, &[]).unwrap();
     assert_eq!(scene.sensor.width, 8);
     let scene = caustic::load_scene(&path, &[("res".into(), "12".into())]).unwrap();

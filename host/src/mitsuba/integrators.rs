@@ -9,42 +9,22 @@ impl Loader {
     pub(crate) fn load_integrator(&mut self, props: &Props) -> Result<Integrator> {
         let integrator = match props.kind.as_str() {
             "path" => {
-                let max_depth = props.integer("max_depth", -1)?;
-                let rr_depth = props.integer("rr_depth", 5)?;
-                if max_depth < -1 || max_depth > 1_000_000 {
-                    bail!(
-                        "{}: max_depth must be -1 (unbounded) or in [0, 1000000], got {max_depth}",
-                        props.loc
-                    );
-                }
-                if !(1..=1_000_000).contains(&rr_depth) {
-                    bail!("{}: rr_depth must be in [1, 1000000], got {rr_depth}", props.loc);
-                }
+                let (max_depth, rr_depth) = depths(props)?;
                 Integrator {
                     kind: IntegratorKind::Path,
-                    max_depth: max_depth as i32,
-                    rr_depth: rr_depth as u32,
+                    max_depth,
+                    rr_depth,
                     hide_emitters: props.boolean("hide_emitters", false)?,
                 }
             }
             "ptracer" => {
-                let max_depth = props.integer("max_depth", -1)?;
-                let rr_depth = props.integer("rr_depth", 5)?;
-                if max_depth < -1 || max_depth > 1_000_000 {
-                    bail!(
-                        "{}: max_depth must be -1 (unbounded) or in [0, 1000000], got {max_depth}",
-                        props.loc
-                    );
-                }
-                if !(1..=1_000_000).contains(&rr_depth) {
-                    bail!("{}: rr_depth must be in [1, 1000000], got {rr_depth}", props.loc);
-                }
+                let (max_depth, rr_depth) = depths(props)?;
                 // Mitsuba's `samples_per_pass` only splits its own work; the image does not depend on it.
                 props.integer("samples_per_pass", -1)?;
                 Integrator {
                     kind: IntegratorKind::Ptracer,
-                    max_depth: max_depth as i32,
-                    rr_depth: rr_depth as u32,
+                    max_depth,
+                    rr_depth,
                     hide_emitters: props.boolean("hide_emitters", false)?,
                 }
             }
@@ -97,4 +77,17 @@ impl Loader {
         self.warn_unused(props);
         Ok(integrator)
     }
+}
+
+/// `max_depth` (-1: unbounded) and `rr_depth` of `path` and `ptracer`, with Mitsuba's defaults.
+fn depths(props: &Props) -> Result<(i32, u32)> {
+    let max_depth = props.integer("max_depth", -1)?;
+    let rr_depth = props.integer("rr_depth", 5)?;
+    if !(-1..=1_000_000).contains(&max_depth) {
+        bail!("{}: max_depth must be -1 (unbounded) or in [0, 1000000], got {max_depth}", props.loc);
+    }
+    if !(1..=1_000_000).contains(&rr_depth) {
+        bail!("{}: rr_depth must be in [1, 1000000], got {rr_depth}", props.loc);
+    }
+    Ok((max_depth as i32, rr_depth as u32))
 }

@@ -164,7 +164,7 @@ fn disk_geometry(to_world: Mat4, props: &Props) -> Result<Geometry> {
     let center = to_world.transform_point3(Vec3::ZERO);
     let (u, v) = (to_world.transform_vector3(Vec3::X), to_world.transform_vector3(Vec3::Y));
     let area = u.cross(v).length();
-    if !(area.is_finite() && area > 0.0) || !center.is_finite() {
+    if !(area.is_finite() && area > 0.0 && center.is_finite()) {
         bail!("{}: the disk's to_world collapses or is not finite", props.loc);
     }
     Ok(Geometry::Disk { center, u, v })

@@ -30,9 +30,7 @@ pub fn intersect(p0: Vec3, p1: Vec3, p2: Vec3, ray: &Ray, t_max: f32) -> Option<
     let mut ky = if kx == 2 { 0 } else { kx + 1 };
     let dz = component(d, kz);
     if dz < 0.0 {
-        let tmp = kx;
-        kx = ky;
-        ky = tmp;
+        core::mem::swap(&mut kx, &mut ky);
     }
     let sx = component(d, kx) / dz;
     let sy = component(d, ky) / dz;
