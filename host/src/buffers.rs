@@ -479,7 +479,11 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         // An empty box (min > max) that no ray enters.
         vec![BvhNode { min: [1.0; 3], prim_count: 0, max: [-1.0; 3], first: 0 }]
     };
-    let mut tables = filter_cdf(&scene.sensor.filter);
+    // Light tracing splats with the box over each pixel; under IBPT the camera paths must estimate the
+    // same pixel measurement, so they sample the box too.
+    let splatting = matches!(scene.integrator.kind, IntegratorKind::Ptracer | IntegratorKind::Ibpt);
+    let filter = if splatting { Filter::Box { radius: 0.5 } } else { scene.sensor.filter };
+    let mut tables = filter_cdf(&filter);
     let filter_cdf_offset = 0;
     let mut textures = place_textures(scene, &mut tables);
     let env_light =
@@ -509,8 +513,12 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
             (INTEGRATOR_DIRECT, emitter_samples, bsdf_samples)
         }
         IntegratorKind::Ptracer => {
-            check_light_tracing(scene, &lights)?;
+            check_light_tracing(scene, &lights, "ptracer")?;
             (INTEGRATOR_PTRACER, 1, 1)
+        }
+        IntegratorKind::Ibpt => {
+            check_light_tracing(scene, &lights, "ibpt")?;
+            (INTEGRATOR_IBPT, 1, 1)
         }
     };
     let params = FrameParams {
@@ -574,31 +582,34 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     if integrator == INTEGRATOR_DIRECT {
         f |= features::DIRECT_INTEGRATOR;
     }
-    if integrator == INTEGRATOR_PTRACER {
+    if caustic_kernel::integrator::splats(integrator) {
         f |= features::LIGHT_TRACER;
     }
     f
 }
 
 /// What light tracing does not cover yet is refused, never rendered without it: infinite emitters
-/// (directional, constant, envmap) and cameras other than the pinhole perspective one. A film filter
-/// other than the box is replaced by the box for the splats (said once).
-fn check_light_tracing(scene: &Scene, lights: &[Light]) -> Result<()> {
-    for l in lights {
+/// (directional, constant, envmap; under IBPT the camera paths alone render them) and cameras other
+/// than the pinhole perspective one. A film filter other than the box is replaced by the box (said once).
+fn check_light_tracing(scene: &Scene, lights: &[Light], name: &str) -> Result<()> {
+    let integrator = name;
+    for l in lights.iter().filter(|_| integrator == "ptracer") {
         let name = match l.kind {
             LIGHT_DIRECTIONAL => "directional",
             LIGHT_CONSTANT => "constant",
             LIGHT_ENVMAP => "envmap",
             _ => continue,
         };
-        bail!("ptracer: {name} emitters are not light-traced yet (render this scene with path)");
+        bail!("{integrator}: {name} emitters are not light-traced yet (render this scene with path or ibpt)");
     }
     if camera(scene).kind != CAMERA_PERSPECTIVE {
-        bail!("ptracer: only the perspective (pinhole) sensor is supported (render this scene with path)");
+        bail!(
+            "{integrator}: only the perspective (pinhole) sensor is supported (render this scene with path)"
+        );
     }
     if !matches!(scene.sensor.filter, Filter::Box { .. }) {
         eprintln!(
-            "warning: ptracer splats with a box filter over each pixel (the scene's {:?} filter is not used)",
+            "warning: {integrator} renders with a box filter over each pixel (the scene's {:?} filter is not used)",
             scene.sensor.filter
         );
     }

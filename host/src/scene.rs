@@ -108,6 +108,8 @@ pub enum IntegratorChoice {
     Direct,
     /// Light tracing (Mitsuba's `ptracer`).
     Ptracer,
+    /// Path tracing and light tracing combined by MIS (instant bidirectional path tracing).
+    Ibpt,
 }
 
 impl Integrator {
@@ -117,6 +119,7 @@ impl Integrator {
         match choice {
             IntegratorChoice::Path => Integrator { kind: IntegratorKind::Path, ..self },
             IntegratorChoice::Ptracer => Integrator { kind: IntegratorKind::Ptracer, ..self },
+            IntegratorChoice::Ibpt => Integrator { kind: IntegratorKind::Ibpt, ..self },
             IntegratorChoice::Direct => Integrator {
                 kind: IntegratorKind::Direct { emitter_samples: 1, bsdf_samples: 1 },
                 max_depth: 2,
@@ -137,6 +140,8 @@ pub enum IntegratorKind {
     },
     /// Light tracing (Mitsuba's `ptracer`).
     Ptracer,
+    /// Instant bidirectional path tracing: path tracing and light tracing combined by MIS.
+    Ibpt,
 }
 
 #[derive(Clone, Debug)]

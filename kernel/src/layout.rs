@@ -245,6 +245,9 @@ pub const INTEGRATOR_PATH: u32 = 0;
 pub const INTEGRATOR_DIRECT: u32 = 1;
 /// Light tracing (Mitsuba's `ptracer`): splats into the `SPLAT` buffer instead of accumulating.
 pub const INTEGRATOR_PTRACER: u32 = 2;
+/// Instant bidirectional path tracing: a camera path (with NEE) and a light path (connected to the
+/// camera) per pixel sample, combined by the power heuristic; splats like `INTEGRATOR_PTRACER`.
+pub const INTEGRATOR_IBPT: u32 = 3;
 
 pub const SAMPLER_INDEPENDENT: u32 = 0;
 pub const SAMPLER_STRATIFIED: u32 = 1;

@@ -1,5 +1,6 @@
-//! Light tracing (`ptracer`) against path tracing: the two estimate the same image, statistically,
-//! on scenes lit by each emitter kind light tracing supports; the GPU and the CPU splat the same sums.
+//! Light tracing (`ptracer`) and IBPT (path + light tracing by MIS) against path tracing: they estimate
+//! the same image, statistically, on scenes lit by each emitter kind light tracing supports and on a
+//! caustic; the GPU and the CPU splat the same sums.
 use caustic::backend::BackendChoice;
 use caustic::film::Film;
 use caustic_tests::*;
@@ -7,6 +8,16 @@ use caustic_tests::*;
 /// A diffuse box corner (floor, back wall, a red side wall) with a glossy sphere, lit by `emitter`,
 /// seen through a box filter (light tracing splats with the box).
 fn corner(integrator: &str, emitter: &str, res: u32) -> String {
+    corner_with(
+        integrator,
+        emitter,
+        res,
+        r#"<bsdf type="roughplastic"><float name="alpha" value="0.2"/><rgb name="diffuse_reflectance" value="0.3, 0.4, 0.6"/></bsdf>"#,
+    )
+}
+
+/// `corner` with the sphere's BSDF given.
+fn corner_with(integrator: &str, emitter: &str, res: u32, sphere_bsdf: &str) -> String {
     format!(
         r#"<scene version="3.0.0">
     <integrator type="{integrator}"><integer name="max_depth" value="5"/></integrator>
@@ -22,7 +33,7 @@ fn corner(integrator: &str, emitter: &str, res: u32) -> String {
     <shape type="rectangle"><transform name="to_world"><scale value="2"/><rotate y="1" angle="90"/><translate x="-1.5" z="1"/></transform>
         <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.2, 0.2"/></bsdf></bsdf></shape>
     <shape type="sphere"><float name="radius" value="0.4"/><point name="center" x="0.3" y="0.2" z="0.4"/>
-        <bsdf type="roughplastic"><float name="alpha" value="0.2"/><rgb name="diffuse_reflectance" value="0.3, 0.4, 0.6"/></bsdf></shape>
+        {sphere_bsdf}</shape>
     {emitter}
 </scene>"#
     )
@@ -130,4 +141,62 @@ fn ptracer_gpu_matches_cpu() {
     println!("ptracer GPU vs CPU: max |difference| {max_diff:e}, image sum {total:.4}");
     assert!(total > 0.1, "the light-traced image is dark");
     assert!(max_diff < 1e-3, "GPU and CPU light tracing differ by {max_diff}");
+}
+
+#[test]
+fn ibpt_and_path_agree() {
+    for (name, emitter) in [EMITTERS[0], EMITTERS[2]] {
+        let path = render_scene(
+            &load_xml(&corner("path", emitter, 24), &format!("{name}-ipath")),
+            BackendChoice::Cpu,
+            512,
+            3,
+        );
+        let ibpt = render_scene(
+            &load_xml(&corner("ibpt", emitter, 24), &format!("{name}-ibpt")),
+            BackendChoice::Cpu,
+            256,
+            4,
+        );
+        let (z, worst) = agreement(&ibpt, &path);
+        println!("{name}: ibpt vs path: image z {z:+.2}, worst pixel |z| {worst:.2}");
+        assert!(z.abs() < 4.0 && worst < 5.0, "{name}: ibpt and path disagree (z {z:+.2}, worst {worst:.2})");
+    }
+}
+
+/// A caustic: a glass sphere focusing a small light onto the floor (L S S D E paths, which only the
+/// light path can connect); IBPT must agree with path tracing there too, and be far less noisy.
+#[test]
+fn ibpt_renders_a_caustic_like_path_tracing() {
+    let glass = r#"<bsdf type="dielectric"><float name="int_ior" value="1.5"/></bsdf>"#;
+    let light = r#"<shape type="sphere"><float name="radius" value="0.05"/><point name="center" x="0.5" y="0.3" z="1.6"/>
+            <emitter type="area"><rgb name="radiance" value="400"/></emitter></shape>"#;
+    let scene = |integrator: &str| {
+        load_xml(&corner_with(integrator, light, 24, glass), &format!("caustic-{integrator}"))
+    };
+    let path = render_scene(&scene("path"), BackendChoice::Cpu, 2048, 5);
+    let ibpt = render_scene(&scene("ibpt"), BackendChoice::Cpu, 256, 6);
+    let (z, worst) = agreement(&ibpt, &path);
+    let noise = |f: &Film| f.variance.as_ref().unwrap().iter().flatten().map(|&v| v as f64).sum::<f64>();
+    println!("caustic: ibpt vs path: image z {z:+.2}, worst pixel |z| {worst:.2}; summed variance path {:.3e} (2048 spp), ibpt {:.3e} (256 spp)", noise(&path), noise(&ibpt));
+    assert!(z.abs() < 4.0 && worst < 5.0, "caustic: ibpt and path disagree (z {z:+.2}, worst {worst:.2})");
+    assert!(
+        noise(&ibpt) < noise(&path),
+        "IBPT at 256 spp is not less noisy than path at 2048 spp on a caustic"
+    );
+}
+
+#[test]
+fn ibpt_gpu_matches_cpu() {
+    let scene = load_xml(&corner("ibpt", EMITTERS[0].1, 12), "ibpt-gpu-cpu");
+    let cpu = render_scene(&scene, BackendChoice::Cpu, 2, 5);
+    let gpu = render_scene(&scene, BackendChoice::Gpu, 2, 5);
+    let max_diff = cpu
+        .rgb
+        .iter()
+        .zip(&gpu.rgb)
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
+        .fold(0.0f32, f32::max);
+    println!("ibpt GPU vs CPU: max |difference| {max_diff:e}");
+    assert!(max_diff < 1e-3, "GPU and CPU IBPT differ by {max_diff}");
 }

@@ -3,7 +3,7 @@ use super::Backend;
 use crate::buffers::SceneBuffers;
 use crate::film::Accumulation;
 use anyhow::Result;
-use caustic_kernel::layout::{FrameParams, INTEGRATOR_PTRACER};
+use caustic_kernel::layout::FrameParams;
 
 pub struct CpuBackend {
     buffers: SceneBuffers,
@@ -13,7 +13,7 @@ pub struct CpuBackend {
 impl CpuBackend {
     pub fn new(buffers: SceneBuffers) -> Self {
         let pixels = (buffers.params.width * buffers.params.height) as usize;
-        let splatted = buffers.params.integrator == INTEGRATOR_PTRACER;
+        let splatted = caustic_kernel::integrator::splats(buffers.params.integrator);
         CpuBackend { buffers, accum: Accumulation::new(pixels, splatted) }
     }
 }

@@ -7,7 +7,7 @@ use super::Backend;
 use crate::buffers::SceneBuffers;
 use crate::film::Accumulation;
 use anyhow::{anyhow, bail, Context, Result};
-use caustic_kernel::layout::{binding, FrameParams, PixelAccum, INTEGRATOR_PTRACER, TILE};
+use caustic_kernel::layout::{binding, FrameParams, PixelAccum, TILE};
 use caustic_kernel::splat::SPLAT_STRIDE;
 use wgpu::util::DeviceExt;
 
@@ -135,7 +135,7 @@ impl GpuBackend {
             mapped_at_creation: false,
         });
         // Light tracing splats into fixed-point words; the other integrators get a placeholder word.
-        let splatted = buffers.params.integrator == INTEGRATOR_PTRACER;
+        let splatted = caustic_kernel::integrator::splats(buffers.params.integrator);
         let splat_size = if splatted { pixels * SPLAT_STRIDE as u64 * 4 } else { 4 * SPLAT_STRIDE as u64 };
         let splat_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("splat"),

@@ -1,4 +1,5 @@
-//! Integrator plugins: `path`, `direct`, `ptracer` (light tracing) and `moment` (its nested integrator; caustic always tracks
+//! Integrator plugins: `path`, `direct`, `ptracer` (light tracing), `ibpt` (caustic's own: path and
+//! light tracing combined by MIS) and `moment` (its nested integrator; caustic always tracks
 //! the variance).
 use super::props::Props;
 use super::Loader;
@@ -17,12 +18,13 @@ impl Loader {
                     hide_emitters: props.boolean("hide_emitters", false)?,
                 }
             }
-            "ptracer" => {
+            "ptracer" | "ibpt" => {
                 let (max_depth, rr_depth) = depths(props)?;
                 // Mitsuba's `samples_per_pass` only splits its own work; the image does not depend on it.
                 props.integer("samples_per_pass", -1)?;
+                let kind = if props.kind == "ibpt" { IntegratorKind::Ibpt } else { IntegratorKind::Ptracer };
                 Integrator {
-                    kind: IntegratorKind::Ptracer,
+                    kind,
                     max_depth,
                     rr_depth,
                     hide_emitters: props.boolean("hide_emitters", false)?,

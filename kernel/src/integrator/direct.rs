@@ -2,7 +2,8 @@
 //! first surface straight from an emitter, estimated with `emitter_samples` light samples and
 //! `bsdf_samples` BSDF samples per pixel sample, combined by the power heuristic.
 use super::nee::{
-    area_emission, environment, first_hit_past_emitters, next_event, PreviousVertex, StrategyCounts,
+    area_emission, environment, first_hit_past_emitters, next_event, LightTracingMis, PreviousVertex,
+    StrategyCounts,
 };
 use super::path::DIM_FIRST_BOUNCE;
 use super::shading_frame;
@@ -48,9 +49,20 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         while i < params.emitter_samples {
             let u_select = sampler.next_1d();
             let u_light = sampler.next_2d();
-            result +=
-                next_event(scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, counts)
-                    / counts.light;
+            result += next_event(
+                scene,
+                params,
+                &accel,
+                &bsdf,
+                &frame,
+                &sp,
+                ng,
+                wo,
+                u_select,
+                u_light,
+                counts,
+                LightTracingMis::OFF,
+            ) / counts.light;
             i += 1;
         }
     }
@@ -66,7 +78,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         }
         let wi = frame.to_world(bs.wi);
         let ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
-        let from = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta };
+        let from = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta, lt: 0.0 };
         let le = match accel.trace(&ray, false, NONE) {
             None => environment(scene, params, wi, &from, counts),
             Some(h) => {

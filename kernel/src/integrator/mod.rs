@@ -9,7 +9,7 @@ use crate::film;
 use crate::frame::Frame;
 use crate::glam::Vec3;
 pub use crate::layout::SceneView;
-use crate::layout::{FrameParams, PixelAccum, INTEGRATOR_DIRECT, INTEGRATOR_PTRACER};
+use crate::layout::{FrameParams, PixelAccum, INTEGRATOR_DIRECT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER};
 use crate::math::is_finite3;
 use crate::rng::Sampler;
 use crate::shape::SurfacePoint;
@@ -56,21 +56,49 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
     sums
 }
 
+/// Light paths draw their random numbers from a stream of their own, so that under IBPT the camera
+/// path and the light path of one pixel sample are independent.
+const LIGHT_PATH_STREAM: u32 = 0x9e37_79b9;
+/// The dimension that rounds a camera path's splat (past any bounce's).
+const DIM_SPLAT_ROUNDING: u32 = u32::MAX - 1;
+
 /// Traces the light paths of `params.sample_count` samples of path index `pixel` (one light path per
 /// pixel and sample, whichever pixels they reach) and splats their camera connections into `words`.
+/// Under IBPT each sample also traces the pixel's camera path and splats it into its own pixel.
 pub fn trace_light_paths<W: AtomicWords>(scene: &SceneView, params: &FrameParams, pixel: u32, words: &mut W) {
+    let ibpt = params.integrator == INTEGRATOR_IBPT;
+    let (px, py) = (pixel % params.width, pixel / params.width);
     let mut s = 0;
     while s < params.sample_count {
-        let mut sampler = Sampler::new(params.seed, pixel, params.sample_base + s);
+        let sample_index = params.sample_base + s;
+        if ibpt {
+            let mut sampler = Sampler::new(params.seed, pixel, sample_index);
+            let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
+            let u_lens = sampler.next_2d();
+            let l = path::li(scene, params, params.camera.generate_ray(film_pos, u_lens), &mut sampler);
+            sampler.set_dimension(DIM_SPLAT_ROUNDING);
+            if is_finite3(l) {
+                crate::splat::splat(words, pixel, l, sampler.next_1d());
+            } else {
+                crate::splat::count_invalid(words, pixel);
+            }
+        }
+        let mut sampler = Sampler::new(params.seed ^ LIGHT_PATH_STREAM, pixel, sample_index);
         ptracer::trace(scene, params, &mut sampler, words);
         s += 1;
     }
 }
 
-/// Whether this dispatch traces light paths (`trace_light_paths`) rather than camera paths.
+/// Whether this dispatch splats (light tracing, IBPT: `trace_light_paths`) rather than accumulates.
 #[inline]
 pub fn traces_light_paths(scene: &SceneView, params: &FrameParams) -> bool {
-    params.integrator == INTEGRATOR_PTRACER && features::has(scene.features, features::LIGHT_TRACER)
+    splats(params.integrator) && features::has(scene.features, features::LIGHT_TRACER)
+}
+
+/// Whether integrator `kind` splats into the `SPLAT` words (resolved by the host after each pass).
+#[inline]
+pub fn splats(kind: u32) -> bool {
+    kind == INTEGRATOR_PTRACER || kind == INTEGRATOR_IBPT
 }
 
 /// A pixel's accumulator with one dispatch's sums added.

@@ -10,7 +10,7 @@ use crate::camera::Ray;
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::{FrameParams, Primitive, SceneView, NONE};
-use crate::light::{self, infinite};
+use crate::light::{self, emission, infinite};
 use crate::math::max_component;
 use crate::sampling::power_heuristic;
 use crate::shape::{offset_origin, Hit, SurfacePoint};
@@ -38,12 +38,37 @@ pub struct PreviousVertex {
     pub pdf: f32,
     /// The camera, or a Dirac-delta BSDF lobe: emitters hit are not weighted against light sampling.
     pub delta: bool,
+    /// IBPT: the camera path's light-tracing scalar for the vertex this ray finds (`LightTracingMis`),
+    /// 0 when light tracing cannot make the path (or is not running).
+    pub lt: f32,
 }
 
 impl PreviousVertex {
     pub fn camera(p: Vec3) -> Self {
-        PreviousVertex { p, pdf: 0.0, delta: true }
+        PreviousVertex { p, pdf: 0.0, delta: true, lt: 0.0 }
     }
+}
+
+/// IBPT's state on a camera path (`docs/ibpt.md`): `scale` is the ratio of the light-tracing density
+/// of the path so far to its camera-tracing density, without the terms of the current vertex
+/// (`1 / (We·cos/d² · film scale)` at the first vertex, then `· ρ_rev / ρ_fwd` per bounce); zero when
+/// light tracing cannot make the path. `first_vertex`: the current vertex is the camera's first, which
+/// light tracing connects to the camera rather than samples (no reverse density there).
+#[derive(Clone, Copy)]
+pub struct LightTracingMis {
+    pub scale: f32,
+    pub first_vertex: bool,
+}
+
+impl LightTracingMis {
+    pub const OFF: LightTracingMis = LightTracingMis { scale: 0.0, first_vertex: false };
+}
+
+/// The power heuristic's weight of a strategy from the ratios of the other strategies' densities to
+/// its own: `1 / (1 + Σ r²)`.
+#[inline]
+fn weight_from_ratios(r1: f32, r2: f32) -> f32 {
+    1.0 / (1.0 + r1 * r1 + r2 * r2)
 }
 
 /// One light sample at a surface point, weighted against BSDF sampling (delta emitters, which BSDF
@@ -61,6 +86,7 @@ pub fn next_event(
     u_select: f32,
     u_light: Vec2,
     counts: StrategyCounts,
+    lt: LightTracingMis,
 ) -> Rgb {
     let ls = light::sample(scene, params, sp.p, u_select, u_light);
     if ls.pdf <= 0.0 || max_component(ls.radiance) <= 0.0 {
@@ -82,7 +108,16 @@ pub fn next_event(
     if accel.occluded(&shadow, ls.prim) {
         return Rgb::ZERO;
     }
-    let weight = if ls.delta { 1.0 } else { power_heuristic(counts.light * ls.pdf, counts.bsdf * ep.pdf) };
+    let weight = if lt.scale > 0.0 {
+        // IBPT: against BSDF sampling and against the light path that connects this point to the camera.
+        let r_hit = if ls.delta { 0.0 } else { ep.pdf / ls.pdf };
+        let reverse = if lt.first_vertex { 1.0 } else { bsdf.pdf(wi, wo, TransportMode::Importance) };
+        weight_from_ratios(r_hit, lt.scale * reverse * emission::nee_ratio(scene, &ls))
+    } else if ls.delta {
+        1.0
+    } else {
+        power_heuristic(counts.light * ls.pdf, counts.bsdf * ep.pdf)
+    };
     ep.f * ls.radiance * (weight / ls.pdf)
 }
 
@@ -98,7 +133,11 @@ pub fn area_emission(
 ) -> Rgb {
     let emitter = scene.lights[prim.light as usize];
     let le = light::emitted(&emitter, sp.ns, -dir);
-    let weight = if prev.delta {
+    let weight = if prev.lt > 0.0 {
+        // IBPT: against light sampling and against the light path that starts at this point.
+        let r_nee = if prev.delta { 0.0 } else { light::pdf(&emitter, prim, prev.p, sp.p, sp.ng) / prev.pdf };
+        weight_from_ratios(r_nee, prev.lt * emission::hit_density(scene, prim.light))
+    } else if prev.delta {
         1.0
     } else {
         power_heuristic(

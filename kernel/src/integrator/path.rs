@@ -1,13 +1,17 @@
 //! Unidirectional path tracing with next-event estimation, combined with BSDF sampling by the power
-//! heuristic; Mitsuba's `path` semantics for `max_depth`, `rr_depth` and `hide_emitters`.
+//! heuristic; Mitsuba's `path` semantics for `max_depth`, `rr_depth` and `hide_emitters`. As IBPT's
+//! camera half it also weighs against light tracing (`LightTracingMis`, `docs/ibpt.md`).
 use super::nee::{
-    area_emission, environment, first_hit_past_emitters, next_event, PreviousVertex, StrategyCounts,
+    area_emission, environment, first_hit_past_emitters, next_event, LightTracingMis, PreviousVertex,
+    StrategyCounts,
 };
+use super::ptracer::film_scale;
 use super::shading_frame;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
-use crate::layout::{FrameParams, SceneView, NONE};
+use crate::features;
+use crate::layout::{FrameParams, SceneView, INTEGRATOR_IBPT, NONE};
 use crate::math::max_component;
 use crate::rng::Sampler;
 use crate::shape::{offset_origin, surface_point};
@@ -29,6 +33,9 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
     let mut prev = PreviousVertex::camera(ray.origin);
+    // IBPT: MIS against the light path that connects to the camera (`LightTracingMis`).
+    let ibpt = params.integrator == INTEGRATOR_IBPT && features::has(scene.features, features::LIGHT_TRACER);
+    let mut lt_scale = 0.0f32;
 
     loop {
         sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
@@ -49,6 +56,14 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         };
         let prim = scene.prims[hit.prim as usize];
         let sp = surface_point(&prim, scene.attributes, &hit, &ray);
+        if ibpt && depth == 0 {
+            // Light tracing reaches the first vertex by connecting it to the camera.
+            lt_scale = match params.camera.connect(sp.p) {
+                Some(c) if c.importance > 0.0 => 1.0 / (c.importance * film_scale(params)),
+                _ => 0.0,
+            };
+            prev.lt = lt_scale;
+        }
 
         if prim.light != NONE {
             result += throughput * area_emission(scene, &prim, &sp, ray.dir, &prev, ONE_EACH);
@@ -66,7 +81,20 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         let u_light = sampler.next_2d();
         if bsdf.flags().has_smooth() {
             result += throughput
-                * next_event(scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, ONE_EACH);
+                * next_event(
+                    scene,
+                    params,
+                    &accel,
+                    &bsdf,
+                    &frame,
+                    &sp,
+                    ng,
+                    wo,
+                    u_select,
+                    u_light,
+                    ONE_EACH,
+                    LightTracingMis { scale: lt_scale, first_vertex: depth == 0 },
+                );
         }
 
         // BSDF sampling.
@@ -81,7 +109,22 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         let wi = frame.to_world(bs.wi);
         throughput *= bs.weight;
         eta_scale *= bs.eta * bs.eta;
-        prev = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta };
+        if ibpt {
+            // Light tracing samples this vertex's direction back towards the camera (not at the first
+            // vertex, which it connects); a Dirac lobe has the same probability both ways, and at the
+            // first vertex it leaves light tracing nothing to connect.
+            lt_scale = if bs.delta {
+                if depth == 0 {
+                    0.0
+                } else {
+                    lt_scale
+                }
+            } else {
+                let reverse = if depth == 0 { 1.0 } else { bsdf.pdf(bs.wi, wo, TransportMode::Importance) };
+                lt_scale * reverse / bs.pdf
+            };
+        }
+        prev = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta, lt: lt_scale };
         ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
         depth += 1;
 

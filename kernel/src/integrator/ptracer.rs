@@ -8,13 +8,16 @@
 //! pixel's sum by the samples per pixel, as for camera paths. Reconstruction is a box filter over the
 //! pixel. `max_depth` counts segments as in `path`: a vertex `d` segments from the emitter is connected
 //! only if `d + 1 ≤ max_depth`; `hide_emitters` drops the emitter-to-camera connection.
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
 use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE};
 use super::shading_frame;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::{CameraConnection, Ray};
 use crate::glam::Vec3;
-use crate::layout::{FrameParams, SceneView, NONE};
+use crate::layout::{FrameParams, SceneView, INTEGRATOR_IBPT, NONE};
 use crate::light::emission;
 use crate::math::{max_component, vec3};
 use crate::rng::Sampler;
@@ -37,6 +40,13 @@ fn shading_normal_correction(wo: Vec3, wi: Vec3, ns: Vec3, ng: Vec3) -> f32 {
     } else {
         0.0
     }
+}
+
+/// Rendered pixels per light path's reach: light paths (one per rendered pixel and sample) land
+/// anywhere on the full film, so a crop window's pixels see `rendered / full` of them.
+#[inline]
+pub fn film_scale(params: &FrameParams) -> f32 {
+    (params.full_width * params.full_height) as f32 / (params.width * params.height) as f32
 }
 
 /// The rendered pixel that a camera connection lands in, if it lies inside the crop window.
@@ -78,12 +88,26 @@ fn splat_to_camera<W: AtomicWords>(
     if accel.occluded(&shadow, skip) {
         return;
     }
-    let film_scale = (params.full_width * params.full_height) as f32 / (params.width * params.height) as f32;
-    splat(words, pixel, value * (c.importance * film_scale), u);
+    splat(words, pixel, value * (c.importance * film_scale(params)), u);
 }
 
-/// Traces the light path of (`path_index`, sample) and splats its camera connections.
+/// The power-heuristic weight of a light path's camera connection under IBPT, from the squared ratios
+/// of the camera strategies' densities to light tracing's, `(We·cos/d² · film scale · ρ)² · d`: `ρ` the
+/// camera path's density of sampling this vertex's direction back along the light path, `d` the light
+/// path's scalar (`docs/ibpt.md`). 1 for plain light tracing.
+#[inline]
+fn connection_weight(ibpt: bool, c: &CameraConnection, params: &FrameParams, rho: f32, d: f32) -> f32 {
+    if !ibpt {
+        return 1.0;
+    }
+    let x = c.importance * film_scale(params) * rho;
+    1.0 / (1.0 + x * x * d)
+}
+
+/// Traces the light path of (`path_index`, sample) and splats its camera connections (weighted against
+/// the camera strategies under IBPT).
 pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &mut Sampler, words: &mut W) {
+    let ibpt = params.integrator == INTEGRATOR_IBPT;
     let accel = Accel { nodes: scene.nodes, prims: scene.prims };
     let camera = params.camera;
     let u_select = sampler.next_1d();
@@ -95,12 +119,22 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         return;
     }
     let max_depth = params.max_depth;
+    // IBPT: `1/E²` for the camera path that hits this emitter point (none for point and spot lights),
+    // with E = p(point)·p(direction)/|cos| of the emission.
+    let hit_density = if es.delta_position { 0.0 } else { emission::hit_density(scene, es.light) };
+    let inv_hit_sq = if hit_density > 0.0 { 1.0 / (hit_density * hit_density) } else { 0.0 };
     if !es.delta_position && params.hide_emitters == 0 && max_depth != 0 {
         if let Some(c) = camera.connect(es.origin) {
-            let le = emission::emitted_towards(scene, &es, c.dir);
+            let le = emission::emitted_towards(scene, &es, c.dir)
+                * connection_weight(ibpt, &c, params, 1.0, inv_hit_sq);
             splat_to_camera(params, &accel, words, es.origin, &c, le, es.prim, u_round);
         }
     }
+    // IBPT's scalar `d` (after the first vertex): Σ over the camera strategies of their squared density
+    // ratios to light tracing, without the current vertex's reverse density.
+    let mut mis_d = 0.0f32;
+    // At the first vertex: `1/er²` for next-event estimation from it (`emission::nee_ratio`).
+    let mut inv_nee_sq = 0.0f32;
     let mut beta = es.weight;
     let mut ray = Ray { origin: es.origin, dir: es.dir, t_min: 0.0, t_max: f32::MAX };
     // Segments from the emitter to the vertex about to be found.
@@ -118,14 +152,36 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, ray.dir);
         let wo_world = -ray.dir;
         let u_round = sampler.next_1d();
+        let smooth = bsdf.flags().has_smooth();
+        if ibpt && depth == 1 {
+            // Next-event estimation from this vertex could have sampled the emitter point.
+            inv_nee_sq = if smooth { inv_nee_ratio_sq(scene, &es, sp.p) } else { 0.0 };
+        }
 
         // This vertex is `depth` segments from the emitter: connecting it makes `depth + 1`.
-        if bsdf.flags().has_smooth() {
+        if smooth {
             if let Some(c) = camera.connect(sp.p) {
-                let f = bsdf.eval(wo, frame.to_local(c.dir), IMPORTANCE);
+                let to_camera = frame.to_local(c.dir);
+                let f = bsdf.eval(wo, to_camera, IMPORTANCE);
                 let corr = shading_normal_correction(wo_world, c.dir, frame.n, ng);
                 let origin = offset_origin(&sp, ng, c.dir);
-                splat_to_camera(params, &accel, words, origin, &c, beta * f * corr, NONE, u_round);
+                let weight = if !ibpt {
+                    1.0
+                } else if depth == 1 {
+                    // The camera path would sample the emitter point (density `rho` here), or reach it by NEE.
+                    let rho = bsdf.pdf(to_camera, wo, TransportMode::Radiance);
+                    let x = c.importance * film_scale(params);
+                    1.0 / (1.0 + x * x * (rho * rho * inv_hit_sq + inv_nee_sq))
+                } else {
+                    connection_weight(
+                        ibpt,
+                        &c,
+                        params,
+                        bsdf.pdf(to_camera, wo, TransportMode::Radiance),
+                        mis_d,
+                    )
+                };
+                splat_to_camera(params, &accel, words, origin, &c, beta * f * (corr * weight), NONE, u_round);
             }
         }
         if max_depth != NONE && depth + 1 >= max_depth {
@@ -139,6 +195,24 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
             break;
         }
         let wi = frame.to_world(bs.wi);
+        if ibpt {
+            // The camera path samples this vertex's direction back towards the light (`rho`) where light
+            // tracing sampled `bs.pdf`; a Dirac lobe has the same probability both ways (and rules out
+            // next-event estimation from the first vertex).
+            if bs.delta {
+                if depth == 1 {
+                    mis_d = inv_hit_sq;
+                }
+            } else {
+                let rho = bsdf.pdf(bs.wi, wo, TransportMode::Radiance);
+                let ratio_sq = (rho / bs.pdf) * (rho / bs.pdf);
+                mis_d = if depth == 1 {
+                    inv_hit_sq * ratio_sq + inv_nee_sq / (bs.pdf * bs.pdf)
+                } else {
+                    mis_d * ratio_sq
+                };
+            }
+        }
         beta *= bs.weight * shading_normal_correction(wo_world, wi, frame.n, ng);
         ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
         depth += 1;
@@ -154,5 +228,37 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         if max_component(beta) <= 0.0 {
             break;
         }
+    }
+}
+
+/// `1/er²` for next-event estimation from the first vertex `p` towards the emitter point of `es`: the density ratio `emission::nee_ratio` of that light sample.
+fn inv_nee_ratio_sq(scene: &SceneView, es: &emission::EmissionSample, p: Vec3) -> f32 {
+    let d = es.p - p;
+    let dist2 = d.length_squared();
+    if !(dist2 > 0.0) {
+        return 0.0;
+    }
+    let dist = dist2.sqrt();
+    let light = scene.lights[es.light as usize];
+    // The light sample next-event estimation would have drawn for this point (its solid-angle density).
+    let pdf = if es.delta_position {
+        1.0
+    } else {
+        crate::light::pdf(&light, &scene.prims[light.prim as usize], p, es.p, es.n)
+    };
+    let ls = crate::light::LightSample {
+        wi: d / dist,
+        dist,
+        radiance: Rgb::ZERO,
+        pdf,
+        delta: es.delta_position,
+        prim: es.prim,
+        light: es.light,
+    };
+    let r = emission::nee_ratio(scene, &ls);
+    if r > 0.0 {
+        1.0 / (r * r)
+    } else {
+        0.0
     }
 }

@@ -13,5 +13,6 @@ pub fn sample(light: &Light, p: Vec3) -> LightSample {
         pdf: 1.0,
         delta: true,
         prim: NONE,
+        light: NONE,
     }
 }

@@ -6,11 +6,11 @@
 //! directions), point lights (uniform directions) and spots (uniform inside the cutoff cone). The
 //! infinite emitters (directional, constant, envmap) are not traced: the host refuses such scenes for
 //! light tracing rather than render them without that light.
-use super::{area, point, radiance, to_world};
+use super::{area, point, radiance, to_world, LightSample};
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::{
-    FrameParams, SceneView, LIGHT_AREA, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, NONE, PRIM_DISK,
+    FrameParams, Light, SceneView, LIGHT_AREA, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, NONE, PRIM_DISK,
     PRIM_FLAG_FLIP,
 };
 use crate::math::{vec3, PI};
@@ -148,4 +148,51 @@ pub fn emitted_towards(scene: &SceneView, s: &EmissionSample, dir: Vec3) -> Rgb 
         return Rgb::ZERO;
     }
     le * (s.position_weight * cos)
+}
+
+/// The area of an emitting primitive (what emission samples uniformly).
+fn emitter_area(scene: &SceneView, light: &Light) -> f32 {
+    let prim = scene.prims[light.prim as usize];
+    if light.kind == LIGHT_SPHERE {
+        4.0 * PI * prim.p1[0] * prim.p1[0]
+    } else {
+        area::normal_and_area(&prim).1
+    }
+}
+
+/// For MIS against light tracing: `p_E(x)·p_E(ω|x) / |cos θ|` of emission that starts at a point `x` of
+/// area emitter `light` (index) and leaves in any direction: `pmf / (A·π)` for cosine-weighted emission
+/// from uniformly chosen points. Zero for emitters light tracing does not start from.
+pub fn hit_density(scene: &SceneView, light: u32) -> f32 {
+    let l = scene.lights[light as usize];
+    if l.kind != LIGHT_AREA && l.kind != LIGHT_SPHERE {
+        return 0.0;
+    }
+    let area = emitter_area(scene, &l);
+    if area > 0.0 {
+        l.pmf / (area * PI)
+    } else {
+        0.0
+    }
+}
+
+/// For MIS against light tracing at a light sample `ls` taken from `p` for next-event estimation: the
+/// emission density of the sampled point and of the direction towards `p`, over the light sample's own
+/// density, with the geometry of the connection: `p_E(x) p_E(ω) / (p_L(ω)·|cos θx|)` for area emitters
+/// (`p_L` in solid angle), `p_E(ω) / d²` for point and spot lights (their choice and position cancel).
+pub fn nee_ratio(scene: &SceneView, ls: &LightSample) -> f32 {
+    let l = scene.lights[ls.light as usize];
+    if l.kind == LIGHT_POINT {
+        return 1.0 / (4.0 * PI * ls.dist * ls.dist);
+    }
+    if l.kind == LIGHT_SPOT {
+        return 1.0 / (2.0 * PI * (1.0 - l.params[0]) * ls.dist * ls.dist);
+    }
+    // Cosine-weighted emission: p_E(ω) / |cos θx| = 1/π whatever the direction.
+    let density = hit_density(scene, ls.light);
+    if density > 0.0 && ls.pdf > 0.0 {
+        density / ls.pdf
+    } else {
+        0.0
+    }
 }

@@ -55,6 +55,7 @@ pub fn sample_constant(light: &Light, p: Vec3, u: Vec2) -> LightSample {
         pdf: INV_4PI,
         delta: false,
         prim: NONE,
+        light: NONE,
     }
 }
 
@@ -82,7 +83,7 @@ pub fn sample_envmap(light: &Light, scene: &SceneView, p: Vec3, u: Vec2) -> Ligh
     }
     let wi = to_world(light, local);
     let radiance = envmap_radiance(&t, scene.tables, uv) * radiance(light);
-    LightSample { wi, dist: beyond_scene(light, p), radiance, pdf, delta: false, prim: NONE }
+    LightSample { wi, dist: beyond_scene(light, p), radiance, pdf, delta: false, prim: NONE, light: NONE }
 }
 
 /// Mitsuba's lat-long parametrisation: u from the azimuth about +y (0 at -z), v = θ / π from +y.

@@ -36,11 +36,21 @@ pub struct LightSample {
     pub delta: bool,
     /// The emitting primitive (which shadow rays ignore), or `NONE`.
     pub prim: u32,
+    /// The emitter's index in the light list (set by `sample`).
+    pub light: u32,
 }
 
 impl LightSample {
     pub fn none() -> Self {
-        LightSample { wi: Vec3::Z, dist: 0.0, radiance: Rgb::ZERO, pdf: 0.0, delta: false, prim: NONE }
+        LightSample {
+            wi: Vec3::Z,
+            dist: 0.0,
+            radiance: Rgb::ZERO,
+            pdf: 0.0,
+            delta: false,
+            prim: NONE,
+            light: NONE,
+        }
     }
 }
 
@@ -115,7 +125,15 @@ pub(crate) fn from_area_sample(light: &Light, p: Vec3, q: Vec3, n: Vec3, area: f
     if pdf <= 0.0 {
         return LightSample::none();
     }
-    LightSample { wi, dist, radiance: emitted(light, n, -wi), pdf, delta: false, prim: light.prim }
+    LightSample {
+        wi,
+        dist,
+        radiance: emitted(light, n, -wi),
+        pdf,
+        delta: false,
+        prim: light.prim,
+        light: NONE,
+    }
 }
 
 /// Solid-angle density at `p` of uniform area sampling that produced `hit_p` (normal `hit_n`).
@@ -183,6 +201,7 @@ pub fn sample(scene: &SceneView, params: &FrameParams, p: Vec3, u_select: f32, u
         _ => LightSample::none(),
     };
     s.pdf *= light.pmf;
+    s.light = chosen.index;
     s
 }
 

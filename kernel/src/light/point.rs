@@ -33,5 +33,13 @@ pub fn sample(light: &Light, p: Vec3) -> LightSample {
     if falloff <= 0.0 {
         return LightSample::none();
     }
-    LightSample { wi, dist, radiance: radiance(light) * (falloff / dist2), pdf: 1.0, delta: true, prim: NONE }
+    LightSample {
+        wi,
+        dist,
+        radiance: radiance(light) * (falloff / dist2),
+        pdf: 1.0,
+        delta: true,
+        prim: NONE,
+        light: NONE,
+    }
 }

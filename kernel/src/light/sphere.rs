@@ -8,7 +8,7 @@ use spirv_std::num_traits::Float;
 use super::{area_sample_pdf, from_area_sample, LightSample};
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
-use crate::layout::{Light, Primitive, PRIM_FLAG_FLIP};
+use crate::layout::{Light, Primitive, NONE, PRIM_FLAG_FLIP};
 use crate::math::{safe_sqrt, vec3, PI};
 use crate::sampling::{
     one_minus_cos_from_sin2, square_to_uniform_cone, square_to_uniform_sphere, uniform_cone_pdf,
@@ -55,6 +55,7 @@ pub fn sample(light: &Light, prim: &Primitive, p: Vec3, u: Vec2) -> LightSample 
         pdf: uniform_cone_pdf(one_minus_cos_max),
         delta: false,
         prim: light.prim,
+        light: NONE,
     }
 }
 
