@@ -1,5 +1,7 @@
 //! The CPU backend: the kernel's per-pixel function, called natively on every core.
-use caustic_kernel::integrator::{accumulated, render_pixel, trace_light_paths, SceneView};
+use caustic_kernel::integrator::{
+    accumulated, render_pixel, splat_camera_paths, splats_camera_paths, trace_light_paths, SceneView,
+};
 use caustic_kernel::layout::{FrameParams, PixelAccum};
 use caustic_kernel::splat::{AtomicWords, SPLAT_STRIDE};
 use rayon::prelude::*;
@@ -30,13 +32,18 @@ impl AtomicWords for CpuWords<'_> {
     }
 }
 
-/// Traces `params.sample_count` light paths per pixel, exactly as one GPU dispatch does, and returns
-/// the splat words (`caustic_kernel::splat` layout) for the host to resolve.
+/// Traces `params.sample_count` light paths per pixel (IBPT: and camera paths), exactly as the GPU's
+/// dispatches do, and returns the splat words (`caustic_kernel::splat` layout) for the host to resolve.
 pub fn light_pass(scene: &SceneView, params: &FrameParams) -> Vec<u32> {
     let pixels = params.width * params.height;
     let words: Vec<AtomicU32> = (0..pixels * SPLAT_STRIDE).map(|_| AtomicU32::new(0)).collect();
+    let camera_half = splats_camera_paths(scene, params);
     (0..pixels).into_par_iter().for_each(|pixel| {
-        trace_light_paths(scene, params, pixel, &mut CpuWords(&words));
+        let mut words = CpuWords(&words);
+        if camera_half {
+            splat_camera_paths(scene, params, pixel, &mut words);
+        }
+        trace_light_paths(scene, params, pixel, &mut words);
     });
     words.into_iter().map(AtomicU32::into_inner).collect()
 }

@@ -1,7 +1,9 @@
 //! GPU compute entry points (SPIR-V only). They do nothing but fetch the buffers and call the same
 //! functions the CPU runner calls. Binding numbers and the workgroup size are the literals rust-gpu's
 //! attributes need; their names live in `layout` (`binding::*`, `TILE`), which the host uses.
-use crate::integrator::{accumulated, render_pixel, trace_light_paths, traces_light_paths, SceneView};
+use crate::integrator::{
+    accumulated, render_pixel, splat_camera_paths, splats_camera_paths, trace_light_paths, SceneView,
+};
 use crate::layout::{
     BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
 };
@@ -9,7 +11,8 @@ use crate::splat::GpuWords;
 use spirv_std::glam::UVec3;
 use spirv_std::spirv;
 
-/// One invocation per pixel; it adds `params.sample_count` samples to the pixel's accumulator.
+/// Camera paths: one invocation per pixel; it adds `params.sample_count` samples to the pixel's
+/// accumulator (IBPT: splats them into the pixel's sums).
 #[spirv(compute(threads(8, 8, 1)))] // layout::TILE
 #[allow(clippy::too_many_arguments)]
 pub fn render(
@@ -32,10 +35,36 @@ pub fn render(
     }
     let scene = SceneView { nodes, prims, attributes, materials, lights, textures, tables, features };
     let pixel = id.y * params.width + id.x;
-    if traces_light_paths(&scene, params) {
-        trace_light_paths(&scene, params, pixel, &mut GpuWords(splat));
+    if splats_camera_paths(&scene, params) {
+        splat_camera_paths(&scene, params, pixel, &mut GpuWords(splat));
         return;
     }
     let sums = render_pixel(&scene, params, pixel);
     accum[pixel as usize] = accumulated(accum[pixel as usize], &sums, params.sample_count);
+}
+
+/// Light paths (`ptracer`, IBPT's light half): one invocation per path index, laid out like the pixels
+/// (so dispatch sizes stay within limits as `render`'s do), each splatting wherever its paths reach. A
+/// separate entry point from `render`, so that neither carries the other's registers.
+#[spirv(compute(threads(8, 8, 1)))] // layout::TILE
+#[allow(clippy::too_many_arguments)]
+pub fn light(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &FrameParams, // PARAMS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],    // NODES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] prims: &[Primitive],  // PRIMS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] attributes: &[TriangleAttributes], // ATTRIBUTES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] materials: &[Material], // MATERIALS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] lights: &[Light],     // LIGHTS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] tables: &[f32],       // TABLES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] textures: &[Texture], // TEXTURES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] splat: &mut [u32],    // SPLAT
+    #[spirv(spec_constant(id = 0, default = 4294967295))] features: u32,
+) {
+    if id.x >= params.width || id.y >= params.height {
+        return;
+    }
+    let scene = SceneView { nodes, prims, attributes, materials, lights, textures, tables, features };
+    let pixel = id.y * params.width + id.x;
+    trace_light_paths(&scene, params, pixel, &mut GpuWords(splat));
 }

@@ -7,18 +7,23 @@ use super::Backend;
 use crate::buffers::SceneBuffers;
 use crate::film::Accumulation;
 use anyhow::{anyhow, bail, Context, Result};
+use caustic_kernel::integrator::{splats, traces_camera_paths};
 use caustic_kernel::layout::{binding, FrameParams, PixelAccum, TILE};
 use caustic_kernel::splat::SPLAT_STRIDE;
 use wgpu::util::DeviceExt;
 
 /// The kernel compiled by `shaders-build` (committed; CI checks it matches the source).
 static KERNEL_SPV: &[u8] = include_bytes!("../../shaders/caustic-kernel.spv");
-const ENTRY_POINT: &str = "entry::render";
+/// Camera paths (and IBPT's camera half); light paths (ptracer, IBPT's light half).
+const CAMERA_ENTRY: &str = "entry::render";
+const LIGHT_ENTRY: &str = "entry::light";
 
 pub struct GpuBackend {
     device: wgpu::Device,
     queue: wgpu::Queue,
-    pipeline: wgpu::ComputePipeline,
+    /// The camera and the light entry points, as the integrator needs them.
+    camera_pipeline: Option<wgpu::ComputePipeline>,
+    light_pipeline: Option<wgpu::ComputePipeline>,
     bind_group: wgpu::BindGroup,
     params_buffer: wgpu::Buffer,
     accum_buffer: wgpu::Buffer,
@@ -91,18 +96,58 @@ impl GpuBackend {
                 wgpu::ShaderRuntimeChecks::unchecked(),
             )
         };
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("render"),
-            layout: None,
-            module: &module,
-            entry_point: Some(ENTRY_POINT),
-            // The scene's feature mask specialises the kernel (spec constant 0): unused paths fold away.
-            compilation_options: wgpu::PipelineCompilationOptions {
-                constants: &[("0", buffers.features as f64)],
-                ..Default::default()
+        // One explicit layout for both entry points (each uses a subset of the bindings).
+        let entry = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
             },
-            cache: None,
+            count: None,
+        };
+        let layout_entries: Vec<wgpu::BindGroupLayoutEntry> = [
+            binding::PARAMS,
+            binding::NODES,
+            binding::PRIMS,
+            binding::ATTRIBUTES,
+            binding::MATERIALS,
+            binding::LIGHTS,
+            binding::TABLES,
+            binding::ACCUM,
+            binding::TEXTURES,
+            binding::SPLAT,
+        ]
+        .iter()
+        .map(|&b| entry(b, b != binding::ACCUM && b != binding::SPLAT))
+        .collect();
+        let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("scene"),
+            entries: &layout_entries,
         });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("scene"),
+            bind_group_layouts: &[Some(&bind_group_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |entry_point: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry_point),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry_point),
+                // The scene's feature mask specialises the kernel (spec constant 0): unused paths fold away.
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &[("0", buffers.features as f64)],
+                    ..Default::default()
+                },
+                cache: None,
+            })
+        };
+        let integrator = buffers.params.integrator;
+        let camera_pipeline = traces_camera_paths(integrator).then(|| pipeline(CAMERA_ENTRY));
+        let light_pipeline = splats(integrator).then(|| pipeline(LIGHT_ENTRY));
         if let Some(e) = pollster::block_on(scope.pop()) {
             bail!("the GPU rejected the kernel on {}: {e}", info.name);
         }
@@ -135,7 +180,7 @@ impl GpuBackend {
             mapped_at_creation: false,
         });
         // Light tracing splats into fixed-point words; the other integrators get a placeholder word.
-        let splatted = caustic_kernel::integrator::splats(buffers.params.integrator);
+        let splatted = splats(buffers.params.integrator);
         let splat_size = if splatted { pixels * SPLAT_STRIDE as u64 * 4 } else { 4 * SPLAT_STRIDE as u64 };
         let splat_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("splat"),
@@ -160,14 +205,15 @@ impl GpuBackend {
         .collect();
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("scene"),
-            layout: &pipeline.get_bind_group_layout(0),
+            layout: &bind_group_layout,
             entries: &entries,
         });
         let adapter_name = format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend);
         Ok(GpuBackend {
             device,
             queue,
-            pipeline,
+            camera_pipeline,
+            light_pipeline,
             bind_group,
             params_buffer,
             accum_buffer,
@@ -231,9 +277,11 @@ impl Backend for GpuBackend {
                 label: Some("render"),
                 timestamp_writes: None,
             });
-            pass.set_pipeline(&self.pipeline);
             pass.set_bind_group(0, &self.bind_group, &[]);
-            pass.dispatch_workgroups(self.width.div_ceil(TILE), self.height.div_ceil(TILE), 1);
+            for pipeline in [&self.camera_pipeline, &self.light_pipeline].into_iter().flatten() {
+                pass.set_pipeline(pipeline);
+                pass.dispatch_workgroups(self.width.div_ceil(TILE), self.height.div_ceil(TILE), 1);
+            }
         }
         self.queue.submit([encoder.finish()]);
         self.wait()?;

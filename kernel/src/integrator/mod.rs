@@ -62,37 +62,54 @@ const LIGHT_PATH_STREAM: u32 = 0x9e37_79b9;
 /// The dimension that rounds a camera path's splat (past any bounce's).
 const DIM_SPLAT_ROUNDING: u32 = u32::MAX - 1;
 
-/// Traces the light paths of `params.sample_count` samples of path index `pixel` (one light path per
-/// pixel and sample, whichever pixels they reach) and splats their camera connections into `words`.
-/// Under IBPT each sample also traces the pixel's camera path and splats it into its own pixel.
-pub fn trace_light_paths<W: AtomicWords>(scene: &SceneView, params: &FrameParams, pixel: u32, words: &mut W) {
-    let ibpt = params.integrator == INTEGRATOR_IBPT;
+/// IBPT's camera half: `params.sample_count` camera paths of `pixel`, weighted against light tracing,
+/// splatted into the pixel's own sums (so that camera and light paths resolve together).
+pub fn splat_camera_paths<W: AtomicWords>(
+    scene: &SceneView,
+    params: &FrameParams,
+    pixel: u32,
+    words: &mut W,
+) {
     let (px, py) = (pixel % params.width, pixel / params.width);
     let mut s = 0;
     while s < params.sample_count {
         let sample_index = params.sample_base + s;
-        if ibpt {
-            let mut sampler = Sampler::new(params.seed, pixel, sample_index);
-            let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
-            let u_lens = sampler.next_2d();
-            let l = path::li(scene, params, params.camera.generate_ray(film_pos, u_lens), &mut sampler);
-            sampler.set_dimension(DIM_SPLAT_ROUNDING);
-            if is_finite3(l) {
-                crate::splat::splat(words, pixel, l, sampler.next_1d());
-            } else {
-                crate::splat::count_invalid(words, pixel);
-            }
+        let mut sampler = Sampler::new(params.seed, pixel, sample_index);
+        let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
+        let u_lens = sampler.next_2d();
+        let l = path::li(scene, params, params.camera.generate_ray(film_pos, u_lens), &mut sampler);
+        sampler.set_dimension(DIM_SPLAT_ROUNDING);
+        if is_finite3(l) {
+            crate::splat::splat(words, pixel, l, sampler.next_1d());
+        } else {
+            crate::splat::count_invalid(words, pixel);
         }
-        let mut sampler = Sampler::new(params.seed ^ LIGHT_PATH_STREAM, pixel, sample_index);
+        s += 1;
+    }
+}
+
+/// Traces the light paths of `params.sample_count` samples of path index `pixel` (one light path per
+/// pixel and sample, whichever pixels they reach) and splats their camera connections into `words`
+/// (weighted against the camera strategies under IBPT).
+pub fn trace_light_paths<W: AtomicWords>(scene: &SceneView, params: &FrameParams, pixel: u32, words: &mut W) {
+    let mut s = 0;
+    while s < params.sample_count {
+        let mut sampler = Sampler::new(params.seed ^ LIGHT_PATH_STREAM, pixel, params.sample_base + s);
         ptracer::trace(scene, params, &mut sampler, words);
         s += 1;
     }
 }
 
-/// Whether this dispatch splats (light tracing, IBPT: `trace_light_paths`) rather than accumulates.
+/// Whether the camera entry point splats IBPT's camera paths rather than accumulating camera paths.
 #[inline]
-pub fn traces_light_paths(scene: &SceneView, params: &FrameParams) -> bool {
-    splats(params.integrator) && features::has(scene.features, features::LIGHT_TRACER)
+pub fn splats_camera_paths(scene: &SceneView, params: &FrameParams) -> bool {
+    params.integrator == INTEGRATOR_IBPT && features::has(scene.features, features::LIGHT_TRACER)
+}
+
+/// Whether integrator `kind` runs the camera entry point (everything but plain light tracing).
+#[inline]
+pub fn traces_camera_paths(kind: u32) -> bool {
+    kind != INTEGRATOR_PTRACER
 }
 
 /// Whether integrator `kind` splats into the `SPLAT` words (resolved by the host after each pass).
