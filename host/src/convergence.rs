@@ -93,14 +93,16 @@ pub fn least_squares_log_slope(pairs: impl Iterator<Item = (f64, f64)>) -> Optio
     (sxx > 0.0).then(|| sxy / sxx)
 }
 
-/// Writes the curve as CSV (`spp,seconds,rmse,rel_mse,luminance_ratio`).
-pub fn write_csv(path: &Path, points: &[ConvergencePoint]) -> Result<()> {
-    let mut text = String::from("spp,seconds,rmse,rel_mse,luminance_ratio\n");
-    for p in points {
-        text += &format!(
-            "{},{:.6},{:.8e},{:.8e},{:.6}\n",
-            p.spp, p.seconds, p.rmse, p.rel_mse, p.luminance_ratio
-        );
+/// Writes the curves as CSV, one row per point (`integrator,spp,seconds,rmse,rel_mse,luminance_ratio`).
+pub fn write_csv(path: &Path, curves: &[(&str, &[ConvergencePoint])]) -> Result<()> {
+    let mut text = String::from("integrator,spp,seconds,rmse,rel_mse,luminance_ratio\n");
+    for (integrator, points) in curves {
+        for p in points.iter() {
+            text += &format!(
+                "{integrator},{},{:.6},{:.8e},{:.8e},{:.6}\n",
+                p.spp, p.seconds, p.rmse, p.rel_mse, p.luminance_ratio
+            );
+        }
     }
     std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
 }

@@ -102,9 +102,10 @@ struct RunArgs {
     /// Random seed; different seeds give statistically independent images.
     #[arg(long, default_value_t = 0)]
     seed: u32,
-    /// Render with this integrator instead of the scene's (its max_depth, rr_depth, hide_emitters kept).
-    #[arg(long, value_enum)]
-    integrator: Option<IntegratorChoice>,
+    /// Render with this integrator instead of the scene's (its max_depth, rr_depth, hide_emitters kept);
+    /// `convergence` takes several, comma-separated, and measures one curve each.
+    #[arg(long, value_enum, value_delimiter = ',')]
+    integrator: Vec<IntegratorChoice>,
 }
 
 /// `println!` that ends the program quietly when stdout is closed (`caustic compare … | head`), as
@@ -145,7 +146,14 @@ fn main() {
                 progress_bar: !quiet,
                 checkpoint: checkpoint.map(|path| (path, every)),
                 tev,
-                integrator: run.integrator,
+                integrator: match run.integrator.as_slice() {
+                    [] => None,
+                    [one] => Some(*one),
+                    _ => {
+                        eprintln!("error: render takes one --integrator (convergence compares several)");
+                        std::process::exit(2);
+                    }
+                },
             })
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
@@ -211,49 +219,78 @@ fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Op
     use caustic::convergence;
     let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed, integrator } = run;
     let (choice, seed) = (*choice, *seed);
-    let mut scene = caustic::load_scene(scene_path, defines)?;
-    if let Some(choice) = *integrator {
-        scene.integrator = scene.integrator.overridden(choice);
-    }
-    let spp = spp.unwrap_or(scene.sensor.spp);
+    let loaded = caustic::load_scene(scene_path, defines)?;
     let reference_film = Film::load_exr(reference)?;
-    let buffers = buffers::build(&scene)
-        .with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
-    let mut backend = backend::create(choice, &buffers)?;
-    // A one-sample warm-up (pipeline compilation, caches) on a backend of its own, untimed.
-    render::render(backend.as_mut(), &buffers, 1, seed.wrapping_add(1), |_| {})?;
-    let mut backend = backend::create(choice, &buffers)?;
-    let points = convergence::measure(backend.as_mut(), &buffers, &reference_film, spp, seed)?;
-    say!("{} | {}x{} | independent sampler", backend.describe(), buffers.params.width, buffers.params.height);
-    say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
-    say!("|---|---|---|---|---|");
-    for p in &points {
+    // The scene's own integrator, or each one asked for: one curve each, measured one after the other.
+    let choices: Vec<Option<IntegratorChoice>> =
+        if integrator.is_empty() { vec![None] } else { integrator.iter().copied().map(Some).collect() };
+    let mut curves = Vec::new();
+    for integrator in choices {
+        let mut scene = loaded.clone();
+        if let Some(choice) = integrator {
+            scene.integrator = scene.integrator.overridden(choice);
+        }
+        let name = integrator_name(&scene.integrator.kind);
+        let spp = spp.unwrap_or(scene.sensor.spp);
+        let buffers = buffers::build(&scene)
+            .with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
+        let mut backend = backend::create(choice, &buffers)?;
+        // A one-sample warm-up (pipeline compilation, caches) on a backend of its own, untimed.
+        render::render(backend.as_mut(), &buffers, 1, seed.wrapping_add(1), |_| {})?;
+        let mut backend = backend::create(choice, &buffers)?;
+        let points = convergence::measure(backend.as_mut(), &buffers, &reference_film, spp, seed)?;
         say!(
-            "| {} | {:.4} | {:.6} | {:.6e} | {:.5} |",
-            p.spp,
-            p.seconds,
-            p.rmse,
-            p.rel_mse,
-            p.luminance_ratio
+            "{name} | {} | {}x{} | independent sampler",
+            backend.describe(),
+            buffers.params.width,
+            buffers.params.height
         );
-    }
-    if let Some(slope) = convergence::log_log_slope(&points) {
-        say!(
-            "log-log slope of relative MSE against seconds: {slope:.3} (−1: unbiased at constant throughput)"
-        );
-    }
-    if let Some(path) = csv {
-        convergence::write_csv(path, &points)?;
-    }
-    if let Some(path) = plot {
+        say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
+        say!("|---|---|---|---|---|");
+        for p in &points {
+            say!(
+                "| {} | {:.4} | {:.6} | {:.6e} | {:.5} |",
+                p.spp,
+                p.seconds,
+                p.rmse,
+                p.rel_mse,
+                p.luminance_ratio
+            );
+        }
+        if let Some(slope) = convergence::log_log_slope(&points) {
+            say!(
+                "log-log slope of relative MSE against seconds: {slope:.3} (−1: unbiased at constant throughput)"
+            );
+        }
         let label = format!(
-            "{} ({})",
+            "{} {name} ({})",
             scene_path.file_stem().unwrap_or_default().to_string_lossy(),
             backend.describe()
         );
-        convergence::write_plot(path, &[(label, points)])?;
+        curves.push((label, name, points));
+    }
+    if let Some(path) = csv {
+        let named: Vec<(&str, &[convergence::ConvergencePoint])> =
+            curves.iter().map(|(_, name, points)| (*name, points.as_slice())).collect();
+        convergence::write_csv(path, &named)?;
+    }
+    if let Some(path) = plot {
+        let plotted: Vec<(String, Vec<convergence::ConvergencePoint>)> =
+            curves.into_iter().map(|(label, _, points)| (label, points)).collect();
+        convergence::write_plot(path, &plotted)?;
     }
     Ok(())
+}
+
+/// The integrator's name as in scene files.
+fn integrator_name(kind: &caustic::scene::IntegratorKind) -> &'static str {
+    use caustic::scene::IntegratorKind::*;
+    match kind {
+        Path => "path",
+        Direct { .. } => "direct",
+        Ptracer => "ptracer",
+        Ibpt => "ibpt",
+    }
 }
 
 fn cmd_bench(

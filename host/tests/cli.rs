@@ -107,14 +107,18 @@ fn convergence_writes_its_curve_and_closed_stdout_is_not_a_panic() {
         csv.to_str().unwrap(),
         "--plot",
         svg.to_str().unwrap(),
+        "--integrator",
+        "path,ibpt",
     ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let table = String::from_utf8_lossy(&out.stdout);
     for spp in ["| 1 |", "| 2 |", "| 4 |", "| 8 |"] {
-        assert!(table.contains(spp), "{table}");
+        assert_eq!(table.matches(spp).count(), 2, "one row per integrator: {table}");
     }
+    assert!(table.contains("path |") && table.contains("ibpt |"), "{table}");
     let rows = std::fs::read_to_string(&csv).unwrap();
-    assert_eq!(rows.lines().count(), 5, "{rows}");
+    assert_eq!(rows.lines().count(), 9, "{rows}");
+    assert_eq!(rows.lines().filter(|l| l.starts_with("ibpt,")).count(), 4, "{rows}");
     assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
 
     let mut child = Command::new(env!("CARGO_BIN_EXE_caustic"))
