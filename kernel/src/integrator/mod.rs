@@ -1,5 +1,6 @@
 //! Integrators and the per-pixel driver both backends call.
 pub mod direct;
+pub mod mis;
 pub mod nee;
 pub mod path;
 pub mod ptracer;

@@ -4,6 +4,7 @@
 //! With `n_l` light samples and `n_b` BSDF samples per vertex (Mitsuba's `direct` takes several; the
 //! path tracer one each) the heuristic compares `n_l·p_light` with `n_b·p_bsdf`, and each strategy's
 //! sum is divided by its own count by the caller.
+use super::mis;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
@@ -64,13 +65,6 @@ impl LightTracingMis {
     pub const OFF: LightTracingMis = LightTracingMis { scale: 0.0, first_vertex: false };
 }
 
-/// The power heuristic's weight of a strategy from the ratios of the other strategies' densities to
-/// its own: `1 / (1 + Σ r²)`.
-#[inline]
-fn weight_from_ratios(r1: f32, r2: f32) -> f32 {
-    1.0 / (1.0 + r1 * r1 + r2 * r2)
-}
-
 /// One light sample at a surface point, weighted against BSDF sampling (delta emitters, which BSDF
 /// sampling cannot hit, take the full weight). Not divided by `counts.light`.
 #[allow(clippy::too_many_arguments)]
@@ -112,7 +106,7 @@ pub fn next_event(
         // IBPT: against BSDF sampling and against the light path that connects this point to the camera.
         let r_hit = if ls.delta { 0.0 } else { ep.pdf / ls.pdf };
         let reverse = if lt.first_vertex { 1.0 } else { bsdf.pdf(wi, wo, TransportMode::Importance) };
-        weight_from_ratios(r_hit, lt.scale * reverse * emission::nee_ratio(scene, &ls))
+        mis::nee_weight(r_hit, lt.scale, lt.first_vertex, reverse, emission::nee_ratio(scene, &ls))
     } else if ls.delta {
         1.0
     } else {
@@ -136,7 +130,7 @@ pub fn area_emission(
     let weight = if prev.lt > 0.0 {
         // IBPT: against light sampling and against the light path that starts at this point.
         let r_nee = if prev.delta { 0.0 } else { light::pdf(&emitter, prim, prev.p, sp.p, sp.ng) / prev.pdf };
-        weight_from_ratios(r_nee, prev.lt * emission::hit_density(scene, prim.light))
+        mis::hit_weight(r_nee, prev.lt, emission::hit_density(scene, prim.light))
     } else if prev.delta {
         1.0
     } else {

@@ -1,6 +1,7 @@
 //! Unidirectional path tracing with next-event estimation, combined with BSDF sampling by the power
 //! heuristic; Mitsuba's `path` semantics for `max_depth`, `rr_depth` and `hide_emitters`. As IBPT's
 //! camera half it also weighs against light tracing (`LightTracingMis`, `docs/ibpt.md`).
+use super::mis;
 use super::nee::{
     area_emission, environment, first_hit_past_emitters, next_event, LightTracingMis, PreviousVertex,
     StrategyCounts,
@@ -59,8 +60,8 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         if ibpt && depth == 0 {
             // Light tracing reaches the first vertex by connecting it to the camera.
             lt_scale = match params.camera.connect(sp.p) {
-                Some(c) if c.importance > 0.0 => 1.0 / (c.importance * film_scale(params)),
-                _ => 0.0,
+                Some(c) => mis::camera_scale_at_first_vertex(c.importance, film_scale(params)),
+                None => 0.0,
             };
             prev.lt = lt_scale;
         }
@@ -113,16 +114,10 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
             // Light tracing samples this vertex's direction back towards the camera (not at the first
             // vertex, which it connects); a Dirac lobe has the same probability both ways, and at the
             // first vertex it leaves light tracing nothing to connect.
-            lt_scale = if bs.delta {
-                if depth == 0 {
-                    0.0
-                } else {
-                    lt_scale
-                }
-            } else {
-                let reverse = if depth == 0 { 1.0 } else { bsdf.pdf(bs.wi, wo, TransportMode::Importance) };
-                lt_scale * reverse / bs.pdf
-            };
+            let first = depth == 0;
+            let reverse =
+                if bs.delta || first { 1.0 } else { bsdf.pdf(bs.wi, wo, TransportMode::Importance) };
+            lt_scale = mis::camera_scale_after(lt_scale, first, bs.delta, bs.pdf, reverse);
         }
         prev = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta, lt: lt_scale };
         ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };

@@ -11,6 +11,7 @@
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
+use super::mis;
 use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE};
 use super::shading_frame;
 use crate::bsdf::{Bsdf, TransportMode};
@@ -91,19 +92,6 @@ fn splat_to_camera<W: AtomicWords>(
     splat(words, pixel, value * (c.importance * film_scale(params)), u);
 }
 
-/// The power-heuristic weight of a light path's camera connection under IBPT, from the squared ratios
-/// of the camera strategies' densities to light tracing's, `(We·cos/d² · film scale · ρ)² · d`: `ρ` the
-/// camera path's density of sampling this vertex's direction back along the light path, `d` the light
-/// path's scalar (`docs/ibpt.md`). 1 for plain light tracing.
-#[inline]
-fn connection_weight(ibpt: bool, c: &CameraConnection, params: &FrameParams, rho: f32, d: f32) -> f32 {
-    if !ibpt {
-        return 1.0;
-    }
-    let x = c.importance * film_scale(params) * rho;
-    1.0 / (1.0 + x * x * d)
-}
-
 /// Traces the light path of (`path_index`, sample) and splats its camera connections (weighted against
 /// the camera strategies under IBPT).
 pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &mut Sampler, words: &mut W) {
@@ -125,8 +113,12 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
     let inv_hit_sq = if hit_density > 0.0 { 1.0 / (hit_density * hit_density) } else { 0.0 };
     if !es.delta_position && params.hide_emitters == 0 && max_depth != 0 {
         if let Some(c) = camera.connect(es.origin) {
-            let le = emission::emitted_towards(scene, &es, c.dir)
-                * connection_weight(ibpt, &c, params, 1.0, inv_hit_sq);
+            let weight = if ibpt {
+                mis::emitter_connection_weight(c.importance * film_scale(params), inv_hit_sq)
+            } else {
+                1.0
+            };
+            let le = emission::emitted_towards(scene, &es, c.dir) * weight;
             splat_to_camera(params, &accel, words, es.origin, &c, le, es.prim, u_round);
         }
     }
@@ -165,21 +157,17 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
                 let f = bsdf.eval(wo, to_camera, IMPORTANCE);
                 let corr = shading_normal_correction(wo_world, c.dir, frame.n, ng);
                 let origin = offset_origin(&sp, ng, c.dir);
-                let weight = if !ibpt {
-                    1.0
-                } else if depth == 1 {
-                    // The camera path would sample the emitter point (density `rho` here), or reach it by NEE.
+                let weight = if ibpt {
+                    // The camera path's density of the direction back along the light path from here.
                     let rho = bsdf.pdf(to_camera, wo, TransportMode::Radiance);
                     let x = c.importance * film_scale(params);
-                    1.0 / (1.0 + x * x * (rho * rho * inv_hit_sq + inv_nee_sq))
+                    if depth == 1 {
+                        mis::first_vertex_connection_weight(x, rho, inv_hit_sq, inv_nee_sq)
+                    } else {
+                        mis::connection_weight(x, rho, mis_d)
+                    }
                 } else {
-                    connection_weight(
-                        ibpt,
-                        &c,
-                        params,
-                        bsdf.pdf(to_camera, wo, TransportMode::Radiance),
-                        mis_d,
-                    )
+                    1.0
                 };
                 splat_to_camera(params, &accel, words, origin, &c, beta * f * (corr * weight), NONE, u_round);
             }
@@ -199,19 +187,8 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
             // The camera path samples this vertex's direction back towards the light (`rho`) where light
             // tracing sampled `bs.pdf`; a Dirac lobe has the same probability both ways (and rules out
             // next-event estimation from the first vertex).
-            if bs.delta {
-                if depth == 1 {
-                    mis_d = inv_hit_sq;
-                }
-            } else {
-                let rho = bsdf.pdf(bs.wi, wo, TransportMode::Radiance);
-                let ratio_sq = (rho / bs.pdf) * (rho / bs.pdf);
-                mis_d = if depth == 1 {
-                    inv_hit_sq * ratio_sq + inv_nee_sq / (bs.pdf * bs.pdf)
-                } else {
-                    mis_d * ratio_sq
-                };
-            }
+            let rho = if bs.delta { 1.0 } else { bsdf.pdf(bs.wi, wo, TransportMode::Radiance) };
+            mis_d = mis::light_scalar_after(mis_d, depth == 1, bs.delta, inv_hit_sq, inv_nee_sq, rho, bs.pdf);
         }
         beta *= bs.weight * shading_normal_correction(wo_world, wi, frame.n, ng);
         ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
