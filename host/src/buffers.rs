@@ -479,11 +479,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         // An empty box (min > max) that no ray enters.
         vec![BvhNode { min: [1.0; 3], prim_count: 0, max: [-1.0; 3], first: 0 }]
     };
-    // Light tracing splats with the box over each pixel; under IBPT the camera paths must estimate the
-    // same pixel measurement, so they sample the box too.
-    let splatting = matches!(scene.integrator.kind, IntegratorKind::Ptracer | IntegratorKind::Ibpt);
-    let filter = if splatting { Filter::Box { radius: 0.5 } } else { scene.sensor.filter };
-    let mut tables = filter_cdf(&filter);
+    let mut tables = filter_cdf(&scene.sensor.filter);
     let filter_cdf_offset = 0;
     let mut textures = place_textures(scene, &mut tables);
     let env_light =
@@ -590,7 +586,7 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
 
 /// What light tracing does not cover yet is refused, never rendered without it: infinite emitters
 /// (directional, constant, envmap; under IBPT the camera paths alone render them) and cameras other
-/// than the pinhole perspective one. A film filter other than the box is replaced by the box (said once).
+/// than the pinhole perspective one.
 fn check_light_tracing(scene: &Scene, lights: &[Light], name: &str) -> Result<()> {
     let integrator = name;
     for l in lights.iter().filter(|_| integrator == "ptracer") {
@@ -605,12 +601,6 @@ fn check_light_tracing(scene: &Scene, lights: &[Light], name: &str) -> Result<()
     if camera(scene).kind != CAMERA_PERSPECTIVE {
         bail!(
             "{integrator}: only the perspective (pinhole) sensor is supported (render this scene with path)"
-        );
-    }
-    if !matches!(scene.sensor.filter, Filter::Box { .. }) {
-        eprintln!(
-            "warning: {integrator} renders with a box filter over each pixel (the scene's {:?} filter is not used)",
-            scene.sensor.filter
         );
     }
     Ok(())

@@ -73,3 +73,45 @@ pub fn sample_position(
     let dy = sample_filter_1d(tables, params, u.y, (-cy).max(-r), (full_h - cy).min(r));
     Vec2::new((cx + dx) / full_w, (cy + dy) / full_h)
 }
+
+/// The filter's density at offset `x` (pixels) from a pixel centre, as `sample_position` draws it:
+/// piecewise constant over the tabulated bins, zero outside the radius.
+fn filter_density(tables: &[f32], params: &FrameParams, x: f32) -> f32 {
+    let r = params.filter_radius;
+    if !(x > -r && x < r) {
+        return 0.0;
+    }
+    let bins = params.filter_bins;
+    let i = (((x + r) / (2.0 * r) * bins as f32) as u32).min(bins - 1);
+    let base = params.filter_cdf_offset;
+    let prev = if i == 0 { 0.0 } else { tables[(base + i - 1) as usize] };
+    (tables[(base + i) as usize] - prev) * bins as f32 / (2.0 * r)
+}
+
+/// The filter's mass inside the image along one axis for a pixel centred at `c` in an image `full`
+/// pixels wide: what `sample_position` renormalises the truncated filter by.
+fn axis_mass(tables: &[f32], params: &FrameParams, c: f32, full: f32) -> f32 {
+    let r = params.filter_radius;
+    filter_cdf_at(tables, params, (full - c).min(r)) - filter_cdf_at(tables, params, (-c).max(-r))
+}
+
+/// The density (per unit of pixel area) with which camera samples of pixel (`px`, `py`) of the full
+/// image land at film position `pos` (in pixels of the full image): the reconstruction filter centred
+/// on the pixel, truncated to the image and renormalised, exactly as `sample_position` draws it. Light
+/// tracing splats a connection into each pixel with this weight, so both estimate the same filtered
+/// pixel; IBPT's MIS compares the two strategies through it.
+pub fn pixel_density(tables: &[f32], params: &FrameParams, pos: Vec2, px: u32, py: u32) -> f32 {
+    let (cx, cy) = (px as f32 + 0.5, py as f32 + 0.5);
+    let fx = filter_density(tables, params, pos.x - cx);
+    let fy = filter_density(tables, params, pos.y - cy);
+    if fx <= 0.0 || fy <= 0.0 {
+        return 0.0;
+    }
+    let mass = axis_mass(tables, params, cx, params.full_width as f32)
+        * axis_mass(tables, params, cy, params.full_height as f32);
+    if mass > 0.0 {
+        fx * fy / mass
+    } else {
+        0.0
+    }
+}

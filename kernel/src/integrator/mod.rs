@@ -8,7 +8,7 @@ pub mod ptracer;
 use crate::features;
 use crate::film;
 use crate::frame::Frame;
-use crate::glam::Vec3;
+use crate::glam::{Vec2, Vec3};
 pub use crate::layout::SceneView;
 use crate::layout::{FrameParams, PixelAccum, INTEGRATOR_DIRECT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER};
 use crate::math::is_finite3;
@@ -44,7 +44,7 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
         {
             direct::li(scene, params, ray, &mut sampler)
         } else {
-            path::li(scene, params, ray, &mut sampler)
+            path::li(scene, params, ray, &mut sampler, 1.0)
         };
         if is_finite3(l) {
             sums.sum += l;
@@ -78,7 +78,9 @@ pub fn splat_camera_paths<W: AtomicWords>(
         let mut sampler = Sampler::new(params.seed, pixel, sample_index);
         let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
         let u_lens = sampler.next_2d();
-        let l = path::li(scene, params, params.camera.generate_ray(film_pos, u_lens), &mut sampler);
+        let pos = Vec2::new(film_pos.x * params.full_width as f32, film_pos.y * params.full_height as f32);
+        let density = film::pixel_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);
+        let l = path::li(scene, params, params.camera.generate_ray(film_pos, u_lens), &mut sampler, density);
         sampler.set_dimension(DIM_SPLAT_ROUNDING);
         if is_finite3(l) {
             crate::splat::splat(words, pixel, l, sampler.next_1d());

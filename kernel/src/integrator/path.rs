@@ -25,8 +25,15 @@ const ONE_EACH: StrategyCounts = StrategyCounts::ONE_EACH;
 pub const DIM_FIRST_BOUNCE: u32 = 4;
 pub const DIMS_PER_BOUNCE: u32 = 8;
 
-/// Radiance arriving along `ray`.
-pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mut Sampler) -> Rgb {
+/// Radiance arriving along `ray`. `pixel_density`: under IBPT, the density with which the pixel's
+/// camera samples land where this ray crosses the film (`film::pixel_density`; unused otherwise).
+pub fn li(
+    scene: &SceneView,
+    params: &FrameParams,
+    camera_ray: Ray,
+    sampler: &mut Sampler,
+    pixel_density: f32,
+) -> Rgb {
     let accel = Accel { nodes: scene.nodes, prims: scene.prims };
     let mut ray = camera_ray;
     let mut throughput = Rgb::ONE;
@@ -60,7 +67,9 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         if ibpt && depth == 0 {
             // Light tracing reaches the first vertex by connecting it to the camera.
             lt_scale = match params.camera.connect(sp.p) {
-                Some(c) => mis::camera_scale_at_first_vertex(c.importance, film_scale(params)),
+                Some(c) => {
+                    mis::camera_scale_at_first_vertex(c.importance * pixel_density, film_scale(params))
+                }
                 None => 0.0,
             };
             prev.lt = lt_scale;

@@ -5,8 +5,8 @@
 //!
 //! Normalisation: one light path per pixel and sample, so `spp × pixels` paths; a path's splat is its
 //! contribution times `full image pixels / rendered pixels` (crop windows), and the host divides each
-//! pixel's sum by the samples per pixel, as for camera paths. Reconstruction is a box filter over the
-//! pixel. `max_depth` counts segments as in `path`: a vertex `d` segments from the emitter is connected
+//! pixel's sum by the samples per pixel, as for camera paths. Each connection is splatted into every
+//! pixel whose reconstruction filter covers it, weighted as that pixel's camera samples are. `max_depth` counts segments as in `path`: a vertex `d` segments from the emitter is connected
 //! only if `d + 1 ≤ max_depth`; `hide_emitters` drops the emitter-to-camera connection.
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
@@ -17,7 +17,8 @@ use super::shading_frame;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::{CameraConnection, Ray};
-use crate::glam::Vec3;
+use crate::film;
+use crate::glam::{Vec2, Vec3};
 use crate::layout::{FrameParams, SceneView, INTEGRATOR_IBPT, NONE};
 use crate::light::emission;
 use crate::math::{max_component, vec3};
@@ -50,26 +51,48 @@ pub fn film_scale(params: &FrameParams) -> f32 {
     (params.full_width * params.full_height) as f32 / (params.width * params.height) as f32
 }
 
-/// The rendered pixel that a camera connection lands in, if it lies inside the crop window.
-#[inline]
-fn pixel_of(params: &FrameParams, c: &CameraConnection) -> u32 {
-    let x = (c.film.x * params.full_width as f32) as u32;
-    let y = (c.film.y * params.full_height as f32) as u32;
-    if x < params.crop_x || y < params.crop_y {
-        return NONE;
-    }
-    let (px, py) = (x - params.crop_x, y - params.crop_y);
-    if px >= params.width || py >= params.height {
-        return NONE;
-    }
-    py * params.width + px
+/// How a camera connection is weighted against the camera strategies under IBPT (`mis`): not at all
+/// (plain light tracing), or as the emitter point, the first vertex or a later vertex of a light path.
+#[derive(Clone, Copy)]
+struct ConnectionMis {
+    kind: u32,
+    rho: f32,
+    inv_hit_sq: f32,
+    inv_nee_sq: f32,
+    d: f32,
 }
 
-/// Connects the point `origin` (already moved off its surface) to the camera through `c` and adds
-/// `value · importance` to the pixel it lands in, unless something blocks the way. `skip`: a primitive
-/// the shadow ray ignores (the emitter it starts on).
+const MIS_NONE: u32 = 0;
+const NO_MIS: ConnectionMis =
+    ConnectionMis { kind: MIS_NONE, rho: 0.0, inv_hit_sq: 0.0, inv_nee_sq: 0.0, d: 0.0 };
+const MIS_EMITTER: u32 = 1;
+const MIS_FIRST_VERTEX: u32 = 2;
+const MIS_LATER_VERTEX: u32 = 3;
+
+impl ConnectionMis {
+    /// The weight of a splat whose camera strategies carry `importance` (`We·cos/d²`, the film scale and
+    /// the pixel's filter density at the point: the camera path's density of landing there).
+    #[inline]
+    fn weight(&self, importance: f32) -> f32 {
+        match self.kind {
+            MIS_EMITTER => mis::emitter_connection_weight(importance, self.inv_hit_sq),
+            MIS_FIRST_VERTEX => {
+                mis::first_vertex_connection_weight(importance, self.rho, self.inv_hit_sq, self.inv_nee_sq)
+            }
+            MIS_LATER_VERTEX => mis::connection_weight(importance, self.rho, self.d),
+            _ => 1.0,
+        }
+    }
+}
+
+/// Connects the point `origin` (already moved off its surface) to the camera through `c` and, unless
+/// something blocks the way, splats `value · importance` into every rendered pixel whose
+/// reconstruction filter covers the point, weighted by the filter as the pixel's camera samples are
+/// (`film::pixel_density`; one pixel for the box). `skip`: a primitive the shadow ray ignores (the
+/// emitter it starts on).
 #[allow(clippy::too_many_arguments)]
 fn splat_to_camera<W: AtomicWords>(
+    scene: &SceneView,
     params: &FrameParams,
     accel: &Accel,
     words: &mut W,
@@ -78,9 +101,19 @@ fn splat_to_camera<W: AtomicWords>(
     value: Rgb,
     skip: u32,
     u: f32,
+    weighting: ConnectionMis,
 ) {
-    let pixel = pixel_of(params, c);
-    if pixel == NONE || max_component(value) <= 0.0 {
+    if max_component(value) <= 0.0 {
+        return;
+    }
+    // The footprint of the filter around the point, in pixels of the full image, within the crop.
+    let pos = Vec2::new(c.film.x * params.full_width as f32, c.film.y * params.full_height as f32);
+    let r = params.filter_radius;
+    let x0 = ((pos.x - r).floor().max(params.crop_x as f32)) as u32;
+    let y0 = ((pos.y - r).floor().max(params.crop_y as f32)) as u32;
+    let x1 = ((pos.x + r).floor() as u32).min(params.crop_x + params.width - 1);
+    let y1 = ((pos.y + r).floor() as u32).min(params.crop_y + params.height - 1);
+    if (pos.x + r) < params.crop_x as f32 || (pos.y + r) < params.crop_y as f32 || x0 > x1 || y0 > y1 {
         return;
     }
     let d = vec3(params.camera.origin) - origin;
@@ -89,7 +122,21 @@ fn splat_to_camera<W: AtomicWords>(
     if accel.occluded(&shadow, skip) {
         return;
     }
-    splat(words, pixel, value * (c.importance * film_scale(params)), u);
+    let importance = c.importance * film_scale(params);
+    let mut y = y0;
+    while y <= y1 {
+        let mut x = x0;
+        while x <= x1 {
+            let density = film::pixel_density(scene.tables, params, pos, x, y);
+            if density > 0.0 {
+                let pixel = (y - params.crop_y) * params.width + (x - params.crop_x);
+                let weight = weighting.weight(importance * density);
+                splat(words, pixel, value * (importance * density * weight), u);
+            }
+            x += 1;
+        }
+        y += 1;
+    }
 }
 
 /// Traces the light path of (`path_index`, sample) and splats its camera connections (weighted against
@@ -113,13 +160,10 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
     let inv_hit_sq = if hit_density > 0.0 { 1.0 / (hit_density * hit_density) } else { 0.0 };
     if !es.delta_position && params.hide_emitters == 0 && max_depth != 0 {
         if let Some(c) = camera.connect(es.origin) {
-            let weight = if ibpt {
-                mis::emitter_connection_weight(c.importance * film_scale(params), inv_hit_sq)
-            } else {
-                1.0
-            };
-            let le = emission::emitted_towards(scene, &es, c.dir) * weight;
-            splat_to_camera(params, &accel, words, es.origin, &c, le, es.prim, u_round);
+            let weighting =
+                ConnectionMis { kind: if ibpt { MIS_EMITTER } else { MIS_NONE }, inv_hit_sq, ..NO_MIS };
+            let le = emission::emitted_towards(scene, &es, c.dir);
+            splat_to_camera(scene, params, &accel, words, es.origin, &c, le, es.prim, u_round, weighting);
         }
     }
     // IBPT's scalar `d` (after the first vertex): Σ over the camera strategies of their squared density
@@ -157,19 +201,16 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
                 let f = bsdf.eval(wo, to_camera, IMPORTANCE);
                 let corr = shading_normal_correction(wo_world, c.dir, frame.n, ng);
                 let origin = offset_origin(&sp, ng, c.dir);
-                let weight = if ibpt {
+                let weighting = if ibpt {
                     // The camera path's density of the direction back along the light path from here.
                     let rho = bsdf.pdf(to_camera, wo, TransportMode::Radiance);
-                    let x = c.importance * film_scale(params);
-                    if depth == 1 {
-                        mis::first_vertex_connection_weight(x, rho, inv_hit_sq, inv_nee_sq)
-                    } else {
-                        mis::connection_weight(x, rho, mis_d)
-                    }
+                    let kind = if depth == 1 { MIS_FIRST_VERTEX } else { MIS_LATER_VERTEX };
+                    ConnectionMis { kind, rho, inv_hit_sq, inv_nee_sq, d: mis_d }
                 } else {
-                    1.0
+                    NO_MIS
                 };
-                splat_to_camera(params, &accel, words, origin, &c, beta * f * (corr * weight), NONE, u_round);
+                let value = beta * f * corr;
+                splat_to_camera(scene, params, &accel, words, origin, &c, value, NONE, u_round, weighting);
             }
         }
         if max_depth != NONE && depth + 1 >= max_depth {
