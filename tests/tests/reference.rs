@@ -52,3 +52,43 @@ fn comparison_detects_a_three_percent_error() {
     let (pass, z) = check_cbox(BackendChoice::Cpu, 64, 1.03);
     assert!(z > 4.0 || pass < 0.99, "a 3% brighter light went unnoticed (z = {z:.2}, pass = {pass:.4})");
 }
+
+/// Light tracing and IBPT on the Cornell box (Gaussian filter, so the splats cover 5×5 pixels) against
+/// Mitsuba's path-traced reference, over the central 64×64 pixels: per-pixel z-test and the mean
+/// luminance ratio (the luminance z-score sums per-pixel variances, which splats correlate, so it is
+/// not used for these).
+#[test]
+fn cbox_ptracer_and_ibpt_match_mitsuba() {
+    use caustic::scene::IntegratorChoice::{Ibpt, Ptracer};
+    // The last run, a 3% brighter light, must fail the same checks.
+    for (choice, radiance_scale) in [(Ptracer, 1.0), (Ibpt, 1.0), (Ptracer, 1.03)] {
+        let mut scene = caustic::load_scene(&mitsuba_scene("scenes/cbox/cbox.xml"), &[]).expect("cbox loads");
+        scene.integrator = scene.integrator.overridden(choice);
+        for shape in &mut scene.shapes {
+            if let Some(e) = shape.emission.as_mut() {
+                *e = e.map(|c| c * radiance_scale);
+            }
+        }
+        scene.sensor.crop = Some(caustic::scene::Crop { x: 96, y: 96, width: 64, height: 64 });
+        let spp = 64;
+        let film = render_scene(&scene, BackendChoice::Cpu, spp, 9);
+        let reference =
+            Film::load_exr(&mitsuba_reference("cbox")).expect("reference loads").crop(96, 96, 64, 64);
+        let c = compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
+        let pass = c.pass_fraction.unwrap();
+        println!(
+            "cbox {choice:?} {spp} spp (light ×{radiance_scale}): luminance ratio {:.4}, pass fraction {pass:.4}",
+            c.luminance_ratio
+        );
+        let matches = pass >= 0.99 && (c.luminance_ratio - 1.0).abs() < 0.01;
+        if radiance_scale == 1.0 {
+            assert!(
+                matches,
+                "{choice:?}: pass fraction {pass:.4}, mean luminance ratio {:.4}",
+                c.luminance_ratio
+            );
+        } else {
+            assert!(!matches, "a 3% brighter light went unnoticed (ratio {:.4})", c.luminance_ratio);
+        }
+    }
+}
