@@ -342,3 +342,28 @@ fn light_tracing_matches_path_with_a_gaussian_filter_and_a_crop() {
         }
     }
 }
+
+/// `hide_emitters`: camera rays pass through area emitters, and so must light tracing's connections to
+/// the camera (a rectangle lamp hangs between the camera and the scene, facing the camera; a point
+/// light lights the scene).
+#[test]
+fn ibpt_sees_through_hidden_emitters_like_path() {
+    let lamp = r#"<shape type="rectangle"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="100"/><translate y="-1.8" z="1.3"/></transform>
+            <emitter type="area"><rgb name="radiance" value="3"/></emitter></shape>"#;
+    let emitters = format!("{}\n{lamp}", EMITTERS[2].1);
+    let scene = |integrator: &str| {
+        let xml = corner(integrator, &emitters, 24).replace(
+            r#"<integer name="max_depth" value="5"/>"#,
+            r#"<integer name="max_depth" value="5"/><boolean name="hide_emitters" value="true"/>"#,
+        );
+        load_xml(&xml, &format!("hidden-{integrator}"))
+    };
+    let path = render_scene(&scene("path"), BackendChoice::Cpu, 512, 13);
+    let ibpt = render_replicated(&scene("ibpt"), 256, 14);
+    let (z, worst) = agreement(&ibpt, &path);
+    println!("hidden emitters: ibpt vs path: image z {z:+.2}, worst pixel |z| {worst:.2}");
+    assert!(
+        z.abs() < 4.5 && worst < 5.0,
+        "hidden emitters: ibpt and path disagree (z {z:+.2}, worst {worst:.2})"
+    );
+}

@@ -12,6 +12,7 @@
 use spirv_std::num_traits::Float;
 
 use super::mis;
+use super::nee::first_hit_past_emitters;
 use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE};
 use super::shading_frame;
 use crate::bsdf::{Bsdf, TransportMode};
@@ -119,7 +120,14 @@ fn splat_to_camera<W: AtomicWords>(
     let d = vec3(params.camera.origin) - origin;
     let dist = d.length();
     let shadow = Ray { origin, dir: d / dist, t_min: 0.0, t_max: dist * (1.0 - SHADOW_EPSILON) };
-    if accel.occluded(&shadow, skip) {
+    // With `hide_emitters` camera rays pass through emitters (`path`), so the segment to the camera
+    // does too: otherwise IBPT's weights would count a light-tracing strategy that cannot happen.
+    let blocked = if params.hide_emitters != 0 {
+        first_hit_past_emitters(scene, accel, &shadow).is_some()
+    } else {
+        accel.occluded(&shadow, skip)
+    };
+    if blocked {
         return;
     }
     let importance = c.importance * film_scale(params);
