@@ -34,18 +34,11 @@ impl Accumulation {
     }
 
     /// Adds one pass of `sample_count` samples per pixel from the splat words (`caustic_kernel::splat`
-    /// layout), in `f64` from the exact fixed-point sums.
+    /// layout), with the kernel's own `resolved` (the GPU runs the same in its `resolve` entry point).
     pub fn add_splats(&mut self, words: &[u32], sample_count: u32) {
-        use caustic_kernel::splat::{fixed_to_f64, SPLAT_INVALID, SPLAT_STRIDE};
-        let k = sample_count as f64;
+        use caustic_kernel::splat::{resolved, SPLAT_STRIDE};
         for (px, w) in self.pixels.iter_mut().zip(words.chunks_exact(SPLAT_STRIDE as usize)) {
-            for c in 0..3 {
-                let s = fixed_to_f64(w[2 * c], w[2 * c + 1]);
-                px.sum[c] = (px.sum[c] as f64 + s) as f32;
-                px.sum_sq[c] = (px.sum_sq[c] as f64 + s * s / k) as f32;
-            }
-            px.count += sample_count as f32;
-            px.invalid += w[SPLAT_INVALID as usize] as f32;
+            *px = resolved(*px, w.try_into().expect("a pixel's words"), sample_count);
         }
         self.batches = Some(self.batches.unwrap_or(0) + 1);
     }

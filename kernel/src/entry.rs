@@ -7,7 +7,7 @@ use crate::integrator::{
 use crate::layout::{
     BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
 };
-use crate::splat::GpuWords;
+use crate::splat::{resolved, GpuWords, SPLAT_STRIDE};
 use spirv_std::glam::UVec3;
 use spirv_std::spirv;
 
@@ -67,4 +67,28 @@ pub fn light(
     let scene = SceneView { nodes, prims, attributes, materials, lights, textures, tables, features };
     let pixel = id.y * params.width + id.x;
     trace_light_paths(&scene, params, pixel, &mut GpuWords(splat));
+}
+
+/// After a splatting pass: folds each pixel's splat words into its accumulator and clears them, so
+/// that no pass needs its words read back.
+#[spirv(compute(threads(8, 8, 1)))] // layout::TILE
+pub fn resolve(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &FrameParams, // PARAMS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] accum: &mut [PixelAccum], // ACCUM
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] splat: &mut [u32],    // SPLAT
+) {
+    if id.x >= params.width || id.y >= params.height {
+        return;
+    }
+    let pixel = (id.y * params.width + id.x) as usize;
+    let base = pixel * SPLAT_STRIDE as usize;
+    let mut words = [0u32; SPLAT_STRIDE as usize];
+    let mut i = 0;
+    while i < SPLAT_STRIDE as usize {
+        words[i] = splat[base + i];
+        splat[base + i] = 0;
+        i += 1;
+    }
+    accum[pixel] = resolved(accum[pixel], words, params.sample_count);
 }

@@ -7,10 +7,12 @@
 //! atomics. Values are rounded stochastically with the path's own random number, so the rounding is
 //! unbiased. Resolution 2⁻²⁴ ≈ 6e-8 per splat; range 2⁴⁰ ≈ 1.1e12 per pixel and pass (the host resolves
 //! the sums into its float accumulator after every pass and clears them). Non-finite, negative or
-//! out-of-range contributions are never added: they are counted in the pixel's `invalid` word.
+//! out-of-range contributions are never added: they are counted in the pixel's `invalid` word. After
+//! each pass `resolved` folds the words into the pixel's float accumulator and the words are cleared.
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
+use crate::layout::PixelAccum;
 use crate::math::is_finite3;
 use crate::spectrum::Rgb;
 
@@ -97,8 +99,24 @@ pub fn count_invalid<W: AtomicWords>(words: &mut W, pixel: u32) {
     words.fetch_add(pixel * SPLAT_STRIDE + SPLAT_INVALID, 1);
 }
 
-/// The value of one channel's (low, high) words (host side: exact in `f64`).
-#[cfg(not(target_arch = "spirv"))]
-pub fn fixed_to_f64(low: u32, high: u32) -> f64 {
-    ((high as u64) << 32 | low as u64) as f64 / SCALE as f64
+/// The value of one channel's (low, high) words.
+#[inline]
+fn fixed_to_f32(low: u32, high: u32) -> f32 {
+    high as f32 * (TWO_32 / SCALE) + low as f32 / SCALE
+}
+
+/// A pixel's accumulator with one pass of `sample_count` samples per pixel added from its splat
+/// words: the pass's sum `S` to `sum`, `S²/k` to `sum_sq` (the host estimates the variance from these
+/// batch means), `k` to `count`, and the invalid count. Both backends resolve with this, the GPU in
+/// its `resolve` entry point without reading the words back.
+#[inline]
+pub fn resolved(a: PixelAccum, w: [u32; SPLAT_STRIDE as usize], sample_count: u32) -> PixelAccum {
+    let k = sample_count as f32;
+    let s = [fixed_to_f32(w[0], w[1]), fixed_to_f32(w[2], w[3]), fixed_to_f32(w[4], w[5])];
+    PixelAccum {
+        sum: [a.sum[0] + s[0], a.sum[1] + s[1], a.sum[2] + s[2]],
+        count: a.count + k,
+        sum_sq: [a.sum_sq[0] + s[0] * s[0] / k, a.sum_sq[1] + s[1] * s[1] / k, a.sum_sq[2] + s[2] * s[2] / k],
+        invalid: a.invalid + w[SPLAT_INVALID as usize] as f32,
+    }
 }

@@ -17,6 +17,8 @@ static KERNEL_SPV: &[u8] = include_bytes!("../../shaders/caustic-kernel.spv");
 /// Camera paths (and IBPT's camera half); light paths (ptracer, IBPT's light half).
 const CAMERA_ENTRY: &str = "entry::render";
 const LIGHT_ENTRY: &str = "entry::light";
+/// Folds a splatting pass's words into the accumulator (and clears them).
+const RESOLVE_ENTRY: &str = "entry::resolve";
 
 pub struct GpuBackend {
     device: wgpu::Device,
@@ -28,9 +30,10 @@ pub struct GpuBackend {
     params_buffer: wgpu::Buffer,
     accum_buffer: wgpu::Buffer,
     accum_size: u64,
-    /// Light tracing: the splat words (cleared before every pass) and the host-side accumulation they
-    /// are resolved into after it. `None` for camera integrators, whose `accum_buffer` holds the sums.
-    splats: Option<(wgpu::Buffer, Accumulation)>,
+    /// Splatting integrators: the passes resolved into `accum_buffer` so far (its batches), and the
+    /// pipeline that resolves each pass's splat words there and clears them. `None` otherwise.
+    batches: Option<u32>,
+    resolve_pipeline: Option<wgpu::ComputePipeline>,
     adapter_name: String,
     width: u32,
     height: u32,
@@ -148,6 +151,7 @@ impl GpuBackend {
         let integrator = buffers.params.integrator;
         let camera_pipeline = traces_camera_paths(integrator).then(|| pipeline(CAMERA_ENTRY));
         let light_pipeline = splats(integrator).then(|| pipeline(LIGHT_ENTRY));
+        let resolve_pipeline = splats(integrator).then(|| pipeline(RESOLVE_ENTRY));
         if let Some(e) = pollster::block_on(scope.pop()) {
             bail!("the GPU rejected the kernel on {}: {e}", info.name);
         }
@@ -218,7 +222,8 @@ impl GpuBackend {
             params_buffer,
             accum_buffer,
             accum_size,
-            splats: splatted.then(|| (splat_buffer, Accumulation::new(pixels as usize, true))),
+            batches: splatted.then_some(0),
+            resolve_pipeline,
             adapter_name,
             width: buffers.params.width,
             height: buffers.params.height,
@@ -269,53 +274,44 @@ impl Backend for GpuBackend {
         self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(params));
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pass") });
-        if let Some((splat, _)) = &self.splats {
-            encoder.clear_buffer(splat, 0, None);
-        }
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("render"),
                 timestamp_writes: None,
             });
             pass.set_bind_group(0, &self.bind_group, &[]);
-            for pipeline in [&self.camera_pipeline, &self.light_pipeline].into_iter().flatten() {
+            // Camera paths, light paths, then (splatting) the words folded into the accumulator: each
+            // dispatch sees the previous one's writes (wgpu orders dispatches that share a buffer).
+            for pipeline in
+                [&self.camera_pipeline, &self.light_pipeline, &self.resolve_pipeline].into_iter().flatten()
+            {
                 pass.set_pipeline(pipeline);
                 pass.dispatch_workgroups(self.width.div_ceil(TILE), self.height.div_ceil(TILE), 1);
             }
         }
         self.queue.submit([encoder.finish()]);
-        self.wait()?;
-        if let Some((splat, _)) = &self.splats {
-            let words: Vec<u32> = bytemuck::pod_collect_to_vec(&self.read_buffer(splat, splat.size())?);
-            if let Some((_, accum)) = &mut self.splats {
-                accum.add_splats(&words, params.sample_count);
-            }
+        if let Some(b) = &mut self.batches {
+            *b += 1;
         }
-        Ok(())
+        self.wait()
     }
 
     fn write_accum(&mut self, accum: &Accumulation) -> Result<()> {
         let pixels = self.accum_size / std::mem::size_of::<PixelAccum>() as u64;
         anyhow::ensure!(
-            accum.pixels.len() as u64 == pixels && accum.batches.is_some() == self.splats.is_some(),
+            accum.pixels.len() as u64 == pixels && accum.batches.is_some() == self.batches.is_some(),
             "accumulation buffer of {} pixels ({}), expected {pixels}",
             accum.pixels.len(),
             if accum.batches.is_some() { "splatted" } else { "per sample" },
         );
-        if let Some((_, host)) = &mut self.splats {
-            *host = accum.clone();
-            return Ok(());
-        }
+        self.batches = accum.batches;
         self.queue.write_buffer(&self.accum_buffer, 0, bytemuck::cast_slice(&accum.pixels));
         self.queue.submit([]);
         self.wait()
     }
 
     fn read_accum(&mut self) -> Result<Accumulation> {
-        if let Some((_, host)) = &self.splats {
-            return Ok(host.clone());
-        }
         let bytes = self.read_buffer(&self.accum_buffer, self.accum_size)?;
-        Ok(Accumulation { pixels: bytemuck::pod_collect_to_vec(&bytes), batches: None })
+        Ok(Accumulation { pixels: bytemuck::pod_collect_to_vec(&bytes), batches: self.batches })
     }
 }
