@@ -5,6 +5,7 @@ pub mod nee;
 pub mod path;
 pub mod ptracer;
 
+use crate::camera::Ray;
 use crate::features;
 use crate::film;
 use crate::frame::Frame;
@@ -27,18 +28,28 @@ pub struct PixelSums {
     pub invalid: u32,
 }
 
+/// A camera sample of pixel (`px`, `py`): its sampler (keyed by seed, pixel and sample), the film
+/// position it lands on (fractions of the full image) and the primary ray.
+#[inline]
+fn camera_sample(
+    params: &FrameParams,
+    tables: &[f32],
+    pixel: u32,
+    sample_index: u32,
+) -> (Sampler, Vec2, Ray) {
+    let (px, py) = (pixel % params.width, pixel / params.width);
+    let mut sampler = Sampler::new(params.seed, pixel, sample_index);
+    let film_pos = film::sample_position(params, tables, px, py, sample_index, &mut sampler);
+    let u_lens = sampler.next_2d();
+    (sampler, film_pos, params.camera.generate_ray(film_pos, u_lens))
+}
+
 /// Renders `params.sample_count` samples of one pixel (row-major index).
 pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> PixelSums {
-    let px = pixel % params.width;
-    let py = pixel / params.width;
     let mut sums = PixelSums { sum: Rgb::ZERO, sum_sq: Rgb::ZERO, invalid: 0 };
     let mut s = 0;
     while s < params.sample_count {
-        let sample_index = params.sample_base + s;
-        let mut sampler = Sampler::new(params.seed, pixel, sample_index);
-        let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
-        let u_lens = sampler.next_2d();
-        let ray = params.camera.generate_ray(film_pos, u_lens);
+        let (mut sampler, _, ray) = camera_sample(params, scene.tables, pixel, params.sample_base + s);
         let l = if params.integrator == INTEGRATOR_DIRECT
             && features::has(scene.features, features::DIRECT_INTEGRATOR)
         {
@@ -74,13 +85,10 @@ pub fn splat_camera_paths<W: AtomicWords>(
     let (px, py) = (pixel % params.width, pixel / params.width);
     let mut s = 0;
     while s < params.sample_count {
-        let sample_index = params.sample_base + s;
-        let mut sampler = Sampler::new(params.seed, pixel, sample_index);
-        let film_pos = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
-        let u_lens = sampler.next_2d();
+        let (mut sampler, film_pos, ray) = camera_sample(params, scene.tables, pixel, params.sample_base + s);
         let pos = Vec2::new(film_pos.x * params.full_width as f32, film_pos.y * params.full_height as f32);
         let density = film::pixel_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);
-        let l = path::li(scene, params, params.camera.generate_ray(film_pos, u_lens), &mut sampler, density);
+        let l = path::li(scene, params, ray, &mut sampler, density);
         sampler.set_dimension(DIM_SPLAT_ROUNDING);
         if is_finite3(l) {
             crate::splat::splat(words, pixel, l, sampler.next_1d());
