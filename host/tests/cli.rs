@@ -292,3 +292,51 @@ fn render_streams_to_tev() {
     assert!(out.status.success() && err.contains("without the viewer"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A checkpoint named like the image or its variance file is refused before rendering (exit code 1,
+/// naming the file): the checkpoint is deleted once the image is saved, which would delete the image.
+/// Spelt differently (`dir/./x`) it is still the same file.
+#[test]
+fn checkpoint_on_the_output_is_refused() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-ckpt-clash-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let image = dir.join("clash.exr");
+    let (dotted_image, dotted_variance) = (dir.join(".").join("clash.exr"), dir.join("./clash.variance.exr"));
+    let cases = [
+        (image.clone(), image.clone(), false),
+        (image.clone(), dotted_image.clone(), false),
+        (image.clone(), dotted_variance.clone(), true),
+        (dotted_image.clone(), dir.join("clash.variance.exr"), false),
+    ];
+    for (output, checkpoint, existing) in cases {
+        std::fs::remove_file(&image).ok();
+        if existing {
+            std::fs::write(&image, b"an earlier render").unwrap();
+        }
+        let out = caustic(&[
+            "render",
+            scene,
+            "--backend",
+            "cpu",
+            "--spp",
+            "1",
+            "-D",
+            "res=8",
+            "-q",
+            "-o",
+            output.to_str().unwrap(),
+            "--checkpoint",
+            checkpoint.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{output:?} with checkpoint {checkpoint:?}: {err}");
+        assert!(err.contains("--checkpoint") && err.contains("clash") && !err.contains("panicked"), "{err}");
+        if existing {
+            assert_eq!(std::fs::read(&image).unwrap(), b"an earlier render", "the image was touched");
+        } else {
+            assert!(!image.exists(), "rendered although refused");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
