@@ -136,8 +136,8 @@ fn convergence_writes_its_curve_and_closed_stdout_is_not_a_panic() {
 
 /// A render interrupted after 4 of 8 spp (its checkpoint written through the library) and resumed by
 /// `render --checkpoint` gives the uninterrupted image (up to the rounding of differently split
-/// passes) and removes the checkpoint; a checkpoint of other settings or a damaged one is refused
-/// with a message, not a panic.
+/// passes) and removes the checkpoint; a checkpoint of other settings, a truncated one or one whose
+/// sums are damaged (caught by its checksum) is refused with a message, not a panic.
 #[test]
 fn checkpointed_renders_resume_where_they_stopped() {
     use caustic::checkpoint::{fingerprint, Checkpoint};
@@ -218,6 +218,15 @@ fn checkpointed_renders_resume_where_they_stopped() {
     let out = caustic(&with_ckpt.iter().map(String::as_str).collect::<Vec<_>>());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && err.contains("render.ckpt") && !err.contains("panicked"), "{err}");
+    // A flipped bit in the sums: the checksum refuses what would resume into a wrong image.
+    half.save(&ckpt).unwrap();
+    let mut bytes = std::fs::read(&ckpt).unwrap();
+    let middle = bytes.len() / 2;
+    bytes[middle] ^= 0x40;
+    std::fs::write(&ckpt, &bytes).unwrap();
+    let out = caustic(&with_ckpt.iter().map(String::as_str).collect::<Vec<_>>());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(1) && err.contains("render.ckpt") && err.contains("damaged"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
 
