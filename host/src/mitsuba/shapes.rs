@@ -108,15 +108,15 @@ impl Loader {
         let mut material = None;
         let mut emission = None;
         for e in props.nested("bsdf") {
-            let p = self.props(&props.path, props.doc, e.node)?;
+            let p = self.props(props.src, e.node)?;
             material = Some(self.load_bsdf(&p)?);
         }
         for e in props.nested("emitter") {
-            let p = self.props(&props.path, props.doc, e.node)?;
+            let p = self.props(props.src, e.node)?;
             emission = self.load_shape_emitter(&p)?;
         }
         for e in props.nested("ref") {
-            let p = self.props(&props.path, props.doc, e.node)?;
+            let p = self.props(props.src, e.node)?;
             let id = p.doc_attr_id()?;
             if let Some(&radiance) = self.named_area_emitters.get(&id) {
                 emission = Some(radiance);

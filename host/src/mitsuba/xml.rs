@@ -1,6 +1,7 @@
-//! XML primitives of the loader: source locations (`Loc`), required attributes, number lists, and
-//! vectors given as one or three numbers (Mitsuba's `expand_value_to_xyz`). A leaf module: it uses
-//! nothing else of the loader, so that `props` and `transform` can both build on it.
+//! XML primitives of the loader: parsed files with their line index (`Source`), source locations
+//! (`Loc`), required attributes, number lists, and vectors given as one or three numbers (Mitsuba's
+//! `expand_value_to_xyz`). A leaf module: it uses nothing else of the loader, so that `props` and
+//! `transform` can both build on it.
 use anyhow::{bail, Result};
 use glam::Vec3;
 use std::fmt;
@@ -13,9 +14,33 @@ pub struct Loc {
     pub line: u32,
 }
 
-impl Loc {
-    pub fn of(path: &Path, doc: &roxmltree::Document, node: roxmltree::Node) -> Loc {
-        Loc { file: path.to_path_buf(), line: doc.text_pos_at(node.range().start).row }
+/// A parsed scene file: its path, its document, and where each of its lines starts. Every element's
+/// line is wanted (for messages), and roxmltree's `text_pos_at` counts lines from the start of the
+/// file, which made loading quadratic in the number of elements; with the line starts indexed once,
+/// a line is a binary search.
+pub struct Source<'input> {
+    pub path: PathBuf,
+    pub doc: roxmltree::Document<'input>,
+    /// Byte offsets of the lines' starts, ascending; 0 first.
+    line_starts: Vec<usize>,
+}
+
+impl<'input> Source<'input> {
+    pub fn parse(path: &Path, text: &'input str) -> Result<Self> {
+        let doc = roxmltree::Document::parse(text).map_err(|e| {
+            let pos = e.pos();
+            anyhow::anyhow!("{}:{}:{}: malformed XML: {e}", path.display(), pos.row, pos.col)
+        })?;
+        // Lines end at '\n', as roxmltree counts them.
+        let newlines = text.bytes().enumerate().filter(|&(_, b)| b == b'\n').map(|(i, _)| i + 1);
+        let line_starts = std::iter::once(0).chain(newlines).collect();
+        Ok(Source { path: path.to_path_buf(), doc, line_starts })
+    }
+
+    /// Where `node` (an element of this document) starts.
+    pub fn loc(&self, node: roxmltree::Node) -> Loc {
+        let line = self.line_starts.partition_point(|&start| start <= node.range().start);
+        Loc { file: self.path.clone(), line: line as u32 }
     }
 }
 
