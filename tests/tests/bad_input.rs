@@ -145,3 +145,48 @@ fn twenty_thousand_spheres_load() {
     let w = scene.warnings.join("\n");
     assert!(w.contains(&format!("spheres.xml:{}", SPHERES + 3)) && w.contains("wobble"), "{w}");
 }
+
+/// What Mitsuba refuses is an error here too, naming file and line, rather than a silent choice: an
+/// `id` given twice, two BSDFs (or two area emitters) in one shape, two integrators.
+#[test]
+fn what_mitsuba_refuses_is_an_error() {
+    for (what, body, needle) in [
+        (
+            "duplicate-id",
+            "<bsdf type=\"diffuse\" id=\"a\"/>\n<bsdf type=\"conductor\" id=\"a\"/>",
+            "duplicate id",
+        ),
+        (
+            "duplicate-id-kinds",
+            "<texture type=\"checkerboard\" id=\"a\"/>\n<shape type=\"sphere\" id=\"a\"/>",
+            "duplicate id",
+        ),
+        (
+            "two-bsdfs",
+            "<bsdf type=\"diffuse\" id=\"grey\"/>\n<shape type=\"sphere\"><bsdf type=\"diffuse\"/><ref id=\"grey\"/></shape>",
+            "BSDF",
+        ),
+        (
+            "two-nested-bsdfs",
+            "<shape type=\"sphere\"><bsdf type=\"diffuse\"/>\n<bsdf type=\"conductor\"/></shape>",
+            "BSDF",
+        ),
+        (
+            "two-emitters",
+            "<shape type=\"sphere\"><emitter type=\"area\"/>\n<emitter type=\"area\"/></shape>",
+            "emitter",
+        ),
+        (
+            "two-integrators",
+            "<integrator type=\"path\"/>\n<integrator type=\"direct\"/>",
+            "integrator",
+        ),
+    ] {
+        // The second definition is on line 4 (the scene's sensor takes line 2).
+        let e = load_err(
+            &format!("refused-{what}.xml"),
+            &format!("<scene version=\"3.0.0\">\n{SENSOR}\n{body}\n</scene>\n"),
+        );
+        assert!(e.contains(&format!("refused-{what}.xml:4")) && e.contains(needle), "{what}: {e}");
+    }
+}

@@ -5,7 +5,8 @@
 //! parse values; `props` gives typed properties with their source locations; `xml` holds the XML
 //! primitives all of these share (locations, attributes, number lists, one-or-three-number vectors)
 //! and uses none of them. This module holds the document machinery: `<default>`, `$name`
-//! substitution, `-D` overrides, `<include>`, `<path>`, `id`/`<ref>`.
+//! substitution, `-D` overrides, `<include>`, `<path>`, `id`/`<ref>` (ids unique, as Mitsuba wants
+//! them), and one integrator per scene.
 mod bsdfs;
 pub mod cie_tables;
 mod emitters;
@@ -47,6 +48,10 @@ pub(crate) struct Loader {
     integrator: Option<Integrator>,
     warnings: Vec<String>,
     include_depth: u32,
+    /// Every `id` given so far, in any file of the scene, with where: Mitsuba refuses a duplicate.
+    ids: HashMap<String, Loc>,
+    /// Where the scene's integrator was given: Mitsuba refuses a second.
+    integrator_loc: Option<Loc>,
 }
 
 /// Loads a Mitsuba 3 scene; `defines` are `-D name=value` overrides.
@@ -65,6 +70,8 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
         integrator: None,
         warnings: Vec::new(),
         include_depth: 0,
+        ids: HashMap::new(),
+        integrator_loc: None,
     };
     loader.load_file(path)?;
     let sensor = match loader.sensor.take() {
@@ -102,11 +109,26 @@ impl Loader {
         if root.tag_name().name() != "scene" {
             bail!("{loc}: expected a <scene> root element, found <{}>", root.tag_name().name());
         }
+        self.check_ids(&src)?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         self.search_paths.insert(0, dir);
         let result = self.load_scene_children(&src, root);
         self.search_paths.remove(0);
         result
+    }
+
+    /// Refuses an `id` given twice (here or in an earlier file of the scene), as Mitsuba does;
+    /// `<ref id>` refers to an id and does not give one.
+    fn check_ids(&mut self, src: &Source) -> Result<()> {
+        for node in src.doc.descendants().filter(|n| n.is_element() && n.tag_name().name() != "ref") {
+            let Some(id) = node.attribute("id") else { continue };
+            let loc = src.loc(node);
+            if let Some(first) = self.ids.get(id) {
+                bail!("{loc}: duplicate id \"{id}\" (first given at {first})");
+            }
+            self.ids.insert(id.to_string(), loc);
+        }
+        Ok(())
     }
 
     fn load_scene_children(&mut self, src: &Source, root: roxmltree::Node) -> Result<()> {
@@ -163,8 +185,12 @@ impl Loader {
                     self.sensor = Some(self.load_sensor(&props)?);
                 }
                 "integrator" => {
+                    if let Some(first) = &self.integrator_loc {
+                        bail!("{loc}: a second <integrator> (the first is at {first}); a scene takes one");
+                    }
                     let props = self.props(src, node)?;
                     self.integrator = Some(self.load_integrator(&props)?);
+                    self.integrator_loc = Some(loc);
                 }
                 other => {
                     self.warn(&format!("{loc}: <{other}> is not supported yet; ignored"));
