@@ -190,3 +190,31 @@ fn what_mitsuba_refuses_is_an_error() {
         assert!(e.contains(&format!("refused-{what}.xml:4")) && e.contains(needle), "{what}: {e}");
     }
 }
+
+/// Elements nested 10,000 deep are a clean error naming file and line, not a stack overflow (of the
+/// XML parser, or of the loader recursing through `twosided` and `moment`); 256 levels still load.
+#[test]
+fn deep_nesting_is_an_error_not_a_stack_overflow() {
+    const DEPTH: usize = 10_000;
+    let shape = |inner: &str| format!("<shape type=\"sphere\">\n{inner}</shape>\n");
+    let nest = |open: &str, innermost: &str, close: &str| {
+        format!("{}{innermost}{}", open.repeat(DEPTH), close.repeat(DEPTH))
+    };
+    for (what, nested) in [
+        ("bsdfs", shape(&nest("<bsdf type=\"twosided\">\n", "<bsdf type=\"diffuse\"/>", "</bsdf>"))),
+        ("moments", nest("<integrator type=\"moment\">\n", "<integrator type=\"path\"/>", "</integrator>")),
+        ("elements", shape(&nest("<x>\n", "", "</x>"))),
+    ] {
+        let body = format!("<scene version=\"3.0.0\">\n{nested}</scene>\n");
+        let e = load_err(&format!("deep-{what}.xml"), &body);
+        assert!(e.contains(&format!("deep-{what}.xml:")) && e.contains("nested"), "{what}: {e}");
+    }
+    // Just inside the limit (256 levels: scene, shape, 253 BSDFs), on a test thread's small stack.
+    let inner = format!(
+        "{}<bsdf type=\"diffuse\"/>{}",
+        "<bsdf type=\"twosided\">".repeat(252),
+        "</bsdf>".repeat(252)
+    );
+    let path = write_scene("deep-enough.xml", &format!("<scene version=\"3.0.0\">{}</scene>", shape(&inner)));
+    assert_eq!(caustic::load_scene(&path, &[]).expect("loads").shapes.len(), 1);
+}
