@@ -349,3 +349,44 @@ fn checkpoint_on_the_output_is_refused() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `compare` with a NaN or infinite pixel in either image is an error naming the file and the first
+/// such pixel (x, y), not a NaN statistic with exit code 0.
+#[test]
+fn compare_refuses_non_finite_pixels() {
+    use caustic::film::Film;
+    let dir = std::env::temp_dir().join(format!("caustic-cli-nan-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let film = |bad: Option<(usize, f32)>| {
+        let mut rgb = vec![[0.5f32; 3]; 4 * 3];
+        if let Some((at, v)) = bad {
+            rgb[at][1] = v;
+        }
+        Film { width: 4, height: 3, rgb, variance: None, invalid_samples: 0 }
+    };
+    let (good, nan, inf) = (dir.join("good.exr"), dir.join("nan.exr"), dir.join("inf.exr"));
+    film(None).save(&good).unwrap();
+    film(Some((4 + 2, f32::NAN))).save(&nan).unwrap();
+    film(Some((2 * 4 + 1, f32::INFINITY))).save(&inf).unwrap();
+    for (image, reference, named, pixel) in
+        [(&nan, &good, "nan.exr", "(2, 1)"), (&good, &inf, "inf.exr", "(1, 2)")]
+    {
+        let out = caustic(&["compare", image.to_str().unwrap(), reference.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{named}: {err}");
+        assert!(err.contains(named) && err.contains(pixel) && !err.contains("panicked"), "{err}");
+    }
+    let out = caustic(&["compare", good.to_str().unwrap(), good.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `bench --spp 0` is refused (it printed NaN throughput).
+#[test]
+fn bench_refuses_zero_spp() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let out = caustic(&["bench", scene, "-D", "res=8", "--backend", "cpu", "--spp", "0"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("--spp") && !String::from_utf8_lossy(&out.stdout).contains("NaN"), "{err}");
+}
