@@ -128,6 +128,10 @@ fn parse_define(s: &str) -> Result<(String, String), String> {
 
 fn main() {
     let cli = Cli::parse();
+    // Before any thread starts (it changes the environment); `compare` opens no GPU.
+    if !matches!(cli.command, Command::Compare { .. }) {
+        backend::runtime_dir::ensure_xdg_runtime_dir();
+    }
     let result = match cli.command {
         Command::Render { run, output, variance, quiet, checkpoint, checkpoint_every, tev } => {
             let output = output.unwrap_or_else(|| {

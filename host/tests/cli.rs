@@ -390,3 +390,39 @@ fn bench_refuses_zero_spp() {
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("--spp") && !String::from_utf8_lossy(&out.stdout).contains("NaN"), "{err}");
 }
+
+/// Without a usable XDG_RUNTIME_DIR (unset, empty or relative: no display session) the Vulkan
+/// loader's window-system code printed "XDG_RUNTIME_DIR is invalid or not set" on every GPU render;
+/// caustic gives it a private directory of its own instead. Whether or not a Vulkan adapter exists,
+/// the message must not appear.
+#[test]
+fn no_xdg_runtime_dir_message_without_a_display() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-xdg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out_path = dir.join("x.png");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    for value in [None, Some(""), Some("relative/dir")] {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_caustic"));
+        command.args([
+            "render",
+            scene,
+            "--backend",
+            "gpu",
+            "--spp",
+            "1",
+            "-D",
+            "res=8",
+            "-q",
+            "-o",
+            out_path.to_str().unwrap(),
+        ]);
+        match value {
+            None => command.env_remove("XDG_RUNTIME_DIR"),
+            Some(v) => command.env("XDG_RUNTIME_DIR", v),
+        };
+        let out = command.output().expect("runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!err.contains("XDG_RUNTIME_DIR") && !err.contains("panicked"), "{value:?}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
