@@ -2,7 +2,8 @@
 //! render's total) and a fingerprint of the scene buffers, so that `render --checkpoint FILE` resumes
 //! exactly where an interrupted run stopped, and refuses a file written for another scene or
 //! settings. Random numbers are a function of (seed, pixel, sample, dimension): the resumed render
-//! is the image an uninterrupted one would have produced.
+//! is the image an uninterrupted one would have produced. A CRC-32 of the header and the sums closes
+//! the file, so that a damaged checkpoint is refused instead of resumed into a wrong image.
 use crate::buffers::SceneBuffers;
 use crate::film::Accumulation;
 use anyhow::{bail, Context, Result};
@@ -10,9 +11,12 @@ use caustic_kernel::layout::PixelAccum;
 use std::hash::{Hash, Hasher};
 use std::path::Path;
 
-/// Version 2: the header carries the batch count of splatted (light-traced) sums.
-const MAGIC: &[u8; 8] = b"CAUSTCK2";
+/// Version 3: a CRC-32 of everything before it ends the file. (Version 2 added the batch count of
+/// splatted, light-traced, sums to the header.)
+const MAGIC: &[u8; 8] = b"CAUSTCK3";
 const HEADER: usize = 36;
+/// The checksum after the sums.
+const TRAILER: usize = 4;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Checkpoint {
@@ -50,7 +54,7 @@ impl Checkpoint {
     /// while writing leaves the previous checkpoint intact.
     pub fn save(&self, path: &Path) -> Result<()> {
         let floats: &[f32] = bytemuck::cast_slice(&self.accum.pixels);
-        let mut bytes = Vec::with_capacity(HEADER + floats.len() * 4);
+        let mut bytes = Vec::with_capacity(HEADER + floats.len() * 4 + TRAILER);
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&self.scene.to_le_bytes());
         let batches = self.accum.batches.unwrap_or(u32::MAX);
@@ -60,6 +64,8 @@ impl Checkpoint {
         for v in floats {
             bytes.extend_from_slice(&v.to_le_bytes());
         }
+        let checksum = crc32fast::hash(&bytes);
+        bytes.extend_from_slice(&checksum.to_le_bytes());
         let partial = path.with_extension("partial");
         std::fs::write(&partial, &bytes)
             .with_context(|| format!("cannot write the checkpoint {}", partial.display()))?;
@@ -72,7 +78,10 @@ impl Checkpoint {
             std::fs::read(path).with_context(|| format!("cannot read the checkpoint {}", path.display()))?;
         let word =
             |at: usize| -> Option<u32> { Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?)) };
-        if bytes.len() < HEADER || &bytes[..8] != MAGIC {
+        if bytes.len() >= 8 && bytes[..7] == MAGIC[..7] && bytes[..8] != MAGIC[..] {
+            bail!("{} is a checkpoint of another caustic version; remove it to start afresh", path.display());
+        }
+        if bytes.len() < HEADER + TRAILER || &bytes[..8] != MAGIC {
             bail!("{} is not a caustic checkpoint", path.display());
         }
         let scene = u64::from_le_bytes(bytes[8..16].try_into().unwrap());
@@ -80,20 +89,87 @@ impl Checkpoint {
             (word(16).unwrap(), word(20).unwrap(), word(24).unwrap(), word(28).unwrap() as usize);
         let batches = word(32).unwrap();
         let per_pixel = std::mem::size_of::<PixelAccum>() / 4;
-        if bytes.len() != HEADER + count * 4 || count % per_pixel != 0 {
+        let expected = count.checked_mul(4).and_then(|b| b.checked_add(HEADER + TRAILER));
+        if expected != Some(bytes.len()) || count % per_pixel != 0 {
             bail!(
-                "{}: truncated checkpoint ({} bytes, expected {})",
+                "{}: truncated or damaged checkpoint ({} bytes; its header says {count} values)",
                 path.display(),
                 bytes.len(),
-                HEADER + count * 4
             );
         }
+        let (content, trailer) = bytes.split_at(bytes.len() - TRAILER);
+        if crc32fast::hash(content) != u32::from_le_bytes(trailer.try_into().unwrap()) {
+            bail!("{}: damaged checkpoint (checksum mismatch); remove it to start afresh", path.display());
+        }
         let floats: Vec<f32> =
-            bytes[HEADER..].chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().unwrap())).collect();
+            content[HEADER..].chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().unwrap())).collect();
         let accum = Accumulation {
             pixels: bytemuck::pod_collect_to_vec(&floats),
             batches: (batches != u32::MAX).then_some(batches),
         };
         Ok(Checkpoint { scene, seed, spp_total, spp_done, accum })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use caustic_kernel::layout::PixelAccum;
+
+    fn sample() -> Checkpoint {
+        let pixels = (0..6)
+            .map(|i| PixelAccum {
+                sum: [i as f32, 0.5, 2.0],
+                count: 4.0,
+                sum_sq: [1.0, 0.25, i as f32],
+                invalid: 0.0,
+            })
+            .collect();
+        Checkpoint {
+            scene: 0x1234_5678_9abc_def0,
+            seed: 7,
+            spp_total: 16,
+            spp_done: 4,
+            accum: Accumulation { pixels, batches: Some(3) },
+        }
+    }
+
+    fn temp(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("caustic-checkpoint-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join(name)
+    }
+
+    #[test]
+    fn round_trip() {
+        let path = temp("round-trip.ckpt");
+        sample().save(&path).unwrap();
+        assert_eq!(Checkpoint::load(&path).unwrap(), sample());
+    }
+
+    /// One flipped bit anywhere, header or sums, and the file is refused with its name.
+    #[test]
+    fn a_damaged_checkpoint_is_refused() {
+        let path = temp("damaged.ckpt");
+        sample().save(&path).unwrap();
+        let good = std::fs::read(&path).unwrap();
+        for at in [12, 17, 25, 33, HEADER, HEADER + 37, good.len() - 1] {
+            let mut bad = good.clone();
+            bad[at] ^= 0x10;
+            std::fs::write(&path, &bad).unwrap();
+            let e = format!("{:#}", Checkpoint::load(&path).unwrap_err());
+            assert!(e.contains("damaged.ckpt") && e.contains("damaged"), "byte {at}: {e}");
+        }
+    }
+
+    #[test]
+    fn an_older_version_is_named_as_such() {
+        let path = temp("old.ckpt");
+        sample().save(&path).unwrap();
+        let mut old = std::fs::read(&path).unwrap();
+        old[..8].copy_from_slice(b"CAUSTCK2");
+        std::fs::write(&path, &old).unwrap();
+        let e = format!("{:#}", Checkpoint::load(&path).unwrap_err());
+        assert!(e.contains("old.ckpt") && e.contains("another caustic version"), "{e}");
     }
 }

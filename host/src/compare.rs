@@ -6,10 +6,11 @@
 //! values tested (so that a correct renderer fails any one image with probability ≈ 1%). The standard
 //! error combines the render's variance, the reference's (estimated from the render's per-sample variance
 //! and the reference's sample count) and the reference's storage precision (half floats).
-use crate::film::Film;
+use crate::film::{variance_path, Film};
 use anyhow::{bail, Result};
 use glam::Vec3;
 use statrs::distribution::{ContinuousCDF, Normal};
+use std::path::Path;
 
 /// Relative precision of the reference's storage (half float: 2^-11) plus a small absolute floor,
 /// added to the standard error so that noise-free pixels are not failed by rounding.
@@ -100,6 +101,30 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
     })
 }
 
+/// Refuses an image (and its variance, if loaded) holding a NaN or infinite value, naming `path` and
+/// the first such pixel: a single one would make every statistic NaN, and a NaN compares as neither
+/// pass nor fail.
+pub fn check_finite(film: &Film, path: &Path) -> Result<()> {
+    let first_bad = |values: &[[f32; 3]]| values.iter().position(|p| p.iter().any(|c| !c.is_finite()));
+    let bad = |i: usize, what: &str, file: &Path, values: &[[f32; 3]]| {
+        let (x, y) = (i as u32 % film.width, i as u32 / film.width);
+        anyhow::anyhow!(
+            "{}: pixel ({x}, {y}) {what} is not finite ({:?}); compare needs finite images",
+            file.display(),
+            values[i]
+        )
+    };
+    if let Some(i) = first_bad(&film.rgb) {
+        return Err(bad(i, "of the image", path, &film.rgb));
+    }
+    if let Some(v) = &film.variance {
+        if let Some(i) = first_bad(v) {
+            return Err(bad(i, "of the variance", &variance_path(path), v));
+        }
+    }
+    Ok(())
+}
+
 /// Per-pixel variance made robust to its own noise: the larger of the pixel's estimate and the mean
 /// over its 3×3 neighbourhood. With few samples a pixel's variance estimate is itself very noisy (and
 /// heavy-tailed path contributions make it too small more often than too large); pooling with the
@@ -132,13 +157,7 @@ pub fn pooled_variance(v: &[[f32; 3]], width: u32, height: u32) -> Vec<[f32; 3]>
 
 /// Writes the error map as a false-colour PNG: black (no error) through blue and red to yellow at
 /// `scale` (the z-test's critical value, or 100% relative error).
-pub fn save_error_image(
-    path: &std::path::Path,
-    width: u32,
-    height: u32,
-    errors: &[f32],
-    scale: f32,
-) -> Result<()> {
+pub fn save_error_image(path: &Path, width: u32, height: u32, errors: &[f32], scale: f32) -> Result<()> {
     let img = image::RgbImage::from_fn(width, height, |x, y| {
         let t = (errors[(y * width + x) as usize] / scale).clamp(0.0, 1.0);
         let rgb = if t < 0.5 {

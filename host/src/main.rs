@@ -128,6 +128,10 @@ fn parse_define(s: &str) -> Result<(String, String), String> {
 
 fn main() {
     let cli = Cli::parse();
+    // Before any thread starts (it changes the environment); `compare` opens no GPU.
+    if !matches!(cli.command, Command::Compare { .. }) {
+        backend::runtime_dir::ensure_xdg_runtime_dir();
+    }
     let result = match cli.command {
         Command::Render { run, output, variance, quiet, checkpoint, checkpoint_every, tev } => {
             let output = output.unwrap_or_else(|| {
@@ -195,6 +199,8 @@ fn cmd_compare(
 ) -> Result<()> {
     let a = Film::load_with_variance(image)?;
     let b = Film::load_exr(reference)?;
+    compare::check_finite(&a, image)?;
+    compare::check_finite(&b, reference)?;
     let ratio =
         if image_spp > 0 && reference_spp > 0 { image_spp as f64 / reference_spp as f64 } else { 0.0 };
     let c = compare::compare(&a, &b, ratio)?;
@@ -221,6 +227,7 @@ fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Op
     let (choice, seed) = (*choice, *seed);
     let loaded = caustic::load_scene(scene_path, defines)?;
     let reference_film = Film::load_exr(reference)?;
+    compare::check_finite(&reference_film, reference)?;
     // The scene's own integrator, or each one asked for: one curve each, measured one after the other.
     let choices: Vec<Option<IntegratorChoice>> =
         if integrator.is_empty() { vec![None] } else { integrator.iter().copied().map(Some).collect() };
@@ -299,6 +306,9 @@ fn cmd_bench(
     choices: &[BackendChoice],
     spp: u32,
 ) -> Result<()> {
+    if spp == 0 {
+        anyhow::bail!("--spp must be at least 1");
+    }
     let scene = caustic::load_scene(scene_path, defines)?;
     let buffers = buffers::build(&scene)?;
     say!("| backend | resolution | spp | seconds | Msamples/s |");

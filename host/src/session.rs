@@ -69,6 +69,9 @@ impl RenderReport {
 pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
     let output = job.output.as_path();
     film::check_output_path(output)?;
+    if let Some((path, _)) = &job.checkpoint {
+        check_checkpoint_path(path, output)?;
+    }
     let mut scene = crate::load_scene(&job.scene, &job.defines)?;
     if let Some(choice) = job.integrator {
         scene.integrator = scene.integrator.overridden(choice);
@@ -174,6 +177,45 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
         seconds: stats.seconds,
         invalid_samples: film.invalid_samples,
     })
+}
+
+/// Refuses a checkpoint file that is also the image or its variance file: the finished render is
+/// saved there and then the checkpoint is deleted, which would delete the image just written. The
+/// variance file is refused even without `--variance`, since `compare` reads it beside the image.
+fn check_checkpoint_path(checkpoint: &Path, output: &Path) -> Result<()> {
+    for (what, other) in
+        [("output image", output.to_path_buf()), ("variance file", film::variance_path(output))]
+    {
+        if same_file(checkpoint, &other) {
+            bail!(
+                "--checkpoint {} is the {what} {}: the checkpoint is deleted once the image is saved; \
+                 give it a name of its own",
+                checkpoint.display(),
+                other.display()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Whether two paths name one file: canonical paths where the files exist, else the canonical
+/// folder and the file name (the output usually does not exist yet, and `./a.exr` is `a.exr`), else
+/// the paths as given.
+fn same_file(a: &Path, b: &Path) -> bool {
+    if let (Ok(a), Ok(b)) = (a.canonicalize(), b.canonicalize()) {
+        return a == b;
+    }
+    let in_folder = |p: &Path| -> Option<PathBuf> {
+        let dir = match p.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        Some(dir.canonicalize().ok()?.join(p.file_name()?))
+    };
+    match (in_folder(a), in_folder(b)) {
+        (Some(a), Some(b)) => a == b,
+        _ => a == b,
+    }
 }
 
 /// Writes the finished image; if `output` cannot be written, keeps the render in the temporary

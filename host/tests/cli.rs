@@ -136,8 +136,8 @@ fn convergence_writes_its_curve_and_closed_stdout_is_not_a_panic() {
 
 /// A render interrupted after 4 of 8 spp (its checkpoint written through the library) and resumed by
 /// `render --checkpoint` gives the uninterrupted image (up to the rounding of differently split
-/// passes) and removes the checkpoint; a checkpoint of other settings or a damaged one is refused
-/// with a message, not a panic.
+/// passes) and removes the checkpoint; a checkpoint of other settings, a truncated one or one whose
+/// sums are damaged (caught by its checksum) is refused with a message, not a panic.
 #[test]
 fn checkpointed_renders_resume_where_they_stopped() {
     use caustic::checkpoint::{fingerprint, Checkpoint};
@@ -218,6 +218,15 @@ fn checkpointed_renders_resume_where_they_stopped() {
     let out = caustic(&with_ckpt.iter().map(String::as_str).collect::<Vec<_>>());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success() && err.contains("render.ckpt") && !err.contains("panicked"), "{err}");
+    // A flipped bit in the sums: the checksum refuses what would resume into a wrong image.
+    half.save(&ckpt).unwrap();
+    let mut bytes = std::fs::read(&ckpt).unwrap();
+    let middle = bytes.len() / 2;
+    bytes[middle] ^= 0x40;
+    std::fs::write(&ckpt, &bytes).unwrap();
+    let out = caustic(&with_ckpt.iter().map(String::as_str).collect::<Vec<_>>());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(1) && err.contains("render.ckpt") && err.contains("damaged"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -290,5 +299,130 @@ fn render_streams_to_tev() {
     ]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success() && err.contains("without the viewer"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A checkpoint named like the image or its variance file is refused before rendering (exit code 1,
+/// naming the file): the checkpoint is deleted once the image is saved, which would delete the image.
+/// Spelt differently (`dir/./x`) it is still the same file.
+#[test]
+fn checkpoint_on_the_output_is_refused() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-ckpt-clash-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let image = dir.join("clash.exr");
+    let (dotted_image, dotted_variance) = (dir.join(".").join("clash.exr"), dir.join("./clash.variance.exr"));
+    let cases = [
+        (image.clone(), image.clone(), false),
+        (image.clone(), dotted_image.clone(), false),
+        (image.clone(), dotted_variance.clone(), true),
+        (dotted_image.clone(), dir.join("clash.variance.exr"), false),
+    ];
+    for (output, checkpoint, existing) in cases {
+        std::fs::remove_file(&image).ok();
+        if existing {
+            std::fs::write(&image, b"an earlier render").unwrap();
+        }
+        let out = caustic(&[
+            "render",
+            scene,
+            "--backend",
+            "cpu",
+            "--spp",
+            "1",
+            "-D",
+            "res=8",
+            "-q",
+            "-o",
+            output.to_str().unwrap(),
+            "--checkpoint",
+            checkpoint.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{output:?} with checkpoint {checkpoint:?}: {err}");
+        assert!(err.contains("--checkpoint") && err.contains("clash") && !err.contains("panicked"), "{err}");
+        if existing {
+            assert_eq!(std::fs::read(&image).unwrap(), b"an earlier render", "the image was touched");
+        } else {
+            assert!(!image.exists(), "rendered although refused");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `compare` with a NaN or infinite pixel in either image is an error naming the file and the first
+/// such pixel (x, y), not a NaN statistic with exit code 0.
+#[test]
+fn compare_refuses_non_finite_pixels() {
+    use caustic::film::Film;
+    let dir = std::env::temp_dir().join(format!("caustic-cli-nan-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let film = |bad: Option<(usize, f32)>| {
+        let mut rgb = vec![[0.5f32; 3]; 4 * 3];
+        if let Some((at, v)) = bad {
+            rgb[at][1] = v;
+        }
+        Film { width: 4, height: 3, rgb, variance: None, invalid_samples: 0 }
+    };
+    let (good, nan, inf) = (dir.join("good.exr"), dir.join("nan.exr"), dir.join("inf.exr"));
+    film(None).save(&good).unwrap();
+    film(Some((4 + 2, f32::NAN))).save(&nan).unwrap();
+    film(Some((2 * 4 + 1, f32::INFINITY))).save(&inf).unwrap();
+    for (image, reference, named, pixel) in
+        [(&nan, &good, "nan.exr", "(2, 1)"), (&good, &inf, "inf.exr", "(1, 2)")]
+    {
+        let out = caustic(&["compare", image.to_str().unwrap(), reference.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{named}: {err}");
+        assert!(err.contains(named) && err.contains(pixel) && !err.contains("panicked"), "{err}");
+    }
+    let out = caustic(&["compare", good.to_str().unwrap(), good.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `bench --spp 0` is refused (it printed NaN throughput).
+#[test]
+fn bench_refuses_zero_spp() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let out = caustic(&["bench", scene, "-D", "res=8", "--backend", "cpu", "--spp", "0"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("--spp") && !String::from_utf8_lossy(&out.stdout).contains("NaN"), "{err}");
+}
+
+/// Without a usable XDG_RUNTIME_DIR (unset, empty or relative: no display session) the Vulkan
+/// loader's window-system code printed "XDG_RUNTIME_DIR is invalid or not set" on every GPU render;
+/// caustic gives it a private directory of its own instead. Whether or not a Vulkan adapter exists,
+/// the message must not appear.
+#[test]
+fn no_xdg_runtime_dir_message_without_a_display() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-xdg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out_path = dir.join("x.png");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    for value in [None, Some(""), Some("relative/dir")] {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_caustic"));
+        command.args([
+            "render",
+            scene,
+            "--backend",
+            "gpu",
+            "--spp",
+            "1",
+            "-D",
+            "res=8",
+            "-q",
+            "-o",
+            out_path.to_str().unwrap(),
+        ]);
+        match value {
+            None => command.env_remove("XDG_RUNTIME_DIR"),
+            Some(v) => command.env("XDG_RUNTIME_DIR", v),
+        };
+        let out = command.output().expect("runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!err.contains("XDG_RUNTIME_DIR") && !err.contains("panicked"), "{value:?}: {err}");
+    }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -122,3 +122,99 @@ fn moment_renders_its_nested_integrator() {
     let e = format!("{:#}", caustic::load_scene(&bad, &[]).unwrap_err());
     assert!(e.contains("moment_empty.xml:3") && e.contains("nested"), "{e}");
 }
+
+/// Loading is linear in the number of elements: 20,000 spheres load (the time is printed; each
+/// element's line used to be found by scanning the file from its start), and the line named for the
+/// last of them is still right.
+#[test]
+fn twenty_thousand_spheres_load() {
+    const SPHERES: usize = 20_000;
+    let mut body = format!("<scene version=\"3.0.0\">\n{SENSOR}\n");
+    for i in 0..SPHERES {
+        body.push_str(&format!(
+            "<shape type=\"sphere\"><point name=\"center\" x=\"{i}\" y=\"0\" z=\"0\"/><float name=\"radius\" value=\"0.4\"/></shape>\n"
+        ));
+    }
+    // Line SPHERES + 3: a parameter nobody reads, to check the line named in its warning.
+    body.push_str("<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n</scene>\n");
+    let path = write_scene("spheres.xml", &body);
+    let start = std::time::Instant::now();
+    let scene = caustic::load_scene(&path, &[]).expect("loads");
+    println!("{} spheres loaded in {:.3} s", SPHERES + 1, start.elapsed().as_secs_f64());
+    assert_eq!(scene.shapes.len(), SPHERES + 1);
+    let w = scene.warnings.join("\n");
+    assert!(w.contains(&format!("spheres.xml:{}", SPHERES + 3)) && w.contains("wobble"), "{w}");
+}
+
+/// What Mitsuba refuses is an error here too, naming file and line, rather than a silent choice: an
+/// `id` given twice, two BSDFs (or two area emitters) in one shape, two integrators.
+#[test]
+fn what_mitsuba_refuses_is_an_error() {
+    for (what, body, needle) in [
+        (
+            "duplicate-id",
+            "<bsdf type=\"diffuse\" id=\"a\"/>\n<bsdf type=\"conductor\" id=\"a\"/>",
+            "duplicate id",
+        ),
+        (
+            "duplicate-id-kinds",
+            "<texture type=\"checkerboard\" id=\"a\"/>\n<shape type=\"sphere\" id=\"a\"/>",
+            "duplicate id",
+        ),
+        (
+            "two-bsdfs",
+            "<bsdf type=\"diffuse\" id=\"grey\"/>\n<shape type=\"sphere\"><bsdf type=\"diffuse\"/><ref id=\"grey\"/></shape>",
+            "BSDF",
+        ),
+        (
+            "two-nested-bsdfs",
+            "<shape type=\"sphere\"><bsdf type=\"diffuse\"/>\n<bsdf type=\"conductor\"/></shape>",
+            "BSDF",
+        ),
+        (
+            "two-emitters",
+            "<shape type=\"sphere\"><emitter type=\"area\"/>\n<emitter type=\"area\"/></shape>",
+            "emitter",
+        ),
+        (
+            "two-integrators",
+            "<integrator type=\"path\"/>\n<integrator type=\"direct\"/>",
+            "integrator",
+        ),
+    ] {
+        // The second definition is on line 4 (the scene's sensor takes line 2).
+        let e = load_err(
+            &format!("refused-{what}.xml"),
+            &format!("<scene version=\"3.0.0\">\n{SENSOR}\n{body}\n</scene>\n"),
+        );
+        assert!(e.contains(&format!("refused-{what}.xml:4")) && e.contains(needle), "{what}: {e}");
+    }
+}
+
+/// Elements nested 10,000 deep are a clean error naming file and line, not a stack overflow (of the
+/// XML parser, or of the loader recursing through `twosided` and `moment`); 256 levels still load.
+#[test]
+fn deep_nesting_is_an_error_not_a_stack_overflow() {
+    const DEPTH: usize = 10_000;
+    let shape = |inner: &str| format!("<shape type=\"sphere\">\n{inner}</shape>\n");
+    let nest = |open: &str, innermost: &str, close: &str| {
+        format!("{}{innermost}{}", open.repeat(DEPTH), close.repeat(DEPTH))
+    };
+    for (what, nested) in [
+        ("bsdfs", shape(&nest("<bsdf type=\"twosided\">\n", "<bsdf type=\"diffuse\"/>", "</bsdf>"))),
+        ("moments", nest("<integrator type=\"moment\">\n", "<integrator type=\"path\"/>", "</integrator>")),
+        ("elements", shape(&nest("<x>\n", "", "</x>"))),
+    ] {
+        let body = format!("<scene version=\"3.0.0\">\n{nested}</scene>\n");
+        let e = load_err(&format!("deep-{what}.xml"), &body);
+        assert!(e.contains(&format!("deep-{what}.xml:")) && e.contains("nested"), "{what}: {e}");
+    }
+    // Just inside the limit (256 levels: scene, shape, 253 BSDFs), on a test thread's small stack.
+    let inner = format!(
+        "{}<bsdf type=\"diffuse\"/>{}",
+        "<bsdf type=\"twosided\">".repeat(252),
+        "</bsdf>".repeat(252)
+    );
+    let path = write_scene("deep-enough.xml", &format!("<scene version=\"3.0.0\">{}</scene>", shape(&inner)));
+    assert_eq!(caustic::load_scene(&path, &[]).expect("loads").shapes.len(), 1);
+}

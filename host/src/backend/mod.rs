@@ -1,6 +1,7 @@
 //! Rendering backends: the same kernel on the GPU (wgpu compute) or the CPU (rayon).
 pub mod cpu;
 pub mod gpu;
+pub mod runtime_dir;
 
 use crate::film::Accumulation;
 use anyhow::Result;

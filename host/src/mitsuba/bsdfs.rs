@@ -110,7 +110,7 @@ impl Loader {
                 props.loc
             ));
         }
-        let inner_props = self.props(&props.path, props.doc, inner_entry.node)?;
+        let inner_props = self.props(props.src, inner_entry.node)?;
         let index = self.load_bsdf(&inner_props)?;
         let mut m = self.materials[index as usize];
         if matches!(m.kind, BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC | BSDF_ROUGH_DIELECTRIC) {

@@ -67,7 +67,7 @@ impl Loader {
                         props.loc
                     ));
                 }
-                let inner = self.props(&props.path, props.doc, inner.node)?;
+                let inner = self.props(props.src, inner.node)?;
                 self.load_integrator(&inner)?
             }
             other => {

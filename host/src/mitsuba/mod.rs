@@ -5,7 +5,8 @@
 //! parse values; `props` gives typed properties with their source locations; `xml` holds the XML
 //! primitives all of these share (locations, attributes, number lists, one-or-three-number vectors)
 //! and uses none of them. This module holds the document machinery: `<default>`, `$name`
-//! substitution, `-D` overrides, `<include>`, `<path>`, `id`/`<ref>`.
+//! substitution, `-D` overrides, `<include>`, `<path>`, `id`/`<ref>` (ids unique, as Mitsuba wants
+//! them), and one integrator per scene.
 mod bsdfs;
 pub mod cie_tables;
 mod emitters;
@@ -25,7 +26,7 @@ use caustic_kernel::layout::Material;
 use props::Props;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use xml::Loc;
+use xml::{Loc, Source};
 
 /// The state of loading one scene (shared by included files).
 pub(crate) struct Loader {
@@ -47,6 +48,10 @@ pub(crate) struct Loader {
     integrator: Option<Integrator>,
     warnings: Vec<String>,
     include_depth: u32,
+    /// Every `id` given so far, in any file of the scene, with where: Mitsuba refuses a duplicate.
+    ids: HashMap<String, Loc>,
+    /// Where the scene's integrator was given: Mitsuba refuses a second.
+    integrator_loc: Option<Loc>,
 }
 
 /// Loads a Mitsuba 3 scene; `defines` are `-D name=value` overrides.
@@ -65,6 +70,8 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
         integrator: None,
         warnings: Vec::new(),
         include_depth: 0,
+        ids: HashMap::new(),
+        integrator_loc: None,
     };
     loader.load_file(path)?;
     let sensor = match loader.sensor.take() {
@@ -96,31 +103,38 @@ impl Loader {
     fn load_file(&mut self, path: &Path) -> Result<()> {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("cannot read scene file {}", path.display()))?;
-        let doc = roxmltree::Document::parse(&text).map_err(|e| {
-            let pos = e.pos();
-            anyhow::anyhow!("{}:{}:{}: malformed XML: {e}", path.display(), pos.row, pos.col)
-        })?;
-        let root = doc.root_element();
-        let loc = Loc::of(path, &doc, root);
+        let src = Source::parse(path, &text)?;
+        let root = src.doc.root_element();
+        let loc = src.loc(root);
         if root.tag_name().name() != "scene" {
             bail!("{loc}: expected a <scene> root element, found <{}>", root.tag_name().name());
         }
+        self.check_ids(&src)?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         self.search_paths.insert(0, dir);
-        let result = self.load_scene_children(path, &doc, root);
+        let result = self.load_scene_children(&src, root);
         self.search_paths.remove(0);
         result
     }
 
-    fn load_scene_children(
-        &mut self,
-        path: &Path,
-        doc: &roxmltree::Document,
-        root: roxmltree::Node,
-    ) -> Result<()> {
-        self.register_named_area_emitters(path, doc, root)?;
+    /// Refuses an `id` given twice (here or in an earlier file of the scene), as Mitsuba does;
+    /// `<ref id>` refers to an id and does not give one.
+    fn check_ids(&mut self, src: &Source) -> Result<()> {
+        for node in src.doc.descendants().filter(|n| n.is_element() && n.tag_name().name() != "ref") {
+            let Some(id) = node.attribute("id") else { continue };
+            let loc = src.loc(node);
+            if let Some(first) = self.ids.get(id) {
+                bail!("{loc}: duplicate id \"{id}\" (first given at {first})");
+            }
+            self.ids.insert(id.to_string(), loc);
+        }
+        Ok(())
+    }
+
+    fn load_scene_children(&mut self, src: &Source, root: roxmltree::Node) -> Result<()> {
+        self.register_named_area_emitters(src, root)?;
         for node in root.children().filter(|n| n.is_element()) {
-            let loc = Loc::of(path, doc, node);
+            let loc = src.loc(node);
             match node.tag_name().name() {
                 "default" => {
                     let name = xml::attr(node, "name", &loc)?;
@@ -143,36 +157,40 @@ impl Loader {
                     self.search_paths.insert(1.min(self.search_paths.len()), dir);
                 }
                 "bsdf" => {
-                    let props = self.props(path, doc, node)?;
+                    let props = self.props(src, node)?;
                     let index = self.load_bsdf(&props)?;
                     if let Some(id) = node.attribute("id") {
                         self.named_bsdfs.insert(id.to_string(), index);
                     }
                 }
                 "shape" => {
-                    let props = self.props(path, doc, node)?;
+                    let props = self.props(src, node)?;
                     self.load_shape(&props)?;
                 }
                 "texture" => {
-                    let props = self.props(path, doc, node)?;
+                    let props = self.props(src, node)?;
                     let index = self.load_texture(&props)?;
                     if let Some(id) = node.attribute("id") {
                         self.named_textures.insert(id.to_string(), index);
                     }
                 }
                 "emitter" => {
-                    let props = self.props(path, doc, node)?;
+                    let props = self.props(src, node)?;
                     if !(props.kind == "area" && node.attribute("id").is_some()) {
                         self.load_emitter(&props)?;
                     }
                 }
                 "sensor" => {
-                    let props = self.props(path, doc, node)?;
+                    let props = self.props(src, node)?;
                     self.sensor = Some(self.load_sensor(&props)?);
                 }
                 "integrator" => {
-                    let props = self.props(path, doc, node)?;
+                    if let Some(first) = &self.integrator_loc {
+                        bail!("{loc}: a second <integrator> (the first is at {first}); a scene takes one");
+                    }
+                    let props = self.props(src, node)?;
                     self.integrator = Some(self.load_integrator(&props)?);
+                    self.integrator_loc = Some(loc);
                 }
                 other => {
                     self.warn(&format!("{loc}: <{other}> is not supported yet; ignored"));
@@ -184,18 +202,13 @@ impl Loader {
 
     /// Top-level named area emitters, registered before the shapes that `<ref>` them load: Mitsuba
     /// resolves references across the whole file, so a shape may name an emitter defined below it.
-    fn register_named_area_emitters(
-        &mut self,
-        path: &Path,
-        doc: &roxmltree::Document,
-        root: roxmltree::Node,
-    ) -> Result<()> {
+    fn register_named_area_emitters(&mut self, src: &Source, root: roxmltree::Node) -> Result<()> {
         let named = root.children().filter(|n| {
             n.is_element() && n.tag_name().name() == "emitter" && n.attribute("type") == Some("area")
         });
         for node in named {
             if let Some(id) = node.attribute("id") {
-                let props = self.props(path, doc, node)?;
+                let props = self.props(src, node)?;
                 if let Some(radiance) = self.load_shape_emitter(&props)? {
                     self.named_area_emitters.insert(id.to_string(), radiance);
                 }
@@ -258,11 +271,10 @@ impl Loader {
 
     pub(crate) fn props<'a, 'input>(
         &self,
-        path: &Path,
-        doc: &'a roxmltree::Document<'input>,
+        src: &'a Source<'input>,
         node: roxmltree::Node<'a, 'input>,
     ) -> Result<Props<'a, 'input>> {
-        Props::collect(self, path, doc, node)
+        Props::collect(self, src, node)
     }
 
     /// Warns about every property and nested element of `props` that the plugin did not read.

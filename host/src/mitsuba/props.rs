@@ -1,11 +1,10 @@
 //! Typed access to a plugin element's properties, each remembered with its file:line for messages.
 use super::spectrum::{spectrum_to_rgb, uniform_spectrum_to_rgb, SpectrumUse};
-use super::xml::{expand_value_to_xyz, vector_from_node, Loc, XyzError};
+use super::xml::{expand_value_to_xyz, vector_from_node, Loc, Source, XyzError};
 use super::Loader;
 use anyhow::{bail, Context, Result};
 use glam::{Mat4, Vec3};
 use std::cell::RefCell;
-use std::path::{Path, PathBuf};
 
 /// One child element of a plugin: a value (`<float name=…>`) or a nested object (`<bsdf>`, `<ref>`).
 pub struct Entry<'a, 'input> {
@@ -24,8 +23,8 @@ pub struct Props<'a, 'input> {
     pub kind: String,
     /// The `id` attribute (the target of a `<ref>`).
     pub id: Option<String>,
-    pub path: PathBuf,
-    pub doc: &'a roxmltree::Document<'input>,
+    /// The file it was read from.
+    pub src: &'a Source<'input>,
     pub entries: Vec<Entry<'a, 'input>>,
     used: RefCell<Vec<bool>>,
 }
@@ -33,14 +32,13 @@ pub struct Props<'a, 'input> {
 impl<'a, 'input> Props<'a, 'input> {
     pub fn collect(
         loader: &Loader,
-        path: &Path,
-        doc: &'a roxmltree::Document<'input>,
+        src: &'a Source<'input>,
         node: roxmltree::Node<'a, 'input>,
     ) -> Result<Self> {
-        let loc = Loc::of(path, doc, node);
+        let loc = src.loc(node);
         let mut entries = Vec::new();
         for child in node.children().filter(|n| n.is_element()) {
-            let child_loc = Loc::of(path, doc, child);
+            let child_loc = src.loc(child);
             let value = match child.attribute("value") {
                 Some(v) => Some(loader.substitute(v, &child_loc)?),
                 None => None,
@@ -63,8 +61,7 @@ impl<'a, 'input> Props<'a, 'input> {
             tag: node.tag_name().name().to_string(),
             kind,
             id: node.attribute("id").map(str::to_string),
-            path: path.to_path_buf(),
-            doc,
+            src,
             entries,
             used: RefCell::new(vec![false; n]),
         })
@@ -152,7 +149,7 @@ impl<'a, 'input> Props<'a, 'input> {
     pub fn transform(&self, name: &str) -> Result<Mat4> {
         let Some(i) = self.find(name) else { return Ok(Mat4::IDENTITY) };
         let e = &self.entries[i];
-        super::transform::parse(&self.path, self.doc, e.node, &e.loc)
+        super::transform::parse(self.src, e.node, &e.loc)
     }
 
     /// Nested objects with the given tag (e.g. `bsdf`, `emitter`, `ref`), marked as used.

@@ -66,11 +66,11 @@ impl Loader {
             ));
         }
         for e in props.nested("film") {
-            let film = self.props(&props.path, props.doc, e.node)?;
+            let film = self.props(props.src, e.node)?;
             self.load_film(&film, &mut sensor)?;
         }
         for e in props.nested("sampler") {
-            let sampler = self.props(&props.path, props.doc, e.node)?;
+            let sampler = self.props(props.src, e.node)?;
             self.load_sampler(&sampler, &mut sensor)?;
         }
         if props.kind != "orthographic" {
@@ -135,7 +135,7 @@ impl Loader {
         sensor.height = height as u32;
         sensor.crop = self.load_crop(props, sensor.width, sensor.height)?;
         for e in props.nested("rfilter") {
-            let f = self.props(&props.path, props.doc, e.node)?;
+            let f = self.props(props.src, e.node)?;
             sensor.filter = match f.kind.as_str() {
                 "box" => Filter::Box { radius: f.float("radius", 0.5)? },
                 "tent" => Filter::Tent { radius: f.float("radius", 1.0)? },

@@ -4,6 +4,7 @@
 //! `flip_normals` travels to the kernel as a flag of the shape, which turns both the geometric and
 //! the shading normal around, as Mitsuba does.
 use super::props::Props;
+use super::xml::Loc;
 use super::Loader;
 use crate::mesh::{self, primitives, Mesh};
 use crate::scene::{Geometry, Shape};
@@ -103,27 +104,38 @@ impl Loader {
     }
 
     /// The shape's BSDF and area emission, nested or referenced (`<ref>` may name either). Mitsuba's
-    /// default BSDF is diffuse: grey for ordinary shapes, black for emitters.
+    /// default BSDF is diffuse: grey for ordinary shapes, black for emitters. As in Mitsuba, a shape
+    /// takes one BSDF and one area emitter: a second of either is an error, not a silent choice.
     fn shape_bsdf_and_emitter(&mut self, props: &Props) -> Result<(u32, Option<[f32; 3]>)> {
-        let mut material = None;
-        let mut emission = None;
-        for e in props.nested("bsdf") {
-            let p = self.props(&props.path, props.doc, e.node)?;
-            material = Some(self.load_bsdf(&p)?);
-        }
-        for e in props.nested("emitter") {
-            let p = self.props(&props.path, props.doc, e.node)?;
-            emission = self.load_shape_emitter(&p)?;
-        }
-        for e in props.nested("ref") {
-            let p = self.props(&props.path, props.doc, e.node)?;
-            let id = p.doc_attr_id()?;
-            if let Some(&radiance) = self.named_area_emitters.get(&id) {
-                emission = Some(radiance);
+        let mut material: Option<(u32, Loc)> = None;
+        let mut emission: Option<([f32; 3], Loc)> = None;
+        // Marks them used; they are then taken in document order, so that the second is the one named.
+        let (bsdfs, emitters, refs) = (props.nested("bsdf"), props.nested("emitter"), props.nested("ref"));
+        let mut children: Vec<_> = bsdfs.iter().chain(&emitters).chain(&refs).collect();
+        children.sort_by_key(|e| e.node.range().start);
+        for e in children {
+            let p = self.props(props.src, e.node)?;
+            let named_emitter = match e.tag.as_str() {
+                "ref" => self.named_area_emitters.get(&p.doc_attr_id()?).copied(),
+                _ => None,
+            };
+            if e.tag == "emitter" || named_emitter.is_some() {
+                if let Some((_, first)) = &emission {
+                    bail!("{}: a shape takes one area emitter; the first is at {first}", e.loc);
+                }
+                let radiance = match named_emitter {
+                    Some(radiance) => Some(radiance),
+                    None => self.load_shape_emitter(&p)?,
+                };
+                emission = radiance.map(|r| (r, e.loc.clone()));
             } else {
-                material = Some(self.load_bsdf(&p)?);
+                if let Some((_, first)) = &material {
+                    bail!("{}: a shape takes one BSDF; the first is at {first}", e.loc);
+                }
+                material = Some((self.load_bsdf(&p)?, e.loc.clone()));
             }
         }
+        let (material, emission) = (material.map(|(m, _)| m), emission.map(|(r, _)| r));
         let material = match material {
             Some(m) => m,
             None => {

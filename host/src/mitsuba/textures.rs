@@ -109,7 +109,7 @@ impl Loader {
     }
 
     fn texture_entry(&mut self, props: &Props, entry: &Entry) -> Result<u32> {
-        let p = self.props(&props.path, props.doc, entry.node)?;
+        let p = self.props(props.src, entry.node)?;
         self.load_texture(&p)
     }
 

@@ -1,16 +1,15 @@
 //! `<transform>`: translate, rotate, scale, matrix and lookat, composed in document order
 //! (each later operation is applied after the earlier ones).
-use super::xml::{expand_value_to_xyz, parse_numbers, vector_from_node, Loc, XyzError};
+use super::xml::{expand_value_to_xyz, parse_numbers, vector_from_node, Loc, Source, XyzError};
 use crate::scene::look_at;
 use anyhow::{bail, Result};
 use glam::{Mat4, Vec3};
-use std::path::Path;
 
-/// The transform of the `<transform>` element `node` of the document `doc` read from `path`.
-pub fn parse(path: &Path, doc: &roxmltree::Document, node: roxmltree::Node, loc: &Loc) -> Result<Mat4> {
+/// The transform of the `<transform>` element `node` of `src`.
+pub fn parse(src: &Source, node: roxmltree::Node, loc: &Loc) -> Result<Mat4> {
     let mut m = Mat4::IDENTITY;
     for op in node.children().filter(|n| n.is_element()) {
-        let op_loc = Loc::of(path, doc, op);
+        let op_loc = src.loc(op);
         let value = op.attribute("value");
         let step = match op.tag_name().name() {
             "translate" => Mat4::from_translation(vector_from_node(op, value, &op_loc)?),
