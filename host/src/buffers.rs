@@ -476,8 +476,10 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let nodes = if has_prims {
         build_bvh(&mut prims, &mut attributes, &mut light_list.lights)?
     } else {
-        // An empty box (min > max) that no ray enters.
-        vec![BvhNode { min: [1.0; 3], prim_count: 0, max: [-1.0; 3], first: 0 }]
+        // A leaf holding only the placeholder primitive pushed below (a triangle of zero area that no
+        // ray hits). Not an inner node with an inverted box: the slab test swaps min and max, so such a
+        // box is [-1, 1]³ to it, and traversal read children that do not exist (CPU panic, GPU garbage).
+        vec![BvhNode { min: [0.0; 3], prim_count: 1, max: [0.0; 3], first: 0 }]
     };
     let mut tables = filter_cdf(&scene.sensor.filter);
     let filter_cdf_offset = 0;
@@ -546,7 +548,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         materials.push(Material::default());
     }
     if prims.is_empty() {
-        prims.push(Primitive::default());
+        prims.push(Primitive { light: NONE, ..Primitive::default() });
         attributes.push(TriangleAttributes::default());
     }
     if lights.is_empty() {

@@ -218,3 +218,25 @@ fn deep_nesting_is_an_error_not_a_stack_overflow() {
     let path = write_scene("deep-enough.xml", &format!("<scene version=\"3.0.0\">{}</scene>", shape(&inner)));
     assert_eq!(caustic::load_scene(&path, &[]).expect("loads").shapes.len(), 1);
 }
+
+/// A scene with nothing to hit renders black on both backends (it panicked the CPU runner: the empty
+/// BVH's root was traversed as an inner node).
+#[test]
+fn a_scene_without_shapes_renders_black() {
+    for xml in [
+        r#"<scene version="3.0.0"/>"#,
+        r#"<scene version="3.0.0"><sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor><emitter type="point"><point name="position" value="0, 0, 1"/></emitter></scene>"#,
+    ] {
+        let scene = caustic_tests::load_xml(xml, "empty");
+        for choice in [caustic::backend::BackendChoice::Cpu, caustic::backend::BackendChoice::Gpu] {
+            let mut small = scene.clone();
+            small.sensor.width = small.sensor.width.min(8);
+            small.sensor.height = small.sensor.height.min(8);
+            let film = caustic_tests::render_scene(&small, choice, 2, 1);
+            assert!(
+                film.rgb.iter().flatten().all(|&c| c == 0.0),
+                "{choice:?}: a scene without shapes is not black"
+            );
+        }
+    }
+}
