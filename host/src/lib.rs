@@ -1,6 +1,6 @@
 //! caustic's host: scene loading (Mitsuba 3 XML, OBJ/MTL), BVH construction, the GPU (wgpu) and CPU
-//! backends, progressive rendering, image output, comparison and error-against-time curves. No shading code lives here: all of
-//! it is in `caustic-kernel`.
+//! backends, render sessions, progressive rendering, image output, comparison and error-against-time
+//! curves. No shading code lives here: all of it is in `caustic-kernel`.
 pub mod backend;
 pub mod buffers;
 pub mod checkpoint;

@@ -5,8 +5,8 @@
 //! as two `u32` words (low, high) and added with 32-bit integer atomics only (core SPIR-V; no 64-bit
 //! or float atomics needed). Integer sums do not depend on the order of the additions, unlike float
 //! atomics. Values are rounded stochastically with the path's own random number, so the rounding is
-//! unbiased. Resolution 2⁻²⁴ ≈ 6e-8 per splat; range 2⁴⁰ ≈ 1.1e12 per pixel and pass (the host resolves
-//! the sums into its float accumulator after every pass and clears them). Non-finite, negative or
+//! unbiased. Resolution 2⁻²⁴ ≈ 6e-8 per splat; range 2⁴⁰ ≈ 1.1e12 per pixel and pass (the sums are
+//! folded into the float accumulator and cleared after every pass). Non-finite, negative or
 //! out-of-range contributions are never added: they are counted in the pixel's `invalid` word. After
 //! each pass `resolved` folds the words into the pixel's float accumulator and the words are cleared.
 #[cfg(target_arch = "spirv")]

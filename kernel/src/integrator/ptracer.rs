@@ -6,7 +6,8 @@
 //! Normalisation: one light path per pixel and sample, so `spp × pixels` paths; a path's splat is its
 //! contribution times `full image pixels / rendered pixels` (crop windows), and the host divides each
 //! pixel's sum by the samples per pixel, as for camera paths. Each connection is splatted into every
-//! pixel whose reconstruction filter covers it, weighted as that pixel's camera samples are. `max_depth` counts segments as in `path`: a vertex `d` segments from the emitter is connected
+//! pixel whose reconstruction filter covers it, weighted as that pixel's camera samples are.
+//! `max_depth` counts segments as in `path`: a vertex `d` segments from the emitter is connected
 //! only if `d + 1 ≤ max_depth`; `hide_emitters` drops the emitter-to-camera connection.
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
@@ -257,7 +258,8 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
     }
 }
 
-/// `1/er²` for next-event estimation from the first vertex `p` towards the emitter point of `es`: the density ratio `emission::nee_ratio` of that light sample.
+/// `1/er²` for next-event estimation from the first vertex `p` towards the emitter point of `es`:
+/// the density ratio `emission::nee_ratio` of that light sample.
 fn inv_nee_ratio_sq(scene: &SceneView, es: &emission::EmissionSample, p: Vec3) -> f32 {
     let d = es.p - p;
     let dist2 = d.length_squared();
