@@ -8,7 +8,7 @@ use caustic_kernel::bsdf::{BsdfFlags, TransportMode};
 use caustic_kernel::glam::Vec3;
 use caustic_kernel::layout::Material;
 use caustic_kernel::rng::Sampler;
-use common::mitsuba::reference_material;
+use common::mitsuba::{reference_material, REFERENCE_MODELS};
 use common::models::*;
 
 #[test]
@@ -53,19 +53,7 @@ fn sample_weights_equal_eval_over_pdf() {
 /// Every model kind: `every_model` and the materials of the Mitsuba references.
 fn all_models() -> Vec<(String, Material)> {
     let mut v = every_model();
-    for name in [
-        "conductor",
-        "rough_conductor_ggx_aniso",
-        "rough_conductor_beckmann",
-        "dielectric",
-        "thin_dielectric",
-        "rough_dielectric_ggx",
-        "rough_dielectric_beckmann_aniso",
-        "plastic",
-        "plastic_nonlinear",
-        "rough_plastic_beckmann",
-        "rough_plastic_ggx_nonlinear",
-    ] {
+    for name in REFERENCE_MODELS {
         v.push((format!("mitsuba reference {name}"), reference_material(name)));
     }
     v

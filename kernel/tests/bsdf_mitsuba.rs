@@ -5,7 +5,7 @@
 //! says how to regenerate them; `common::mitsuba::reference_material` mirrors its dictionaries.
 mod common;
 use caustic_kernel::glam::{Vec2, Vec3};
-use common::mitsuba::{reference_model, references};
+use common::mitsuba::{reference_model, references, REFERENCE_MODELS};
 use common::models::{close, close3};
 
 #[test]
@@ -83,19 +83,7 @@ fn every_reference_model_has_values() {
     let delta = ["conductor", "dielectric", "thin_dielectric"];
     let refracting =
         ["dielectric", "thin_dielectric", "rough_dielectric_ggx", "rough_dielectric_beckmann_aniso"];
-    let models = [
-        "conductor",
-        "rough_conductor_ggx_aniso",
-        "rough_conductor_beckmann",
-        "dielectric",
-        "thin_dielectric",
-        "rough_dielectric_ggx",
-        "rough_dielectric_beckmann_aniso",
-        "plastic",
-        "plastic_nonlinear",
-        "rough_plastic_beckmann",
-        "rough_plastic_ggx_nonlinear",
-    ];
+    let models = REFERENCE_MODELS;
     for model in models {
         // Building it checks that the name is one `reference_material` knows.
         reference_model(model, false);

@@ -81,6 +81,21 @@ pub fn references() -> References {
     References { eval, sample }
 }
 
+/// Every material `reference_material` knows: the models Mitsuba's values cover.
+pub const REFERENCE_MODELS: [&str; 11] = [
+    "conductor",
+    "rough_conductor_ggx_aniso",
+    "rough_conductor_beckmann",
+    "dielectric",
+    "thin_dielectric",
+    "rough_dielectric_ggx",
+    "rough_dielectric_beckmann_aniso",
+    "plastic",
+    "plastic_nonlinear",
+    "rough_plastic_beckmann",
+    "rough_plastic_ggx_nonlinear",
+];
+
 /// The materials of the reference values: the same parameters as the Mitsuba dictionaries
 /// (`MATERIALS` in the script), whose `ext_ior` is 1.
 pub fn reference_material(name: &str) -> Material {
