@@ -4,7 +4,8 @@
 - scenes/meshes/goblet.obj: a goblet lathed from a closed profile (foot, stem, bowl with a wall of
   finite thickness), a watertight solid for `glasses.xml`;
 - scenes/meshes/lens.obj: a biconvex lens (two spherical caps meeting at a sharp rim) for
-  `lightguide.xml`.
+  `lightguide.xml`;
+- scenes/meshes/prism.obj: an equilateral triangular prism (apex +y, axis z) for `prism.xml`.
 
 Run from the repository root: python3 scenes/generate_caustic_scenes.py
 """
@@ -93,9 +94,24 @@ def lens(radius=0.5, thickness=0.22, rings=24, segments=96):
     return lathe(profile, segments)
 
 
+def prism(side=0.8, height=1.0):
+    """A closed equilateral prism: the triangle (side `side`, centroid at the origin, apex towards +y)
+    extruded from z = -height/2 to +height/2, faces wound outwards."""
+    h = side * math.sqrt(3.0) / 2.0
+    tri = [(-side / 2.0, -h / 3.0), (side / 2.0, -h / 3.0), (0.0, 2.0 * h / 3.0)]  # counter-clockwise
+    verts = [(x, y, -height / 2.0) for x, y in tri] + [(x, y, height / 2.0) for x, y in tri]
+    faces = [(0, 2, 1), (3, 4, 5)]  # bottom (facing -z), top (facing +z)
+    for i in range(3):
+        j = (i + 1) % 3
+        faces += [(i, j, j + 3), (i, j + 3, i + 3)]
+    return verts, faces
+
+
 if __name__ == "__main__":
     v, f = lathe(goblet_profile(), 96)
     write_obj(os.path.join(HERE, "meshes", "goblet.obj"), v, f, "goblet: lathed glass solid, 1 unit tall")
     v, f = lens()
     write_obj(os.path.join(HERE, "meshes", "lens.obj"), v, f, "biconvex lens, aperture radius 0.5")
-    print("wrote scenes/meshes/goblet.obj and scenes/meshes/lens.obj")
+    v, f = prism()
+    write_obj(os.path.join(HERE, "meshes", "prism.obj"), v, f, "equilateral prism, side 0.8, height 1")
+    print("wrote scenes/meshes/goblet.obj, lens.obj and prism.obj")

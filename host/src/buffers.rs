@@ -503,6 +503,14 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         }
     }
 
+    // Dispersive materials: the wavelengths their paths draw (`caustic_kernel::wavelength`).
+    let mut wavelength_table = 0;
+    if materials.iter().any(caustic_kernel::wavelength::disperses) {
+        use crate::mitsuba::spectrum::{cie_xyz_table, XYZ_TO_SRGB};
+        wavelength_table = tables.len() as u32;
+        tables.extend(caustic_kernel::wavelength::build_table(&cie_xyz_table(), XYZ_TO_SRGB));
+    }
+
     let s = &scene.sensor;
     let crop = s.crop.unwrap_or(crate::scene::Crop { x: 0, y: 0, width: s.width, height: s.height });
     let (integrator_kind, emitter_samples, bsdf_samples) = match scene.integrator.kind {
@@ -540,6 +548,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         integrator: integrator_kind,
         emitter_samples,
         bsdf_samples,
+        wavelength_table,
         camera: camera(scene),
         ..Default::default()
     };
@@ -582,6 +591,9 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     }
     if caustic_kernel::integrator::splats(integrator) {
         f |= features::LIGHT_TRACER;
+    }
+    if materials.iter().any(caustic_kernel::wavelength::disperses) {
+        f |= features::DISPERSION;
     }
     f
 }

@@ -27,6 +27,8 @@ pub const TEXTURES: u32 = 1 << 20;
 pub const DIRECT_INTEGRATOR: u32 = 1 << 21;
 /// Light tracing (`ptracer`).
 pub const LIGHT_TRACER: u32 = 1 << 22;
+/// Dispersive dielectrics: paths carry a wavelength (`wavelength`).
+pub const DISPERSION: u32 = 1 << 23;
 
 // The kinds must fit their bit ranges.
 const _: () = assert!(BSDF_FUZZY_METAL < 12 && LIGHT_ENVMAP < 8);

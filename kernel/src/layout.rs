@@ -83,6 +83,8 @@ pub const MATERIAL_TWO_SIDED: u32 = 1;
 pub const MATERIAL_BECKMANN: u32 = 2;
 /// Material flag: plastic's `nonlinear` (colour shift from internal scattering).
 pub const MATERIAL_NONLINEAR: u32 = 4;
+/// Material flag: a dielectric whose index of refraction depends on the wavelength (`wavelength`).
+pub const MATERIAL_DISPERSIVE: u32 = 8;
 
 /// A BSDF record (112 bytes). Which fields a model reads is documented by the model's `from_material`;
 /// colours are linear RGB with an unused fourth lane. `Default` is a black diffuse without textures.
@@ -296,7 +298,8 @@ pub struct FrameParams {
     /// Light and BSDF samples per shading point of the direct integrator.
     pub emitter_samples: u32,
     pub bsdf_samples: u32,
-    pub _pad: u32,
+    /// Where the wavelength table starts in the table buffer (`wavelength`; scenes with dispersion).
+    pub wavelength_table: u32,
 
     pub camera: crate::camera::Camera,
 }

@@ -27,6 +27,7 @@ pub mod shape;
 pub mod spectrum;
 pub mod splat;
 pub mod texture;
+pub mod wavelength;
 
 #[cfg(target_arch = "spirv")]
 pub mod entry;

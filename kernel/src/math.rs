@@ -25,6 +25,13 @@ pub fn max_component(v: Vec3) -> f32 {
     v.x.max(v.y).max(v.z)
 }
 
+/// The largest magnitude of the components: path throughputs may have a negative channel once they
+/// carry a wavelength (`wavelength`), and such a path still carries light.
+#[inline]
+pub fn max_abs_component(v: Vec3) -> f32 {
+    v.x.abs().max(v.y.abs()).max(v.z.abs())
+}
+
 /// Whether `x` is neither NaN nor infinite. Not `f32::is_finite` (it compares with an infinite
 /// constant, and naga rejects infinite and NaN literals) and not `x - x == 0` (NVIDIA's Vulkan compiler
 /// was measured to get that wrong on the H100, darkening images through the MIS weights): a comparison

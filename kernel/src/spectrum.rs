@@ -1,5 +1,5 @@
-//! Colour. Version 1 transports linear sRGB triples, like Mitsuba's `rgb` variants; the hero-wavelength
-//! spectral mode for dispersion will add a second `Spectrum` representation behind the same helpers.
+//! Colour: paths transport linear sRGB triples, like Mitsuba's `rgb` variants; a path through dispersive
+//! glass carries one wavelength as well, with the sRGB weight of that wavelength (`wavelength`).
 use crate::glam::Vec3;
 
 pub type Rgb = Vec3;

@@ -1,14 +1,16 @@
 //! Splatting: adding a light path's contribution to an arbitrary pixel from any thread, so that one
 //! seed gives one image on every backend, run after run.
 //!
-//! Each channel is a 64-bit unsigned fixed-point sum with `SPLAT_FRACTION_BITS` fractional bits, kept
-//! as two `u32` words (low, high) and added with 32-bit integer atomics only (core SPIR-V; no 64-bit
-//! or float atomics needed). Integer sums do not depend on the order of the additions, unlike float
-//! atomics. Values are rounded stochastically with the path's own random number, so the rounding is
-//! unbiased. Resolution 2⁻²⁴ ≈ 6e-8 per splat; range 2⁴⁰ ≈ 1.1e12 per pixel and pass (the sums are
-//! folded into the float accumulator and cleared after every pass). Non-finite, negative or
-//! out-of-range contributions are never added: they are counted in the pixel's `invalid` word. After
-//! each pass `resolved` folds the words into the pixel's float accumulator and the words are cleared.
+//! Each channel is a 64-bit signed (two's complement) fixed-point sum with `SPLAT_FRACTION_BITS`
+//! fractional bits, kept as two `u32` words (low, high) and added with 32-bit integer atomics only
+//! (core SPIR-V; no 64-bit or float atomics needed). Integer sums do not depend on the order of the
+//! additions, unlike float atomics. Values are rounded stochastically with the path's own random
+//! number, so the rounding is unbiased. Resolution 2⁻²⁴ ≈ 6e-8 per splat; range ±2³⁹ ≈ ±5.5e11 per
+//! pixel and pass (the sums are folded into the float accumulator and cleared after every pass).
+//! Signed because a path that carries a wavelength has signed colour weights (`wavelength`).
+//! Non-finite or out-of-range contributions are never added: they are counted in the pixel's
+//! `invalid` word. After each pass `resolved` folds the words into the pixel's float accumulator and
+//! the words are cleared.
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
@@ -23,7 +25,7 @@ pub const SPLAT_INVALID: u32 = 6;
 pub const SPLAT_FRACTION_BITS: u32 = 24;
 const SCALE: f32 = (1u32 << SPLAT_FRACTION_BITS) as f32;
 const TWO_32: f32 = 4_294_967_296.0;
-/// The largest value one splat may add (2⁴⁰⁻¹: the high word must not wrap within a pass).
+/// The largest magnitude one splat may add (2³⁹: the top of the signed range).
 pub const SPLAT_MAX: f32 = 1_099_511_627_776.0 / 2.0;
 
 /// A buffer of `u32` words with an atomic add, implemented by each backend.
@@ -54,37 +56,48 @@ impl AtomicWords for GpuWords<'_> {
     }
 }
 
-/// Adds one channel's value (finite, in `[0, SPLAT_MAX)`) at word `base` (low) and `base + 1` (high).
+/// Adds one channel's value (finite, `|value| < SPLAT_MAX`) at word `base` (low) and `base + 1`
+/// (high): the magnitude is rounded to fixed point, a negative value added as its 64-bit two's
+/// complement (the high word wraps on purpose; the sum is read back as signed).
 #[inline]
 fn add_fixed<W: AtomicWords>(words: &mut W, base: u32, value: f32, u: f32) {
-    let scaled = value * SCALE;
-    let mut high = (scaled / TWO_32).floor();
-    let low_f = (scaled - high * TWO_32 + u).floor();
-    let low = if low_f >= TWO_32 {
-        high += 1.0;
-        0
+    let scaled = value.abs() * SCALE;
+    let mut high_f = (scaled / TWO_32).floor();
+    let low_f = (scaled - high_f * TWO_32 + u).floor();
+    let mut low = 0u32;
+    if low_f >= TWO_32 {
+        high_f += 1.0;
     } else if low_f > 0.0 {
-        low_f as u32
-    } else {
-        0
-    };
-    let mut carry_in = high as u32;
+        low = low_f as u32;
+    }
+    let mut high = high_f as u32;
+    if value < 0.0 {
+        (low, high) = negated(low, high);
+    }
     if low != 0 {
         let old = words.fetch_add(base, low);
         // The low word wrapped: carry one into the high word.
         if old > u32::MAX - low {
-            carry_in += 1;
+            high = high.wrapping_add(1);
         }
     }
-    if carry_in != 0 {
-        words.fetch_add(base + 1, carry_in);
+    if high != 0 {
+        words.fetch_add(base + 1, high);
     }
+}
+
+/// The two's complement of the 64-bit number (`low`, `high`).
+#[inline]
+fn negated(low: u32, high: u32) -> (u32, u32) {
+    let low_neg = (!low).wrapping_add(1);
+    let high_neg = if low == 0 { (!high).wrapping_add(1) } else { !high };
+    (low_neg, high_neg)
 }
 
 /// Adds `value` to `pixel`'s sums; `u` ∈ [0, 1) rounds stochastically.
 pub fn splat<W: AtomicWords>(words: &mut W, pixel: u32, value: Rgb, u: f32) {
     let base = pixel * SPLAT_STRIDE;
-    let valid = is_finite3(value) && value.min_element() >= 0.0 && value.max_element() < SPLAT_MAX;
+    let valid = is_finite3(value) && value.abs().max_element() < SPLAT_MAX;
     if !valid {
         words.fetch_add(base + SPLAT_INVALID, 1);
         return;
@@ -99,10 +112,16 @@ pub fn count_invalid<W: AtomicWords>(words: &mut W, pixel: u32) {
     words.fetch_add(pixel * SPLAT_STRIDE + SPLAT_INVALID, 1);
 }
 
-/// The value of one channel's (low, high) words.
+/// The value of one channel's (low, high) words, a signed 64-bit fixed-point number. A negative sum
+/// is negated before the conversion so that small magnitudes keep their precision.
 #[inline]
 fn fixed_to_f32(low: u32, high: u32) -> f32 {
-    high as f32 * (TWO_32 / SCALE) + low as f32 / SCALE
+    if high & 0x8000_0000 != 0 {
+        let (l, h) = negated(low, high);
+        -(h as f32 * (TWO_32 / SCALE) + l as f32 / SCALE)
+    } else {
+        high as f32 * (TWO_32 / SCALE) + low as f32 / SCALE
+    }
 }
 
 /// A pixel's accumulator with one pass of `sample_count` samples per pixel added from its splat

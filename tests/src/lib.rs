@@ -11,6 +11,8 @@ use caustic::scene::Scene;
 use caustic::{buffers, render};
 use std::path::PathBuf;
 
+pub mod replicas;
+
 /// `../shared` beside the repository (override with CAUSTIC_SHARED), whether it is there or not.
 /// (`CARGO_MANIFEST_DIR` is this crate's folder, one below the repository root.)
 fn shared_path() -> PathBuf {

@@ -20,6 +20,45 @@ fn set_specular(m: &mut Material, c: ColorParam) {
     m.specular_texture = c.texture;
 }
 
+/// caustic's dispersion extension of the dielectrics (Mitsuba 3 has none): `abbe_number` (the glass's
+/// Abbe number `V_d`, with `int_ior` as its index at the d line) or `cauchy_b` (Cauchy's `B`, µm², of
+/// the interior) makes the interior's index `int_ior + B·(1/λ² − 1/λ_d²)`; the exterior stays constant.
+/// Mitsuba reads such a scene with a warning about the unknown parameter and renders it without
+/// dispersion.
+fn dispersion(props: &Props, m: &mut Material, int_ior: f32, ext_ior: f32) -> Result<()> {
+    use caustic_kernel::wavelength::{
+        cauchy_b_from_abbe, eta_at, PARAM_CAUCHY_B, WAVELENGTH_MAX, WAVELENGTH_MIN,
+    };
+    let given = |name: &str| props.entries.iter().any(|e| e.name.as_deref() == Some(name));
+    let b = match (given("abbe_number"), given("cauchy_b")) {
+        (true, true) => bail!("{}: give 'abbe_number' or 'cauchy_b' for dispersion, not both", props.loc),
+        (true, false) => {
+            let abbe = props.float("abbe_number", 0.0)?;
+            if !(abbe > 0.0 && abbe.is_finite()) {
+                bail!("{}: 'abbe_number' must be a positive number, not {abbe}", props.loc);
+            }
+            cauchy_b_from_abbe(int_ior, abbe)
+        }
+        (false, true) => props.float("cauchy_b", 0.0)?,
+        (false, false) => return Ok(()),
+    };
+    if !b.is_finite() {
+        bail!("{}: the dispersion coefficient must be finite, not {b}", props.loc);
+    }
+    if b == 0.0 {
+        return Ok(());
+    }
+    m.flags |= MATERIAL_DISPERSIVE;
+    m.params[PARAM_CAUCHY_B] = b / ext_ior;
+    for lambda in [WAVELENGTH_MIN, WAVELENGTH_MAX] {
+        let eta = eta_at(m, lambda);
+        if !(eta > 0.0 && eta.is_finite()) {
+            bail!("{}: with this dispersion the index of refraction at {lambda} nm is {eta}", props.loc);
+        }
+    }
+    Ok(())
+}
+
 /// Roughness below this is treated as this: keeps microfacet densities finite in f32.
 const MIN_ALPHA: f32 = 1.0e-4;
 
@@ -198,7 +237,10 @@ impl Loader {
             "thindielectric" => BSDF_THIN_DIELECTRIC,
             _ => BSDF_ROUGH_DIELECTRIC,
         };
-        let mut m = Material { kind, eta: self.relative_ior(props, "bk7")?, ..Default::default() };
+        let int_ior = self.ior(props, "int_ior", "bk7")?;
+        let ext_ior = self.ior(props, "ext_ior", "air")?;
+        let mut m = Material { kind, eta: int_ior / ext_ior, ..Default::default() };
+        dispersion(props, &mut m, int_ior, ext_ior)?;
         if kind == BSDF_ROUGH_DIELECTRIC {
             self.microfacet(props, &mut m)?;
         }

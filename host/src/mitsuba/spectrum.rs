@@ -21,13 +21,17 @@ pub enum SpectrumUse {
 const Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_06;
 const D65_NORMALIZATION: f64 = 1.0 / 98.997_417_518_762_55;
 
+/// CIE XYZ → linear sRGB (Rec. 709 primaries, D65 white), by rows.
+pub const XYZ_TO_SRGB: [[f64; 3]; 3] =
+    [[3.240479, -1.537150, -0.498535], [-0.969256, 1.875991, 0.041556], [0.055648, -0.204043, 1.057311]];
+
 pub fn xyz_to_srgb(xyz: [f64; 3]) -> [f64; 3] {
-    let [x, y, z] = xyz;
-    [
-        3.240479 * x - 1.537150 * y - 0.498535 * z,
-        -0.969256 * x + 1.875991 * y + 0.041556 * z,
-        0.055648 * x - 0.204043 * y + 1.057311 * z,
-    ]
+    XYZ_TO_SRGB.map(|row| row[0] * xyz[0] + row[1] * xyz[1] + row[2] * xyz[2])
+}
+
+/// The CIE 1931 colour-matching functions at their 5 nm table points, 360–830 nm.
+pub fn cie_xyz_table() -> Vec<[f64; 3]> {
+    (0..CIE_SAMPLES).map(|i| [CIE_X[i], CIE_Y[i], CIE_Z[i]]).collect()
 }
 
 /// Linear interpolation in a 5 nm CIE table; zero outside 360–830 nm.

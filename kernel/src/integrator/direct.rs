@@ -6,7 +6,7 @@ use super::nee::{
     StrategyCounts,
 };
 use super::path::DIM_FIRST_BOUNCE;
-use super::shading_frame;
+use super::{disperse, shading_frame, NO_WAVELENGTH};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
@@ -14,6 +14,9 @@ use crate::layout::{FrameParams, SceneView, NONE};
 use crate::rng::Sampler;
 use crate::shape::{offset_origin, surface_point};
 use crate::spectrum::Rgb;
+
+/// The dimension from which a dispersive surface draws its wavelength (past any sample's).
+const DIM_WAVELENGTH: u32 = u32::MAX - 2;
 
 /// Radiance arriving along `camera_ray` after at most one bounce.
 pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mut Sampler) -> Rgb {
@@ -35,12 +38,15 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     };
     let prim = scene.prims[hit.prim as usize];
     let sp = surface_point(&prim, scene.attributes, &hit, &camera_ray);
-    let mut result = Rgb::ZERO;
+    let mut emitted = Rgb::ZERO;
     if prim.light != NONE {
-        result += area_emission(scene, &prim, &sp, camera_ray.dir, &camera, counts);
+        emitted = area_emission(scene, &prim, &sp, camera_ray.dir, &camera, counts);
     }
 
-    let material = scene.materials[prim.material as usize];
+    let mut material = scene.materials[prim.material as usize];
+    let mut lambda = NO_WAVELENGTH;
+    let dispersion = disperse(scene, params, &mut material, &mut lambda, sampler, DIM_WAVELENGTH);
+    let mut result = Rgb::ZERO;
     let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features);
     let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, camera_ray.dir);
 
@@ -98,5 +104,5 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         };
         result += bs.weight * le / counts.bsdf;
     }
-    result
+    emitted + dispersion * result
 }

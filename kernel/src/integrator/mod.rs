@@ -11,12 +11,15 @@ use crate::film;
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
 pub use crate::layout::SceneView;
-use crate::layout::{FrameParams, PixelAccum, INTEGRATOR_DIRECT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER};
+use crate::layout::{
+    FrameParams, Material, PixelAccum, INTEGRATOR_DIRECT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER,
+};
 use crate::math::is_finite3;
 use crate::rng::Sampler;
 use crate::shape::SurfacePoint;
 use crate::spectrum::Rgb;
 use crate::splat::AtomicWords;
+use crate::wavelength;
 
 /// What one dispatch adds to a pixel.
 #[derive(Clone, Copy)]
@@ -152,4 +155,35 @@ pub fn shading_frame(two_sided: bool, sp: &SurfacePoint, dir: Vec3) -> (Frame, V
     let frame = Frame::from_normal(ns);
     let wo = frame.to_local(-dir);
     (frame, ng, wo)
+}
+
+/// A path's wavelength before it has one (`wavelength`: drawn at the first dispersive vertex).
+pub const NO_WAVELENGTH: f32 = 0.0;
+
+/// Dispersion at a vertex whose material is `material`: in a scene with dispersive materials, a path
+/// that reaches one draws its wavelength there, unless it already carries one (`lambda`; the random
+/// number from dimension `dim`, one no other decision of the vertex uses), and the material refracts
+/// at that wavelength. Returns the factor of the path's throughput: `c(λ)/p(λ)` where a wavelength is
+/// drawn, else one.
+#[inline]
+pub fn disperse(
+    scene: &SceneView,
+    params: &FrameParams,
+    material: &mut Material,
+    lambda: &mut f32,
+    sampler: &Sampler,
+    dim: u32,
+) -> Rgb {
+    let mut factor = Rgb::ONE;
+    if features::has(scene.features, features::DISPERSION) && wavelength::disperses(material) {
+        if *lambda == NO_WAVELENGTH {
+            let mut s = *sampler;
+            s.set_dimension(dim);
+            let ws = wavelength::sample(scene.tables, params.wavelength_table, s.next_1d());
+            *lambda = ws.lambda;
+            factor = ws.weight;
+        }
+        material.eta = wavelength::eta_at(material, *lambda);
+    }
+    factor
 }

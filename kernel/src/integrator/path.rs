@@ -7,13 +7,13 @@ use super::nee::{
     StrategyCounts,
 };
 use super::ptracer::film_scale;
-use super::shading_frame;
+use super::{disperse, shading_frame, NO_WAVELENGTH};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
 use crate::features;
 use crate::layout::{FrameParams, SceneView, INTEGRATOR_IBPT, NONE};
-use crate::math::max_component;
+use crate::math::max_abs_component;
 use crate::rng::Sampler;
 use crate::shape::{offset_origin, surface_point};
 use crate::spectrum::Rgb;
@@ -24,6 +24,8 @@ const ONE_EACH: StrategyCounts = StrategyCounts::ONE_EACH;
 /// paths use the same dimension for the same decision.
 pub const DIM_FIRST_BOUNCE: u32 = 4;
 pub const DIMS_PER_BOUNCE: u32 = 8;
+/// The last of a bounce's dimensions: the wavelength a dispersive vertex draws (`disperse`).
+pub const DIM_WAVELENGTH: u32 = DIMS_PER_BOUNCE - 1;
 
 /// Radiance arriving along `ray`. `pixel_density`: under IBPT, the density with which the pixel's
 /// camera samples land where this ray crosses the film (`film::pixel_density`; unused otherwise).
@@ -44,6 +46,7 @@ pub fn li(
     // IBPT: MIS against the light path that connects to the camera (`LightTracingMis`).
     let ibpt = params.integrator == INTEGRATOR_IBPT && features::has(scene.features, features::LIGHT_TRACER);
     let mut lt_scale = 0.0f32;
+    let mut lambda = NO_WAVELENGTH;
 
     loop {
         sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
@@ -83,7 +86,9 @@ pub fn li(
             break;
         }
 
-        let material = scene.materials[prim.material as usize];
+        let mut material = scene.materials[prim.material as usize];
+        let dim_wavelength = DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE + DIM_WAVELENGTH;
+        throughput *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);
         let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features);
         let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, ray.dir);
 
@@ -134,13 +139,13 @@ pub fn li(
 
         let u_rr = sampler.next_1d();
         if depth >= params.rr_depth {
-            let q = (max_component(throughput) * eta_scale).min(0.95);
+            let q = (max_abs_component(throughput) * eta_scale).min(0.95);
             if u_rr >= q {
                 break;
             }
             throughput /= q;
         }
-        if max_component(throughput) <= 0.0 {
+        if max_abs_component(throughput) <= 0.0 {
             break;
         }
     }

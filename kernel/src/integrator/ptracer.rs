@@ -14,8 +14,8 @@ use spirv_std::num_traits::Float;
 
 use super::mis;
 use super::nee::first_hit_past_emitters;
-use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE};
-use super::shading_frame;
+use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE, DIM_WAVELENGTH};
+use super::{disperse, shading_frame, NO_WAVELENGTH};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::{CameraConnection, Ray};
@@ -23,7 +23,7 @@ use crate::film;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::{FrameParams, SceneView, INTEGRATOR_IBPT, NONE};
 use crate::light::emission;
-use crate::math::{max_component, vec3};
+use crate::math::{max_abs_component, max_component, vec3};
 use crate::rng::Sampler;
 use crate::shape::{offset_origin, surface_point};
 use crate::spectrum::Rgb;
@@ -105,7 +105,7 @@ fn splat_to_camera<W: AtomicWords>(
     u: f32,
     weighting: ConnectionMis,
 ) {
-    if max_component(value) <= 0.0 {
+    if max_abs_component(value) <= 0.0 {
         return;
     }
     // The footprint of the filter around the point, in pixels of the full image, within the crop.
@@ -184,6 +184,7 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
     let mut ray = Ray { origin: es.origin, dir: es.dir, t_min: 0.0, t_max: f32::MAX };
     // Segments from the emitter to the vertex about to be found.
     let mut depth = 1u32;
+    let mut lambda = NO_WAVELENGTH;
     while max_depth == NONE || depth < max_depth {
         sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
         let hit = match accel.trace(&ray, false, NONE) {
@@ -192,7 +193,9 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         };
         let prim = scene.prims[hit.prim as usize];
         let sp = surface_point(&prim, scene.attributes, &hit, &ray);
-        let material = scene.materials[prim.material as usize];
+        let mut material = scene.materials[prim.material as usize];
+        let dim_wavelength = DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE + DIM_WAVELENGTH;
+        beta *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);
         let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features);
         let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, ray.dir);
         let wo_world = -ray.dir;
@@ -246,13 +249,13 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
 
         let u_rr = sampler.next_1d();
         if depth >= params.rr_depth {
-            let q = max_component(beta).min(0.95);
+            let q = max_abs_component(beta).min(0.95);
             if u_rr >= q {
                 break;
             }
             beta /= q;
         }
-        if max_component(beta) <= 0.0 {
+        if max_abs_component(beta) <= 0.0 {
             break;
         }
     }
