@@ -1,5 +1,6 @@
 //! Sensor plugins (`perspective`) with their film (`hdrfilm`), reconstruction filter (`box`, `tent`,
-//! `gaussian`) and sampler (`independent`, `stratified`; others map to the nearest with a warning).
+//! `gaussian`) and sampler (`independent`; `stratified`, `multijitter`, `orthogonal` and `ldsampler`
+//! all use caustic's stratified sequence with the sample count Mitsuba would take).
 use super::props::Props;
 use super::Loader;
 use crate::scene::{Crop, Filter, Projection, SamplerKind, Sensor};
@@ -168,7 +169,8 @@ impl Loader {
         for e in props.nested("rfilter") {
             let f = self.props(props.src, e.node)?;
             sensor.filter = match f.kind.as_str() {
-                "box" => Filter::Box { radius: f.float("radius", 0.5)? },
+                // Mitsuba's box filter has no parameter: its radius is half a pixel.
+                "box" => Filter::Box { radius: 0.5 },
                 "tent" => Filter::Tent { radius: f.float("radius", 1.0)? },
                 "gaussian" => {
                     let stddev = f.float("stddev", 0.5)?;
@@ -209,23 +211,60 @@ impl Loader {
     }
 
     fn load_sampler(&mut self, props: &Props, sensor: &mut Sensor) -> Result<()> {
-        sensor.sampler = match props.kind.as_str() {
+        let kind = props.kind.as_str();
+        sensor.sampler = match kind {
             "independent" => SamplerKind::Independent,
-            "stratified" => SamplerKind::Stratified,
+            // Mitsuba's stratified, multi-jittered, orthogonal-array and low-discrepancy samplers
+            // all stratify the pixel; caustic's stratified sequence stands in for each (the image
+            // converges to the same; the noise differs).
+            "stratified" | "multijitter" | "orthogonal" | "ldsampler" => SamplerKind::Stratified,
             other => {
-                self.warn(&format!("{}: sampler '{other}' is mapped to stratified", props.loc));
+                self.warn(&format!("{}: sampler '{other}' is not supported; using stratified", props.loc));
                 SamplerKind::Stratified
             }
         };
-        let spp = props.integer("sample_count", 4)?;
-        if !(1..=1 << 24).contains(&spp) {
-            bail!("{}: sample_count must be in [1, 16777216], got {spp}", props.loc);
+        let requested = props.integer("sample_count", 4)?;
+        if !(1..=1 << 24).contains(&requested) {
+            bail!("{}: sample_count must be in [1, 16777216], got {requested}", props.loc);
         }
-        sensor.spp = spp as u32;
+        sensor.spp = mitsuba_sample_count(kind, requested as u32);
         props.integer("seed", 0)?;
-        props.boolean("jitter", true)?;
-        props.integer("dimension", 0)?;
+        if matches!(kind, "stratified" | "multijitter" | "orthogonal") {
+            props.boolean("jitter", true)?;
+        }
+        if kind == "orthogonal" {
+            props.integer("strength", 2)?;
+        }
         self.warn_unused(props);
         Ok(())
+    }
+}
+
+/// The sample count Mitsuba 3.9.1's sampler `kind` takes for a requested `n`: stratified rounds up to
+/// a square, orthogonal to the square of a prime, ldsampler to a power of four (at least 4),
+/// multijitter to a near-square grid (⌊√n⌋ rows).
+fn mitsuba_sample_count(kind: &str, n: u32) -> u32 {
+    let is_prime = |x: u32| (2..=x / 2).all(|i| !x.is_multiple_of(i));
+    match kind {
+        "stratified" => {
+            let r = (1u32..).find(|r| r * r >= n).unwrap_or(1);
+            r * r
+        }
+        "orthogonal" => {
+            let r = (2u32..).find(|&r| r * r >= n && is_prime(r)).unwrap_or(2);
+            r * r
+        }
+        "ldsampler" => {
+            let mut r = 2u32;
+            while r * r < n {
+                r = (r + 1).next_power_of_two();
+            }
+            r * r
+        }
+        "multijitter" => {
+            let rows = ((n as f32).sqrt() as u32).max(1);
+            n.div_ceil(rows) * rows
+        }
+        _ => n,
     }
 }
