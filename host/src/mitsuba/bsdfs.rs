@@ -162,10 +162,18 @@ impl Loader {
     /// `distribution`, `alpha` / `alpha_u`, `alpha_v` of the rough models (Mitsuba's default: Beckmann,
     /// α = 0.1); sets the material's roughness fields and flags.
     fn microfacet(&mut self, props: &Props, m: &mut Material) -> Result<()> {
-        match props.string("distribution")?.as_deref() {
+        match props.string("distribution")?.map(|d| d.to_lowercase()).as_deref() {
             None | Some("beckmann") => m.flags |= MATERIAL_BECKMANN,
             Some("ggx") => {}
             Some(other) => bail!("{}: distribution must be beckmann or ggx, not '{other}'", props.loc),
+        }
+        // As Mitsuba: either `alpha`, or both of `alpha_u` and `alpha_v`.
+        let (has_u, has_v) = (props.has("alpha_u"), props.has("alpha_v"));
+        if (has_u || has_v) && props.has("alpha") {
+            bail!("{}: give either 'alpha' or 'alpha_u'/'alpha_v', not both", props.loc);
+        }
+        if has_u != has_v {
+            bail!("{}: 'alpha_u' and 'alpha_v' must be given together", props.loc);
         }
         let alpha = props.float("alpha", 0.1)?;
         let alpha_u = props.float("alpha_u", alpha)?;
@@ -192,20 +200,17 @@ impl Loader {
         if rough {
             self.microfacet(props, &mut m)?;
         }
-        let has_explicit = props.entries.iter().any(|e| matches!(e.name.as_deref(), Some("eta") | Some("k")));
-        let (eta, k) = match props.string("material")? {
-            Some(name) if has_explicit => {
-                bail!("{}: give either 'material' ({name}) or 'eta'/'k', not both", props.loc)
-            }
-            None if has_explicit => (
+        // As Mitsuba: a given `eta` (or `material` none, the default) selects `eta`/`k` (defaults 0
+        // and 1, a perfect mirror), and `material` is then not used; otherwise the named material.
+        let material = props.string("material")?.unwrap_or_else(|| "none".to_string());
+        let (eta, k) = if props.has("eta") || material == "none" {
+            (
                 props.color("eta", SpectrumUse::Unbounded, [0.0; 3])?,
                 props.color("k", SpectrumUse::Unbounded, [1.0; 3])?,
-            ),
-            name => {
-                let name = name.unwrap_or_else(|| "none".to_string());
-                let dirs = ior::with_ancestors(&self.search_paths);
-                ior::conductor_eta_k(&name, &dirs).map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?
-            }
+            )
+        } else {
+            let dirs = ior::with_ancestors(&self.search_paths);
+            ior::conductor_eta_k(&material, &dirs).map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?
         };
         m.conductor_eta = rgba(eta);
         m.conductor_k = rgba(k);

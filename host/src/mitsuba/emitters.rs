@@ -29,6 +29,9 @@ impl Loader {
         let to_world = props.transform("to_world")?;
         let emitter = match props.kind.as_str() {
             "point" => {
+                if props.has("position") && props.has("to_world") {
+                    bail!("{}: give a point emitter either 'position' or 'to_world', not both", props.loc);
+                }
                 let position = props.point("position", to_world.w_axis.truncate())?;
                 Emitter::Point {
                     position,
@@ -45,6 +48,12 @@ impl Loader {
                 Emitter::Spot { to_world, intensity, cutoff_angle, beam_width }
             }
             "directional" => {
+                if props.has("direction") && props.has("to_world") {
+                    bail!(
+                        "{}: give a directional emitter either 'direction' or 'to_world', not both",
+                        props.loc
+                    );
+                }
                 let direction = props.point("direction", to_world.transform_vector3(Vec3::Z))?;
                 if direction.length_squared() == 0.0 {
                     bail!("{}: directional emitter needs a non-zero direction", props.loc);

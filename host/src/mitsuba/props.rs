@@ -73,6 +73,11 @@ impl<'a, 'input> Props<'a, 'input> {
         Some(i)
     }
 
+    /// Whether the element gives the property `name` (without marking it read).
+    pub fn has(&self, name: &str) -> bool {
+        self.entries.iter().any(|e| e.name.as_deref() == Some(name))
+    }
+
     fn value_of(&self, i: usize) -> Result<&str> {
         let e = &self.entries[i];
         e.value.as_deref().with_context(|| format!("{}: <{}> needs a 'value' attribute", e.loc, e.tag))

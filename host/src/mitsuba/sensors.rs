@@ -1,17 +1,19 @@
 //! Sensor plugins (`perspective`) with their film (`hdrfilm`), reconstruction filter (`box`, `tent`,
-//! `gaussian`) and sampler (`independent`, `stratified`; others map to the nearest with a warning).
+//! `gaussian`) and sampler (`independent`; `stratified`, `multijitter`, `orthogonal` and `ldsampler`
+//! all use caustic's stratified sequence with the sample count Mitsuba would take).
 use super::props::Props;
 use super::Loader;
 use crate::scene::{Crop, Filter, Projection, SamplerKind, Sensor};
 use anyhow::{bail, Result};
 use glam::Mat4;
 
-/// Mitsuba's defaults: 768×576, 39.3077° horizontal fov, Gaussian filter, 4 spp.
+/// Mitsuba's default perspective sensor: 768×576 film, a 50 mm focal length (38.18° horizontal),
+/// Gaussian filter, independent sampler at 4 spp.
 pub fn default_sensor() -> Sensor {
     Sensor {
         projection: Projection::Perspective,
         to_world: Mat4::IDENTITY,
-        fov_x: 39.3077,
+        fov_x: focal_length_fov(50.0, 768.0 / 576.0) as f32,
         near_clip: 0.01,
         far_clip: 10_000.0,
         width: 768,
@@ -23,37 +25,68 @@ pub fn default_sensor() -> Sensor {
     }
 }
 
-/// Converts Mitsuba's `fov` along `fov_axis` to the horizontal field of view (degrees).
-fn horizontal_fov(fov: f32, axis: &str, width: u32, height: u32, props: &Props) -> Result<f32> {
-    let aspect = width as f32 / height as f32;
-    let axis = match axis {
-        "smaller" => {
-            if aspect > 1.0 {
-                "y"
-            } else {
-                "x"
-            }
-        }
-        "larger" => {
-            if aspect > 1.0 {
-                "x"
-            } else {
-                "y"
-            }
-        }
-        other => other,
+/// The horizontal field of view (degrees) that Mitsuba 3.9.1 gives a projective camera on a film of
+/// `aspect` = width / height: from `fov` along `fov_axis` (x, y, diagonal, smaller, larger; default x,
+/// case-insensitive), or, without `fov`, from `focal_length` (default "50mm", a 35 mm-equivalent focal
+/// length on the 36×24 mm frame's diagonal; `fov_axis` is then not read). Mitsuba refuses both at once.
+fn horizontal_fov(props: &Props, aspect: f64) -> Result<f32> {
+    let has_fov = props.has("fov");
+    let has_focal = props.has("focal_length");
+    if has_fov && has_focal {
+        bail!("{}: give either 'fov' or 'focal_length', not both (as Mitsuba)", props.loc);
+    }
+    let (fov, axis) = if has_fov {
+        let fov = props.float("fov", 0.0)? as f64;
+        let axis = props.string("fov_axis")?.unwrap_or_else(|| "x".to_string()).to_lowercase();
+        let axis = match axis.as_str() {
+            "smaller" if aspect > 1.0 => "y".to_string(),
+            "smaller" => "x".to_string(),
+            "larger" if aspect > 1.0 => "x".to_string(),
+            "larger" => "y".to_string(),
+            _ => axis,
+        };
+        (fov, axis)
+    } else {
+        let text = props.string("focal_length")?.unwrap_or_else(|| "50mm".to_string());
+        let number = text.trim().strip_suffix("mm").unwrap_or(text.trim());
+        let focal: f64 = match number.trim().parse() {
+            Ok(f) if f > 0.0 && f64::is_finite(f) => f,
+            _ => bail!(
+                "{}: focal_length must be a positive length in mm like \"35mm\", not '{text}'",
+                props.loc
+            ),
+        };
+        let diagonal_fov = 2.0 * (FRAME_DIAGONAL_MM / (2.0 * focal)).atan().to_degrees();
+        (diagonal_fov, "diagonal".to_string())
     };
-    let half = (fov.to_radians() * 0.5).tan();
-    let fov_x = match axis {
-        "x" => fov,
-        "y" => 2.0 * (half * aspect).atan().to_degrees(),
-        "diagonal" => {
-            let w = 2.0 * half / (1.0 + 1.0 / (aspect * aspect)).sqrt();
-            2.0 * (w * 0.5).atan().to_degrees()
-        }
-        other => bail!("{}: fov_axis must be x, y, diagonal, smaller or larger, not '{other}'", props.loc),
+    let Some(fov_x) = fov_along_x(fov, &axis, aspect) else {
+        bail!("{}: fov_axis must be x, y, diagonal, smaller or larger, not '{axis}'", props.loc)
     };
-    Ok(fov_x)
+    if !(fov > 0.0 && fov < 180.0 && fov_x > 0.0 && fov_x < 180.0) {
+        bail!("{}: the field of view must be in (0, 180) degrees, got {fov} ({fov_x} horizontal)", props.loc);
+    }
+    Ok(fov_x as f32)
+}
+
+/// The diagonal of the 36×24 mm frame that `focal_length` refers to.
+const FRAME_DIAGONAL_MM: f64 = 43.266_615_305_567_87;
+
+/// The horizontal fov (degrees) of a 35 mm-equivalent `focal_mm` lens on a film of `aspect`.
+fn focal_length_fov(focal_mm: f64, aspect: f64) -> f64 {
+    let diagonal_fov = 2.0 * (FRAME_DIAGONAL_MM / (2.0 * focal_mm)).atan().to_degrees();
+    fov_along_x(diagonal_fov, "diagonal", aspect).unwrap_or(diagonal_fov)
+}
+
+/// `fov` degrees along `axis` (x, y or diagonal) as a horizontal fov on a film of `aspect`.
+fn fov_along_x(fov: f64, axis: &str, aspect: f64) -> Option<f64> {
+    let tan_half = (fov.to_radians() * 0.5).tan();
+    let tan_half_x = match axis {
+        "x" => return Some(fov),
+        "y" => tan_half * aspect,
+        "diagonal" => tan_half / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
+        _ => return None,
+    };
+    Some(2.0 * tan_half_x.atan().to_degrees())
 }
 
 impl Loader {
@@ -74,12 +107,7 @@ impl Loader {
             self.load_sampler(&sampler, &mut sensor)?;
         }
         if props.kind != "orthographic" {
-            let fov = props.float("fov", 39.3077)?;
-            if !(fov > 0.0 && fov < 180.0) {
-                bail!("{}: fov must be in (0, 180) degrees, got {fov}", props.loc);
-            }
-            let axis = props.string("fov_axis")?.unwrap_or_else(|| "x".to_string());
-            sensor.fov_x = horizontal_fov(fov, &axis, sensor.width, sensor.height, props)?;
+            sensor.fov_x = horizontal_fov(props, sensor.width as f64 / sensor.height as f64)?;
         }
         sensor.near_clip = props.float("near_clip", 0.01)?;
         sensor.far_clip = props.float("far_clip", 10_000.0)?;
@@ -89,8 +117,12 @@ impl Loader {
         let to_world = props.transform("to_world")?;
         sensor.projection = match props.kind.as_str() {
             "thinlens" => {
+                // As Mitsuba: the aperture has no default, the focal plane defaults to far_clip.
+                if !props.has("aperture_radius") {
+                    bail!("{}: thinlens needs 'aperture_radius' (Mitsuba gives it no default)", props.loc);
+                }
                 let aperture_radius = props.float("aperture_radius", 0.0)?;
-                let focus_distance = props.float("focus_distance", 0.0)?;
+                let focus_distance = props.float("focus_distance", sensor.far_clip)?;
                 if !(aperture_radius >= 0.0 && focus_distance > 0.0) {
                     bail!("{}: thinlens needs aperture_radius ≥ 0 and focus_distance > 0", props.loc);
                 }
@@ -137,7 +169,8 @@ impl Loader {
         for e in props.nested("rfilter") {
             let f = self.props(props.src, e.node)?;
             sensor.filter = match f.kind.as_str() {
-                "box" => Filter::Box { radius: f.float("radius", 0.5)? },
+                // Mitsuba's box filter has no parameter: its radius is half a pixel.
+                "box" => Filter::Box { radius: 0.5 },
                 "tent" => Filter::Tent { radius: f.float("radius", 1.0)? },
                 "gaussian" => {
                     let stddev = f.float("stddev", 0.5)?;
@@ -178,23 +211,60 @@ impl Loader {
     }
 
     fn load_sampler(&mut self, props: &Props, sensor: &mut Sensor) -> Result<()> {
-        sensor.sampler = match props.kind.as_str() {
+        let kind = props.kind.as_str();
+        sensor.sampler = match kind {
             "independent" => SamplerKind::Independent,
-            "stratified" => SamplerKind::Stratified,
+            // Mitsuba's stratified, multi-jittered, orthogonal-array and low-discrepancy samplers
+            // all stratify the pixel; caustic's stratified sequence stands in for each (the image
+            // converges to the same; the noise differs).
+            "stratified" | "multijitter" | "orthogonal" | "ldsampler" => SamplerKind::Stratified,
             other => {
-                self.warn(&format!("{}: sampler '{other}' is mapped to stratified", props.loc));
+                self.warn(&format!("{}: sampler '{other}' is not supported; using stratified", props.loc));
                 SamplerKind::Stratified
             }
         };
-        let spp = props.integer("sample_count", 4)?;
-        if !(1..=1 << 24).contains(&spp) {
-            bail!("{}: sample_count must be in [1, 16777216], got {spp}", props.loc);
+        let requested = props.integer("sample_count", 4)?;
+        if !(1..=1 << 24).contains(&requested) {
+            bail!("{}: sample_count must be in [1, 16777216], got {requested}", props.loc);
         }
-        sensor.spp = spp as u32;
+        sensor.spp = mitsuba_sample_count(kind, requested as u32);
         props.integer("seed", 0)?;
-        props.boolean("jitter", true)?;
-        props.integer("dimension", 0)?;
+        if matches!(kind, "stratified" | "multijitter" | "orthogonal") {
+            props.boolean("jitter", true)?;
+        }
+        if kind == "orthogonal" {
+            props.integer("strength", 2)?;
+        }
         self.warn_unused(props);
         Ok(())
+    }
+}
+
+/// The sample count Mitsuba 3.9.1's sampler `kind` takes for a requested `n`: stratified rounds up to
+/// a square, orthogonal to the square of a prime, ldsampler to a power of four (at least 4),
+/// multijitter to a near-square grid (⌊√n⌋ rows).
+fn mitsuba_sample_count(kind: &str, n: u32) -> u32 {
+    let is_prime = |x: u32| (2..=x / 2).all(|i| !x.is_multiple_of(i));
+    match kind {
+        "stratified" => {
+            let r = (1u32..).find(|r| r * r >= n).unwrap_or(1);
+            r * r
+        }
+        "orthogonal" => {
+            let r = (2u32..).find(|&r| r * r >= n && is_prime(r)).unwrap_or(2);
+            r * r
+        }
+        "ldsampler" => {
+            let mut r = 2u32;
+            while r * r < n {
+                r = (r + 1).next_power_of_two();
+            }
+            r * r
+        }
+        "multijitter" => {
+            let rows = ((n as f32).sqrt() as u32).max(1);
+            n.div_ceil(rows) * rows
+        }
+        _ => n,
     }
 }
