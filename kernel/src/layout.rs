@@ -85,6 +85,8 @@ pub const MATERIAL_BECKMANN: u32 = 2;
 pub const MATERIAL_NONLINEAR: u32 = 4;
 /// Material flag: a dielectric whose index of refraction depends on the wavelength (`wavelength`).
 pub const MATERIAL_DISPERSIVE: u32 = 8;
+/// Material flag: the dispersion follows Sellmeier's law (else Cauchy's; `wavelength`).
+pub const MATERIAL_SELLMEIER: u32 = 16;
 
 /// A BSDF record (112 bytes). Which fields a model reads is documented by the model's `from_material`;
 /// colours are linear RGB with an unused fourth lane. `Default` is a black diffuse without textures.

@@ -21,8 +21,11 @@
 //! inclusive CDF of `WAVELENGTH_BINS` bins of width `WAVELENGTH_STEP`, then `c` at the
 //! `WAVELENGTH_BINS + 1` bin edges (RGB triples), linear in between. The bins' masses follow
 //! `|c_r| + |c_g| + |c_b|`, so every wavelength where `c` is non-zero can be drawn.
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
 use crate::glam::Vec3;
-use crate::layout::{Material, MATERIAL_DISPERSIVE};
+use crate::layout::{Material, MATERIAL_DISPERSIVE, MATERIAL_SELLMEIER};
 use crate::sampling::sample_cdf;
 use crate::spectrum::Rgb;
 
@@ -44,9 +47,13 @@ pub const LAMBDA_D: f32 = 587.56;
 pub const LAMBDA_F: f32 = 486.13;
 pub const LAMBDA_C: f32 = 656.27;
 
-/// Where a dispersive material keeps its dispersion: `params[PARAM_CAUCHY_B]` is the relative Cauchy
-/// coefficient `B` (µm², interior over exterior): `eta(λ) = eta + B·(1/λ² − 1/λ_d²)`, λ in µm.
+/// Where a dispersive material keeps its dispersion. Cauchy's law: `params[PARAM_CAUCHY_B]` is the
+/// relative coefficient `B` (µm², interior over exterior): `eta(λ) = eta + B·(1/λ² − 1/λ_d²)`, λ in µm.
+/// Sellmeier's (`MATERIAL_SELLMEIER`): the interior's `B1..B3` in `conductor_eta`, `C1..C3` (µm²) in
+/// `conductor_k`, `n² = 1 + Σ Bᵢλ²/(λ² − Cᵢ)`, divided by the exterior's index in
+/// `params[PARAM_EXTERIOR_IOR]`.
 pub const PARAM_CAUCHY_B: usize = 0;
+pub const PARAM_EXTERIOR_IOR: usize = 1;
 
 /// A drawn wavelength and what drawing it does to the path's throughput, `c(λ)/p(λ)`.
 #[derive(Clone, Copy)]
@@ -90,12 +97,18 @@ pub fn disperses(m: &Material) -> bool {
     m.flags & MATERIAL_DISPERSIVE != 0
 }
 
-/// `m`'s relative index of refraction at `lambda` nm (Cauchy's law around the d line).
+/// `m`'s relative index of refraction at `lambda` nm (Sellmeier's law, or Cauchy's around the d line).
 #[inline]
 pub fn eta_at(m: &Material, lambda: f32) -> f32 {
     let um = lambda * 1.0e-3;
+    let l2 = um * um;
+    if m.flags & MATERIAL_SELLMEIER != 0 {
+        let (b, c) = (m.conductor_eta, m.conductor_k);
+        let n2 = 1.0 + b[0] * l2 / (l2 - c[0]) + b[1] * l2 / (l2 - c[1]) + b[2] * l2 / (l2 - c[2]);
+        return n2.max(0.0).sqrt() / m.params[PARAM_EXTERIOR_IOR];
+    }
     let d = LAMBDA_D * 1.0e-3;
-    m.eta + m.params[PARAM_CAUCHY_B] * (1.0 / (um * um) - 1.0 / (d * d))
+    m.eta + m.params[PARAM_CAUCHY_B] * (1.0 / l2 - 1.0 / (d * d))
 }
 
 /// The Cauchy coefficient `B` (µm²) of a glass with index `n_d` and Abbe number `abbe`.

@@ -164,3 +164,136 @@ fn dispersion_gpu_matches_cpu() {
     println!("dispersive ibpt GPU vs CPU: max |difference| {max_diff:e}; {negative} negative CPU values");
     assert!(max_diff < 1e-3, "GPU and CPU differ by {max_diff}");
 }
+
+/// The dielectric of `<string name="glass" value="NAME"/>` in vacuum.
+fn named_glass(name: &str) -> caustic_kernel::layout::Material {
+    let xml = format!(
+        r#"<scene version="3.0.0"><sensor type="perspective"/><shape type="sphere"><bsdf type="dielectric"><string name="glass" value="{name}"/><float name="ext_ior" value="1"/></bsdf></shape></scene>"#
+    );
+    let m = load_xml(&xml, name).materials[0];
+    assert!(m.flags & MATERIAL_DISPERSIVE != 0, "{name} disperses");
+    m
+}
+
+/// The named glasses have the catalogue's index at the d line and Abbe number (Schott; fused silica:
+/// Malitson), which checks their Sellmeier coefficients and the kernel's evaluation of them.
+#[test]
+fn named_glasses_have_their_catalogue_index_and_abbe_number() {
+    use caustic_kernel::wavelength::{eta_at, LAMBDA_C, LAMBDA_D, LAMBDA_F};
+    for (name, n_d, v_d) in [
+        ("bk7", 1.5168, 64.17),
+        ("fused silica", 1.45846, 67.82),
+        ("f2", 1.62004, 36.37),
+        ("SF11", 1.78472, 25.68),
+        ("sf66", 1.92286, 20.88),
+    ] {
+        let m = named_glass(name);
+        let n = eta_at(&m, LAMBDA_D);
+        let v = (n - 1.0) / (eta_at(&m, LAMBDA_F) - eta_at(&m, LAMBDA_C));
+        println!("{name}: n_d {n:.5} (catalogue {n_d}), V_d {v:.2} (catalogue {v_d})");
+        assert!((n - n_d).abs() < 2e-5 && (v - v_d).abs() < 0.02, "{name}: n_d {n}, V_d {v}");
+        assert!((m.eta - n_d).abs() < 2e-5, "{name}: the material's index without a wavelength is n_d");
+    }
+}
+
+/// A ray through a 60° prism of SF11, traced with the kernel's dielectric at the glass's index at 450
+/// and 650 nm, is deviated by the angles Snell's law predicts for those indices, blue more than red.
+#[test]
+fn prism_deviation_follows_snell_with_the_glass_index() {
+    use caustic_kernel::bsdf::{Bsdf, TransportMode};
+    use caustic_kernel::glam::{Vec2, Vec3};
+    use caustic_kernel::wavelength::eta_at;
+    let glass = named_glass("sf11");
+    let (apex, theta1) = (60f64.to_radians(), 65f64.to_radians());
+    let mut deviations = vec![];
+    for lambda in [450.0f32, 650.0] {
+        let mut m = glass;
+        m.eta = eta_at(&glass, lambda);
+        let bsdf = Bsdf::from_material(&m, &[]);
+        // First face (normal +z, viewer outside): refraction is the lobe sampled with u_lobe → 1.
+        let wo = Vec3::new(theta1.sin() as f32, 0.0, theta1.cos() as f32);
+        let inside = bsdf.sample(wo, 0.99999, Vec2::splat(0.5), TransportMode::Radiance);
+        assert!(inside.wi.z < 0.0, "refracted into the glass");
+        let theta2 = (-inside.wi.z as f64).acos();
+        // Second face: the ray meets it at A − θ2 from the inside.
+        let theta3 = apex - theta2;
+        let wo2 = Vec3::new(-theta3.sin() as f32, 0.0, -theta3.cos() as f32);
+        let out = bsdf.sample(wo2, 0.99999, Vec2::splat(0.5), TransportMode::Radiance);
+        assert!(out.wi.z > 0.0, "leaves the glass");
+        let deviation = theta1 + (out.wi.z as f64).acos() - apex;
+        let n = m.eta as f64;
+        let snell = theta1 + (n * (apex - (theta1.sin() / n).asin()).sin()).asin() - apex;
+        println!(
+            "λ {lambda} nm: index {n:.5}; deviation {:.4}° (Snell {:.4}°)",
+            deviation.to_degrees(),
+            snell.to_degrees()
+        );
+        assert!((deviation - snell).abs().to_degrees() < 0.01, "deviation {deviation} vs {snell}");
+        deviations.push(deviation);
+    }
+    // SF11 between 450 and 650 nm: 5.4° apart at this incidence.
+    assert!(deviations[0] > deviations[1] + 5f64.to_radians(), "blue is not bent more than red");
+}
+
+/// A coloured scene with a glass whose dispersion is negligible, rendered through the wavelength
+/// machinery, equals the RGB render (white recombines exactly in expectation, colours included).
+#[test]
+fn negligible_dispersion_renders_the_rgb_image() {
+    let scene = |b: &str| {
+        let xml = format!(
+            r#"<scene version="3.0.0">
+    <integrator type="path"><integer name="max_depth" value="8"/></integrator>
+    <sensor type="perspective"><float name="fov" value="50"/>
+        <transform name="to_world"><lookat origin="0, -3, 1.6" target="0, 0, 0.4" up="0, 0, 1"/></transform>
+        <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/><rfilter type="box"/></film></sensor>
+    <shape type="rectangle"><transform name="to_world"><scale value="2"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.3, 0.1"/></bsdf></shape>
+    <shape type="rectangle"><transform name="to_world"><scale value="2"/><rotate x="1" angle="90"/><translate y="1.5" z="1"/></transform>
+        <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.1, 0.4, 0.8"/></bsdf></bsdf></shape>
+    <shape type="sphere"><float name="radius" value="0.5"/><point name="center" x="0" y="0" z="0.5"/>
+        <bsdf type="roughdielectric"><float name="alpha" value="0.2"/><float name="int_ior" value="1.5"/>{b}</bsdf></shape>
+    <shape type="sphere"><float name="radius" value="0.4"/><point name="center" x="0.6" y="0.4" z="1.8"/>
+        <emitter type="area"><rgb name="radiance" value="8"/></emitter></shape>
+</scene>"#
+        );
+        load_xml(&xml, &format!("rgb-vs-spectral-{}", b.len()))
+    };
+    let spectral = scene(r#"<float name="cauchy_b" value="1e-7"/>"#);
+    assert!(spectral.materials.iter().any(|m| m.flags & MATERIAL_DISPERSIVE != 0));
+    let a = render_scene(&spectral, BackendChoice::Cpu, 1024, 31);
+    let b = render_scene(&scene(""), BackendChoice::Cpu, 1024, 32);
+    let (va, vb) = (a.variance.as_ref().unwrap(), b.variance.as_ref().unwrap());
+    for c in 0..3 {
+        let n = a.rgb.len() as f64;
+        let (ma, mb) = [&a, &b].map(|f| f.rgb.iter().map(|p| p[c] as f64).sum::<f64>() / n).into();
+        let se = (va.iter().chain(vb).map(|v| v[c] as f64).sum::<f64>()).sqrt() / n;
+        println!("channel {c}: spectral {ma:.5}, RGB {mb:.5} ± {se:.5}");
+        assert!((ma - mb).abs() < 4.5 * se, "channel {c}: {ma} vs {mb} (se {se})");
+    }
+}
+
+/// Unknown glasses, two dispersion laws at once and dispersion that makes the index non-positive are
+/// errors naming the file and line.
+#[test]
+fn bad_dispersion_parameters_are_refused_with_their_line() {
+    let dir = std::env::temp_dir().join(format!("caustic-dispersion-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (bsdf, expected) in [
+        (r#"<string name="glass" value="unobtainium"/>"#, "no glass is known by the name 'unobtainium'"),
+        (r#"<string name="glass" value="bk7"/><float name="int_ior" value="1.5"/>"#, "not both"),
+        (r#"<string name="glass" value="bk7"/><float name="abbe_number" value="30"/>"#, "give one of"),
+        (r#"<float name="abbe_number" value="-3"/>"#, "positive"),
+        (r#"<float name="cauchy_b" value="-1"/>"#, "index of refraction at"),
+    ] {
+        let path = dir.join("scene.xml");
+        let xml = format!("<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n<bsdf type=\"dielectric\">{bsdf}</bsdf>\n</shape>\n</scene>");
+        std::fs::write(&path, xml).unwrap();
+        let message = match caustic::load_scene(&path, &[]) {
+            Ok(_) => panic!("{bsdf}: accepted"),
+            Err(e) => format!("{e:#}"),
+        };
+        println!("{message}");
+        assert!(message.contains(expected) && message.contains("scene.xml:3"), "{bsdf}: {message}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

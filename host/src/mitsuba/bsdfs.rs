@@ -20,36 +20,50 @@ fn set_specular(m: &mut Material, c: ColorParam) {
     m.specular_texture = c.texture;
 }
 
-/// caustic's dispersion extension of the dielectrics (Mitsuba 3 has none): `abbe_number` (the glass's
-/// Abbe number `V_d`, with `int_ior` as its index at the d line) or `cauchy_b` (Cauchy's `B`, µm², of
-/// the interior) makes the interior's index `int_ior + B·(1/λ² − 1/λ_d²)`; the exterior stays constant.
-/// Mitsuba reads such a scene with a warning about the unknown parameter and renders it without
-/// dispersion.
-fn dispersion(props: &Props, m: &mut Material, int_ior: f32, ext_ior: f32) -> Result<()> {
-    use caustic_kernel::wavelength::{
-        cauchy_b_from_abbe, eta_at, PARAM_CAUCHY_B, WAVELENGTH_MAX, WAVELENGTH_MIN,
-    };
-    let given = |name: &str| props.entries.iter().any(|e| e.name.as_deref() == Some(name));
-    let b = match (given("abbe_number"), given("cauchy_b")) {
-        (true, true) => bail!("{}: give 'abbe_number' or 'cauchy_b' for dispersion, not both", props.loc),
-        (true, false) => {
+/// caustic's dispersion extension of the dielectrics (Mitsuba 3 has none): `glass` naming a catalogue
+/// glass (`ior::NAMED_GLASSES`, Sellmeier's law; it also sets the interior's index), or `abbe_number`
+/// (the glass's Abbe number `V_d`, with `int_ior` as its index at the d line) or `cauchy_b` (Cauchy's
+/// `B`, µm², of the interior), which make the interior's index `n_d + B·(1/λ² − 1/λ_d²)`. The exterior
+/// stays constant. Mitsuba reads such a scene with a warning about the unknown parameter and renders it
+/// without dispersion.
+fn dispersion(
+    props: &Props,
+    m: &mut Material,
+    int_ior: f32,
+    ext_ior: f32,
+    glass: Option<&ior::Glass>,
+) -> Result<()> {
+    use caustic_kernel::wavelength::*;
+    let given = [glass.is_some(), props.has("abbe_number"), props.has("cauchy_b")];
+    if given.iter().filter(|&&g| g).count() > 1 {
+        bail!("{}: give one of 'glass', 'abbe_number' and 'cauchy_b' for dispersion", props.loc);
+    }
+    if let Some(g) = glass {
+        m.flags |= MATERIAL_DISPERSIVE | MATERIAL_SELLMEIER;
+        m.conductor_eta = [g.b[0], g.b[1], g.b[2], 0.0];
+        m.conductor_k = [g.c[0], g.c[1], g.c[2], 0.0];
+        m.params[PARAM_EXTERIOR_IOR] = ext_ior;
+    } else {
+        let b = if props.has("abbe_number") {
             let abbe = props.float("abbe_number", 0.0)?;
             if !(abbe > 0.0 && abbe.is_finite()) {
                 bail!("{}: 'abbe_number' must be a positive number, not {abbe}", props.loc);
             }
             cauchy_b_from_abbe(int_ior, abbe)
+        } else if props.has("cauchy_b") {
+            props.float("cauchy_b", 0.0)?
+        } else {
+            return Ok(());
+        };
+        if !b.is_finite() {
+            bail!("{}: the dispersion coefficient must be finite, not {b}", props.loc);
         }
-        (false, true) => props.float("cauchy_b", 0.0)?,
-        (false, false) => return Ok(()),
-    };
-    if !b.is_finite() {
-        bail!("{}: the dispersion coefficient must be finite, not {b}", props.loc);
+        if b == 0.0 {
+            return Ok(());
+        }
+        m.flags |= MATERIAL_DISPERSIVE;
+        m.params[PARAM_CAUCHY_B] = b / ext_ior;
     }
-    if b == 0.0 {
-        return Ok(());
-    }
-    m.flags |= MATERIAL_DISPERSIVE;
-    m.params[PARAM_CAUCHY_B] = b / ext_ior;
     for lambda in [WAVELENGTH_MIN, WAVELENGTH_MAX] {
         let eta = eta_at(m, lambda);
         if !(eta > 0.0 && eta.is_finite()) {
@@ -242,10 +256,36 @@ impl Loader {
             "thindielectric" => BSDF_THIN_DIELECTRIC,
             _ => BSDF_ROUGH_DIELECTRIC,
         };
-        let int_ior = self.ior(props, "int_ior", "bk7")?;
+        // caustic's `glass` names the interior's glass, its index and its dispersion.
+        let glass = match props.string("glass")? {
+            Some(name) => Some(ior::named_glass(&name).ok_or_else(|| {
+                anyhow::anyhow!(
+                    "{}: no glass is known by the name '{name}' (one of: {})",
+                    props.loc,
+                    ior::glass_names()
+                )
+            })?),
+            None => None,
+        };
+        if glass.is_some() && props.has("int_ior") {
+            bail!("{}: give 'int_ior' or 'glass', not both (the glass has its own index)", props.loc);
+        }
         let ext_ior = self.ior(props, "ext_ior", "air")?;
-        let mut m = Material { kind, eta: int_ior / ext_ior, ..Default::default() };
-        dispersion(props, &mut m, int_ior, ext_ior)?;
+        let mut m = Material { kind, ..Default::default() };
+        let int_ior = match glass {
+            Some(_) => {
+                // The glass's index at the d line, for anything that asks without a wavelength.
+                dispersion(props, &mut m, 0.0, ext_ior, glass)?;
+                caustic_kernel::wavelength::eta_at(&m, caustic_kernel::wavelength::LAMBDA_D) * ext_ior
+            }
+            None => {
+                let int_ior = self.ior(props, "int_ior", "bk7")?;
+                m.eta = int_ior / ext_ior;
+                dispersion(props, &mut m, int_ior, ext_ior, None)?;
+                int_ior
+            }
+        };
+        m.eta = int_ior / ext_ior;
         if kind == BSDF_ROUGH_DIELECTRIC {
             self.microfacet(props, &mut m)?;
         }

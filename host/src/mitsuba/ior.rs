@@ -39,6 +39,56 @@ pub const NAMED_DIELECTRIC_IORS: [(&str, f32); 23] = [
     ("diamond", 2.419),
 ];
 
+/// An optical glass of caustic's dispersion extension (`glass`): Sellmeier's coefficients of its index,
+/// `n² = 1 + Σ Bᵢλ²/(λ² − Cᵢ)` with λ in µm, as the Schott (and, for fused silica, Malitson's)
+/// catalogue lists them.
+pub struct Glass {
+    pub name: &'static str,
+    pub b: [f32; 3],
+    pub c: [f32; 3],
+}
+
+// The catalogue's digits, kept as published (f32 rounds them).
+#[allow(clippy::excessive_precision)]
+pub const NAMED_GLASSES: [Glass; 5] = [
+    Glass {
+        name: "bk7",
+        b: [1.03961212, 0.231792344, 1.01046945],
+        c: [0.00600069867, 0.0200179144, 103.560653],
+    },
+    Glass {
+        name: "fused silica",
+        b: [0.6961663, 0.4079426, 0.8974794],
+        c: [0.00467914826, 0.0135120631, 97.9340025],
+    },
+    Glass {
+        name: "f2",
+        b: [1.34533359, 0.209073176, 0.937357162],
+        c: [0.00997743871, 0.0470450767, 111.886764],
+    },
+    Glass {
+        name: "sf11",
+        b: [1.73759695, 0.313747346, 1.89878101],
+        c: [0.013188707, 0.0623068142, 155.23629],
+    },
+    Glass {
+        name: "sf66",
+        b: [2.0245976, 0.470187196, 2.59970433],
+        c: [0.0147053225, 0.0692998276, 161.817601],
+    },
+];
+
+/// A named glass (case ignored).
+pub fn named_glass(name: &str) -> Option<&'static Glass> {
+    let name = name.to_lowercase();
+    NAMED_GLASSES.iter().find(|g| g.name == name)
+}
+
+/// The names `named_glass` knows, for messages.
+pub fn glass_names() -> String {
+    NAMED_GLASSES.iter().map(|g| format!("'{}'", g.name)).collect::<Vec<_>>().join(", ")
+}
+
 /// The conductor `material` that stands for a perfect mirror (η = 0, k = 1) and needs no data.
 pub const PERFECT_MIRROR: &str = "none";
 
