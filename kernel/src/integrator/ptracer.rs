@@ -185,6 +185,9 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
     // Segments from the emitter to the vertex about to be found.
     let mut depth = 1u32;
     let mut lambda = NO_WAVELENGTH;
+    // As in `path`: the cheaper maximum where no channel can turn negative.
+    let dispersion = crate::features::has(scene.features, crate::features::DISPERSION);
+    let magnitude = |t: Rgb| if dispersion { max_abs_component(t) } else { max_component(t) };
     while max_depth == NONE || depth < max_depth {
         sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
         let hit = match accel.trace(&ray, false, NONE) {
@@ -249,13 +252,13 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
 
         let u_rr = sampler.next_1d();
         if depth >= params.rr_depth {
-            let q = max_abs_component(beta).min(0.95);
+            let q = magnitude(beta).min(0.95);
             if u_rr >= q {
                 break;
             }
             beta /= q;
         }
-        if max_abs_component(beta) <= 0.0 {
+        if magnitude(beta) <= 0.0 {
             break;
         }
     }
