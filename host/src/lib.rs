@@ -13,6 +13,7 @@ pub mod mitsuba;
 pub mod obj_scene;
 pub mod render;
 pub mod scene;
+pub mod schedule;
 pub mod session;
 pub mod tev;
 

@@ -2,13 +2,13 @@
 //! pass loop (progress bar, checkpoints and resuming, streaming to tev, saving the image somewhere
 //! even when its path fails). One function that the command line, a Python binding or an MPI runner
 //! all call; `render.rs` below it owns only the pass loop.
-use crate::backend::{self, Backend, BackendChoice};
+use crate::backend::{self, Backend, BackendChoice, GpuSelection};
 use crate::checkpoint::{self, Checkpoint};
 use crate::film::{self, Film};
 use crate::scene::IntegratorChoice;
 use crate::{buffers, render, tev};
 use anyhow::{bail, Context, Result};
-use std::ops::ControlFlow::Continue;
+use std::ops::ControlFlow::{self, Continue};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -23,6 +23,8 @@ pub struct RenderJob {
     /// `-D name=value` overrides of the scene's `$name` parameters.
     pub defines: Vec<(String, String)>,
     pub backend: BackendChoice,
+    /// The GPUs to render on (several: passes spread over them, sums added).
+    pub gpus: GpuSelection,
     /// Samples per pixel; `None` takes the scene's sampler's count.
     pub spp: Option<u32>,
     pub seed: u32,
@@ -82,7 +84,7 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
     }
     let buffers =
         buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", job.scene.display()))?;
-    let mut backend = backend::create(job.backend, &buffers)?;
+    let mut backend = backend::create_on(job.backend, &job.gpus, &buffers)?;
     let seed = job.seed;
     // Hashing every scene buffer is only worth it when there is a checkpoint to match.
     let checkpoint = job
@@ -106,7 +108,7 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
     bar.set_position(start as u64);
     let (width, height) = (buffers.params.width, buffers.params.height);
     let name = output.file_name().unwrap_or_default().to_string_lossy().to_string();
-    let mut viewer = match job
+    let viewer = match job
         .tev
         .as_deref()
         .map(|address| tev::TevStream::connect(address, &name, width, height))
@@ -118,45 +120,17 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
             None
         }
     };
-    let mut last_save = Instant::now();
-    let mut last_view = Instant::now();
-    let stats = render::render_with_checkpoints(
-        backend.as_mut(),
-        &buffers,
-        start,
-        spp,
+    let observer = Observer {
+        bar: &bar,
+        viewer,
+        checkpoint,
+        last_save: Instant::now(),
+        last_view: Instant::now(),
         seed,
-        &[],
-        |done, _, backend| {
-            bar.set_position(done as u64);
-            if let Some(stream) =
-                viewer.as_mut().filter(|_| last_view.elapsed() >= TEV_INTERVAL || done == spp)
-            {
-                if let Err(e) = stream.update(&Film::from_accum(width, height, &backend.read_accum()?)) {
-                    eprintln!("warning: {e:#}; no more updates to the viewer");
-                    viewer = None;
-                }
-                last_view = Instant::now();
-            }
-            if let Some((path, every, fingerprint)) = checkpoint {
-                if done < spp && last_save.elapsed() >= every {
-                    let c = Checkpoint {
-                        scene: fingerprint,
-                        seed,
-                        spp_total: spp,
-                        spp_done: done,
-                        accum: backend.read_accum()?,
-                    };
-                    // A checkpoint that cannot be written must not cost the render itself.
-                    if let Err(e) = c.save(path) {
-                        eprintln!("warning: {e:#}; the render goes on");
-                    }
-                    last_save = Instant::now();
-                }
-            }
-            Ok(Continue(()))
-        },
-    )?;
+        spp,
+        size: (width, height),
+    };
+    let stats = render::render_observed(backend.as_mut(), &buffers, start, spp, seed, &[], observer)?;
     bar.finish_and_clear();
     let mut film = Film::from_accum(width, height, &backend.read_accum()?);
     sanitize(&mut film);
@@ -177,6 +151,67 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
         seconds: stats.seconds,
         invalid_samples: film.invalid_samples,
     })
+}
+
+/// The session's side of the pass loop: the progress bar after every pass; the image to tev and the
+/// checkpoint when due, each needing the devices at rest.
+struct Observer<'a> {
+    bar: &'a indicatif::ProgressBar,
+    viewer: Option<tev::TevStream>,
+    /// Path, interval and the render's fingerprint.
+    checkpoint: Option<(&'a PathBuf, Duration, u64)>,
+    last_save: Instant,
+    last_view: Instant,
+    seed: u32,
+    spp: u32,
+    size: (u32, u32),
+}
+
+impl Observer<'_> {
+    fn view_due(&self) -> bool {
+        self.viewer.is_some() && self.last_view.elapsed() >= TEV_INTERVAL
+    }
+    fn save_due(&self) -> bool {
+        self.checkpoint.is_some_and(|(_, every, _)| self.last_save.elapsed() >= every)
+    }
+}
+
+impl render::PassObserver for Observer<'_> {
+    fn progress(&mut self, finished: u32) {
+        self.bar.set_position(finished as u64);
+    }
+
+    fn wants_rest(&mut self, _seconds: f64) -> bool {
+        self.view_due() || self.save_due()
+    }
+
+    fn at_rest(&mut self, done: u32, _: f64, backend: &mut dyn Backend) -> Result<ControlFlow<()>> {
+        let (width, height) = self.size;
+        self.bar.set_position(done as u64);
+        if self.view_due() || (self.viewer.is_some() && done == self.spp) {
+            let film = Film::from_accum(width, height, &backend.read_accum()?);
+            if let Some(Err(e)) = self.viewer.as_mut().map(|stream| stream.update(&film)) {
+                eprintln!("warning: {e:#}; no more updates to the viewer");
+                self.viewer = None;
+            }
+            self.last_view = Instant::now();
+        }
+        if let Some((path, _, fingerprint)) = self.checkpoint.filter(|_| done < self.spp && self.save_due()) {
+            let c = Checkpoint {
+                scene: fingerprint,
+                seed: self.seed,
+                spp_total: self.spp,
+                spp_done: done,
+                accum: backend.read_accum()?,
+            };
+            // A checkpoint that cannot be written must not cost the render itself.
+            if let Err(e) = c.save(path) {
+                eprintln!("warning: {e:#}; the render goes on");
+            }
+            self.last_save = Instant::now();
+        }
+        Ok(Continue(()))
+    }
 }
 
 /// Refuses a checkpoint file that is also the image or its variance file: the finished render is
