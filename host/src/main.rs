@@ -150,27 +150,43 @@ fn main() {
             });
             // An interval too long for a Duration (`inf`) means: never between passes.
             let every = Duration::try_from_secs_f64(checkpoint_every.max(0.0)).unwrap_or(Duration::MAX);
-            cmd_render(&RenderJob {
-                scene: run.scene,
-                defines: run.define,
-                backend: run.backend,
-                gpus: run.gpus,
-                spp: run.spp,
-                seed: run.seed,
-                output,
-                variance,
-                progress_bar: !quiet,
-                checkpoint: checkpoint.map(|path| (path, every)),
-                tev,
-                integrator: match run.integrator.as_slice() {
-                    [] => None,
-                    [one] => Some(*one),
-                    _ => {
-                        eprintln!("error: render takes one --integrator (convergence compares several)");
-                        std::process::exit(2);
-                    }
+            // Under mpirun (an MPI build): this process renders its share, rank 0 writes the image.
+            #[cfg(feature = "mpi")]
+            let world = match caustic::mpi::launched().then(caustic::mpi::World::init).transpose() {
+                Ok(w) => w,
+                Err(e) => {
+                    eprintln!("error: {e:#}");
+                    std::process::exit(1);
+                }
+            };
+            #[cfg(feature = "mpi")]
+            let ranks = world.as_ref().map(|w| w as &dyn caustic::ranks::Ranks);
+            #[cfg(not(feature = "mpi"))]
+            let ranks = None;
+            cmd_render(
+                ranks,
+                &RenderJob {
+                    scene: run.scene,
+                    defines: run.define,
+                    backend: run.backend,
+                    gpus: run.gpus,
+                    spp: run.spp,
+                    seed: run.seed,
+                    output,
+                    variance,
+                    progress_bar: !quiet,
+                    checkpoint: checkpoint.map(|path| (path, every)),
+                    tev,
+                    integrator: match run.integrator.as_slice() {
+                        [] => None,
+                        [one] => Some(*one),
+                        _ => {
+                            eprintln!("error: render takes one --integrator (convergence compares several)");
+                            std::process::exit(2);
+                        }
+                    },
                 },
-            })
+            )
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
             cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref())
@@ -192,8 +208,8 @@ fn main() {
     }
 }
 
-fn cmd_render(job: &RenderJob) -> Result<()> {
-    let r = session::render_to_file(job)?;
+fn cmd_render(ranks: Option<&dyn caustic::ranks::Ranks>, job: &RenderJob) -> Result<()> {
+    let Some(r) = session::render_share(job, ranks)? else { return Ok(()) };
     let resumed = if r.resumed_at > 0 { format!(" (resumed at {})", r.resumed_at) } else { String::new() };
     say!(
         "{} | {}x{} | {} spp{resumed} | {:.2} s | {:.2} Msamples/s | {}",
