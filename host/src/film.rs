@@ -42,6 +42,30 @@ impl Accumulation {
         }
         self.batches = Some(self.batches.unwrap_or(0) + 1);
     }
+
+    /// Adds another device's sums over disjoint samples (several devices, MPI ranks): the sums, counts
+    /// and squares add, and so do the batches (each pass of each device is one batch mean). Both
+    /// must have the same size and kind.
+    pub fn add(&mut self, other: &Accumulation) {
+        assert_eq!(self.pixels.len(), other.pixels.len(), "accumulations of different sizes");
+        assert_eq!(self.batches.is_some(), other.batches.is_some(), "splatted and per-sample sums");
+        for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
+            for c in 0..3 {
+                a.sum[c] += b.sum[c];
+                a.sum_sq[c] += b.sum_sq[c];
+            }
+            a.count += b.count;
+            a.invalid += b.invalid;
+        }
+        if let (Some(a), Some(b)) = (&mut self.batches, other.batches) {
+            *a += b;
+        }
+    }
+
+    /// An empty accumulation of the same size and kind.
+    pub fn empty_like(&self) -> Accumulation {
+        Accumulation::new(self.pixels.len(), self.batches.is_some())
+    }
 }
 
 impl Film {

@@ -10,9 +10,13 @@ pub mod film;
 pub mod image_io;
 pub mod mesh;
 pub mod mitsuba;
+#[cfg(feature = "mpi")]
+pub mod mpi;
 pub mod obj_scene;
+pub mod ranks;
 pub mod render;
 pub mod scene;
+pub mod schedule;
 pub mod session;
 pub mod tev;
 

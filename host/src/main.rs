@@ -1,6 +1,6 @@
 //! The `caustic` command line: render, compare, bench, convergence.
 use anyhow::{Context, Result};
-use caustic::backend::{self, BackendChoice};
+use caustic::backend::{self, BackendChoice, GpuSelection};
 use caustic::film::{variance_path, Film};
 use caustic::scene::IntegratorChoice;
 use caustic::session::{self, RenderJob};
@@ -83,6 +83,13 @@ enum Command {
         backend: Vec<BackendChoice>,
         #[arg(long, default_value_t = 64)]
         spp: u32,
+        /// GPUs to measure on (as for `render`).
+        #[arg(long, default_value = "all")]
+        gpus: GpuSelection,
+        /// Measure the GPU backend on the first 1, 2, 4, … of the selected GPUs and all of them, and
+        /// print the speed-up over one GPU and each GPU's share of the samples.
+        #[arg(long)]
+        scaling: bool,
     },
 }
 
@@ -93,6 +100,10 @@ struct RunArgs {
     scene: PathBuf,
     #[arg(long, value_enum, default_value = "auto")]
     backend: BackendChoice,
+    /// GPUs to render on: `all` hardware adapters, the first N, or adapter indices (`0,2`; an index
+    /// twice opens two devices on one adapter). Passes go to whichever GPU is idle.
+    #[arg(long, default_value = "all")]
+    gpus: GpuSelection,
     /// Samples per pixel (for `convergence`, the largest count; default: the scene's sampler).
     #[arg(long)]
     spp: Option<u32>,
@@ -139,31 +150,54 @@ fn main() {
             });
             // An interval too long for a Duration (`inf`) means: never between passes.
             let every = Duration::try_from_secs_f64(checkpoint_every.max(0.0)).unwrap_or(Duration::MAX);
-            cmd_render(&RenderJob {
-                scene: run.scene,
-                defines: run.define,
-                backend: run.backend,
-                spp: run.spp,
-                seed: run.seed,
-                output,
-                variance,
-                progress_bar: !quiet,
-                checkpoint: checkpoint.map(|path| (path, every)),
-                tev,
-                integrator: match run.integrator.as_slice() {
-                    [] => None,
-                    [one] => Some(*one),
-                    _ => {
-                        eprintln!("error: render takes one --integrator (convergence compares several)");
-                        std::process::exit(2);
-                    }
+            // Under mpirun (an MPI build): this process renders its share, rank 0 writes the image.
+            #[cfg(feature = "mpi")]
+            let world = match caustic::mpi::launched().then(caustic::mpi::World::init).transpose() {
+                Ok(w) => w,
+                Err(e) => {
+                    eprintln!("error: {e:#}");
+                    std::process::exit(1);
+                }
+            };
+            #[cfg(feature = "mpi")]
+            let ranks = world.as_ref().map(|w| w as &dyn caustic::ranks::Ranks);
+            #[cfg(not(feature = "mpi"))]
+            let ranks = None;
+            cmd_render(
+                ranks,
+                &RenderJob {
+                    scene: run.scene,
+                    defines: run.define,
+                    backend: run.backend,
+                    gpus: run.gpus,
+                    spp: run.spp,
+                    seed: run.seed,
+                    output,
+                    variance,
+                    progress_bar: !quiet,
+                    checkpoint: checkpoint.map(|path| (path, every)),
+                    tev,
+                    integrator: match run.integrator.as_slice() {
+                        [] => None,
+                        [one] => Some(*one),
+                        _ => {
+                            eprintln!("error: render takes one --integrator (convergence compares several)");
+                            std::process::exit(2);
+                        }
+                    },
                 },
-            })
+            )
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
             cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref())
         }
-        Command::Bench { scene, define, backend, spp } => cmd_bench(&scene, &define, &backend, spp),
+        Command::Bench { scene, define, backend, spp, gpus, scaling } => {
+            if scaling {
+                cmd_bench_scaling(&scene, &define, &gpus, spp)
+            } else {
+                cmd_bench(&scene, &define, &backend, &gpus, spp)
+            }
+        }
         Command::Convergence { run, reference, csv, plot } => {
             cmd_convergence(&run, &reference, csv.as_deref(), plot.as_deref())
         }
@@ -174,8 +208,8 @@ fn main() {
     }
 }
 
-fn cmd_render(job: &RenderJob) -> Result<()> {
-    let r = session::render_to_file(job)?;
+fn cmd_render(ranks: Option<&dyn caustic::ranks::Ranks>, job: &RenderJob) -> Result<()> {
+    let Some(r) = session::render_share(job, ranks)? else { return Ok(()) };
     let resumed = if r.resumed_at > 0 { format!(" (resumed at {})", r.resumed_at) } else { String::new() };
     say!(
         "{} | {}x{} | {} spp{resumed} | {:.2} s | {:.2} Msamples/s | {}",
@@ -223,7 +257,7 @@ fn cmd_compare(
 
 fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Option<&Path>) -> Result<()> {
     use caustic::convergence;
-    let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed, integrator } = run;
+    let RunArgs { scene: scene_path, backend: choice, gpus, spp, define: defines, seed, integrator } = run;
     let (choice, seed) = (*choice, *seed);
     let loaded = caustic::load_scene(scene_path, defines)?;
     let reference_film = Film::load_exr(reference)?;
@@ -241,10 +275,10 @@ fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Op
         let spp = spp.unwrap_or(scene.sensor.spp);
         let buffers = buffers::build(&scene)
             .with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
-        let mut backend = backend::create(choice, &buffers)?;
+        let mut backend = backend::create_on(choice, gpus, &buffers)?;
         // A one-sample warm-up (pipeline compilation, caches) on a backend of its own, untimed.
         render::render(backend.as_mut(), &buffers, 1, seed.wrapping_add(1), |_| {})?;
-        let mut backend = backend::create(choice, &buffers)?;
+        let mut backend = backend::create_on(choice, gpus, &buffers)?;
         let points = convergence::measure(backend.as_mut(), &buffers, &reference_film, spp, seed)?;
         say!(
             "{name} | {} | {}x{} | independent sampler",
@@ -304,6 +338,7 @@ fn cmd_bench(
     scene_path: &Path,
     defines: &[(String, String)],
     choices: &[BackendChoice],
+    gpus: &GpuSelection,
     spp: u32,
 ) -> Result<()> {
     if spp == 0 {
@@ -314,7 +349,7 @@ fn cmd_bench(
     say!("| backend | resolution | spp | seconds | Msamples/s |");
     say!("|---|---|---|---|---|");
     for &choice in choices {
-        let mut backend = match backend::create(choice, &buffers) {
+        let mut backend = match backend::create_on(choice, gpus, &buffers) {
             Ok(b) => b,
             Err(e) => {
                 say!("| {choice:?} | unavailable: {e:#} | | | |");
@@ -323,7 +358,7 @@ fn cmd_bench(
         };
         // A short warm-up pass (pipeline compilation, caches), then the timed render.
         render::render(backend.as_mut(), &buffers, 1, 1, |_| {})?;
-        let mut backend = backend::create(choice, &buffers)?;
+        let mut backend = backend::create_on(choice, gpus, &buffers)?;
         let (film, stats) = render::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
         let msps = film.width as f64 * film.height as f64 * spp as f64 / stats.seconds / 1e6;
         say!(
@@ -334,5 +369,51 @@ fn cmd_bench(
             stats.seconds
         );
     }
+    Ok(())
+}
+
+/// Multi-GPU scaling: the same render on the first 1, 2, 4, … of the selected GPUs (and all of
+/// them), each after an untimed warm-up on its own devices.
+fn cmd_bench_scaling(
+    scene_path: &Path,
+    defines: &[(String, String)],
+    gpus: &GpuSelection,
+    spp: u32,
+) -> Result<()> {
+    if spp == 0 {
+        anyhow::bail!("--spp must be at least 1");
+    }
+    let scene = caustic::load_scene(scene_path, defines)?;
+    let buffers = buffers::build(&scene)?;
+    let all = backend::resolve_gpus(gpus, &backend::gpu::adapter_types(), false)?;
+    let mut counts: Vec<usize> = (0..).map(|k| 1usize << k).take_while(|&c| c < all.len()).collect();
+    counts.push(all.len());
+    let (w, h) = (buffers.params.width, buffers.params.height);
+    say!("{} | {w}x{h} | {spp} spp", scene_path.display());
+    say!("| GPUs | seconds | Msamples/s | speed-up | efficiency | samples per GPU |");
+    say!("|---|---|---|---|---|---|");
+    let (mut one_gpu, mut described) = (None, String::new());
+    for count in counts {
+        let selection = GpuSelection::List(all[..count].to_vec());
+        let mut warm = backend::create_on(BackendChoice::Gpu, &selection, &buffers)?;
+        render::render(warm.as_mut(), &buffers, count as u32, 1, |_| {})?;
+        drop(warm);
+        let mut backend = backend::create_on(BackendChoice::Gpu, &selection, &buffers)?;
+        let (_, stats) = render::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
+        let msps = w as f64 * h as f64 * spp as f64 / stats.seconds / 1e6;
+        let base = *one_gpu.get_or_insert(msps);
+        let shares = match backend.lanes() {
+            Some(lanes) => lanes.shares().iter().map(|s| s.to_string()).collect::<Vec<_>>().join(" / "),
+            None => spp.to_string(),
+        };
+        described = backend.describe();
+        say!(
+            "| {count} | {:.3} | {msps:.2} | {:.2} | {:.0}% | {shares} |",
+            stats.seconds,
+            msps / base,
+            100.0 * msps / base / count as f64
+        );
+    }
+    say!("devices: {described}");
     Ok(())
 }

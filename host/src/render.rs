@@ -1,9 +1,13 @@
 //! Progressive rendering: passes of a few samples per pixel until the budget is reached, each pass
-//! short enough for GPU watchdogs, the image readable after any pass.
+//! short enough for GPU watchdogs, the image readable after any pass. With several devices
+//! (`backend::pool`), every idle device takes the next pass (a fast device takes more of them), and
+//! the image is read when the loop has brought all of them to rest.
 use crate::backend::Backend;
 use crate::buffers::SceneBuffers;
 use crate::film::Film;
-use anyhow::Result;
+use crate::schedule::{Lanes, Lost, Samples};
+use anyhow::{bail, Result};
+use caustic_kernel::layout::FrameParams;
 use std::ops::ControlFlow::{self, Continue};
 use std::time::{Duration, Instant};
 
@@ -23,28 +27,96 @@ pub struct RenderStats {
     pub passes: u32,
 }
 
-/// Renders `spp` samples per pixel with `seed`, calling `progress(samples done)` after each pass.
+/// What the pass loop tells its caller, and when it stops for it.
+pub trait PassObserver {
+    /// After every pass: samples per pixel finished so far (with several devices, not necessarily
+    /// the samples `[0, n)`).
+    fn progress(&mut self, _finished: u32) {}
+    /// Asked after every pass while several devices run: whether to bring them to rest for
+    /// `at_rest` (a checkpoint or an image update is due). Each rest idles every device for part
+    /// of a pass, so ask only as often as needed.
+    fn wants_rest(&mut self, _seconds: f64) -> bool {
+        false
+    }
+    /// No pass is running and the accumulation holds exactly the samples `[0, done)`: after every
+    /// pass with one device; with several at `checkpoints`, at the end and when `wants_rest`.
+    /// `Break` stops the render (the samples done stay in the backend).
+    fn at_rest(&mut self, done: u32, seconds: f64, backend: &mut dyn Backend) -> Result<ControlFlow<()>>;
+}
+
+/// A closure as an observer that only rests (`render_with_checkpoints`).
+struct AtRest<F>(F);
+
+impl<F: FnMut(u32, f64, &mut dyn Backend) -> Result<ControlFlow<()>>> PassObserver for AtRest<F> {
+    fn at_rest(&mut self, done: u32, seconds: f64, backend: &mut dyn Backend) -> Result<ControlFlow<()>> {
+        (self.0)(done, seconds, backend)
+    }
+}
+
+/// Renders `spp` samples per pixel with `seed`, calling `progress(samples finished)` after each pass.
 pub fn render(
     backend: &mut dyn Backend,
     buffers: &SceneBuffers,
     spp: u32,
     seed: u32,
-    mut progress: impl FnMut(u32),
+    progress: impl FnMut(u32),
 ) -> Result<(Film, RenderStats)> {
-    let stats = render_with_checkpoints(backend, buffers, 0, spp, seed, &[], |done, _, _| {
-        progress(done);
-        Ok(Continue(()))
-    })?;
+    struct Progress<P>(P);
+    impl<P: FnMut(u32)> PassObserver for Progress<P> {
+        fn progress(&mut self, finished: u32) {
+            (self.0)(finished)
+        }
+        fn at_rest(&mut self, _: u32, _: f64, _: &mut dyn Backend) -> Result<ControlFlow<()>> {
+            Ok(Continue(()))
+        }
+    }
+    let stats = render_observed(backend, buffers, 0, spp, seed, &[], Progress(progress))?;
     let accum = backend.read_accum()?;
     Ok((Film::from_accum(buffers.params.width, buffers.params.height, &accum), stats))
+}
+
+/// One device as a lane: `start` keeps the pass, `finish` runs it.
+struct One<'a> {
+    backend: &'a mut dyn Backend,
+    pending: Option<FrameParams>,
+    alive: bool,
+}
+
+impl Lanes for One<'_> {
+    fn count(&self) -> usize {
+        1
+    }
+    fn is_alive(&self, _: usize) -> bool {
+        self.alive
+    }
+    fn start(&mut self, _: usize, params: &FrameParams) {
+        self.pending = Some(*params);
+    }
+    fn finish(&mut self) -> (usize, Result<Duration, Lost>) {
+        let params = self.pending.take().expect("a pass was started");
+        let t = Instant::now();
+        match self.backend.pass(&params) {
+            Ok(()) => (0, Ok(t.elapsed())),
+            Err(error) => {
+                self.alive = false;
+                (0, Err(Lost { device: self.backend.describe(), error, ranges: Vec::new() }))
+            }
+        }
+    }
+    fn shares(&self) -> Vec<u64> {
+        Vec::new()
+    }
+    fn backend(&mut self) -> &mut dyn Backend {
+        self.backend
+    }
 }
 
 /// The pass loop, from sample `start` (a resumed render's accumulation buffer already holds the
 /// samples before it: the counter-based random numbers make the continuation exactly what an
 /// uninterrupted render would have drawn). Passes never run past a sample count listed in
-/// `checkpoints`; after every pass `after_pass(samples done, render seconds so far, backend)` runs,
-/// untimed (so a caller may read the image back at checkpoints without charging the render for it),
-/// and may stop the render early with `Break` (the samples done so far stay in the backend).
+/// `checkpoints`; the observer's `at_rest` runs untimed (so a caller may read the image back at
+/// checkpoints without charging the render for it); `after_pass` is the observer's `at_rest`: after
+/// every pass with one device, at `checkpoints` and the end with several.
 pub fn render_with_checkpoints(
     backend: &mut dyn Backend,
     buffers: &SceneBuffers,
@@ -52,40 +124,102 @@ pub fn render_with_checkpoints(
     spp: u32,
     seed: u32,
     checkpoints: &[u32],
-    mut after_pass: impl FnMut(u32, f64, &mut dyn Backend) -> Result<ControlFlow<()>>,
+    after_pass: impl FnMut(u32, f64, &mut dyn Backend) -> Result<ControlFlow<()>>,
 ) -> Result<RenderStats> {
-    let mut rendering = Duration::ZERO;
-    let mut done = start;
-    let mut per_pass = 1u32;
+    render_observed(backend, buffers, start, spp, seed, checkpoints, AtRest(after_pass))
+}
+
+/// `render_with_checkpoints` with an observer that also follows progress and asks for rests.
+pub fn render_observed(
+    backend: &mut dyn Backend,
+    buffers: &SceneBuffers,
+    start: u32,
+    spp: u32,
+    seed: u32,
+    checkpoints: &[u32],
+    mut observer: impl PassObserver,
+) -> Result<RenderStats> {
+    let mut one;
+    // (Asked twice: a borrow returned from one arm of a match cannot be reused in the other.)
+    let lanes: &mut dyn Lanes = if backend.lanes().is_some() {
+        backend.lanes().expect("several devices")
+    } else {
+        one = One { backend, pending: None, alive: true };
+        &mut one
+    };
+    let n = lanes.count();
     let max_per_pass = if caustic_kernel::integrator::splats(buffers.params.integrator) {
         (spp / MIN_BATCHES).clamp(1, MAX_SAMPLES_PER_PASS)
     } else {
         MAX_SAMPLES_PER_PASS
     };
+    let mut samples = Samples::new(start);
+    let mut per_pass = vec![1u32; n];
+    let mut running: Vec<Option<(u32, u32)>> = vec![None; n];
+    let (clock, mut untimed) = (Instant::now(), Duration::ZERO);
     let mut passes = 0u32;
-    while done < spp {
-        let next_stop = checkpoints.iter().copied().filter(|&c| c > done).min().unwrap_or(spp).min(spp);
-        let count = per_pass.min(next_stop - done);
-        let mut params = buffers.params;
-        params.seed = seed;
-        params.sample_base = done;
-        params.sample_count = count;
-        params.spp_total = spp;
-        let t = Instant::now();
-        backend.pass(&params)?;
-        let elapsed = t.elapsed();
-        rendering += elapsed;
-        done += count;
-        passes += 1;
-        if after_pass(done, rendering.as_secs_f64(), backend)?.is_break() {
-            break;
+    let mut resting = false;
+    while samples.prefix() < spp {
+        let stop =
+            checkpoints.iter().copied().filter(|&c| c > samples.prefix()).min().unwrap_or(spp).min(spp);
+        if !resting {
+            for lane in 0..n {
+                if running[lane].is_some() || !lanes.is_alive(lane) {
+                    continue;
+                }
+                let Some((first, count)) = samples.claim(per_pass[lane], stop) else { break };
+                let mut params = buffers.params;
+                params.seed = seed;
+                params.sample_base = first;
+                params.sample_count = count;
+                params.spp_total = spp;
+                lanes.start(lane, &params);
+                running[lane] = Some((first, count));
+            }
         }
-        // Grow (at most doubling) or shrink the pass towards the target duration; a pass cut short by
-        // a checkpoint says little about the right size, so only full passes adjust it.
-        if count == per_pass {
-            let ratio = TARGET_PASS.as_secs_f64() / elapsed.as_secs_f64().max(1e-6);
-            per_pass = ((count as f64 * ratio.min(2.0)) as u32).clamp(1, max_per_pass);
+        if running.iter().all(Option::is_none) {
+            bail!("no pass to run at {} of {spp} spp (internal error)", samples.prefix());
+        }
+        let (lane, result) = lanes.finish();
+        let range = running[lane].take().expect("the lane was running");
+        match result {
+            Ok(elapsed) => {
+                samples.finish(range);
+                passes += 1;
+                observer.progress(samples.finished_total());
+                // Grow (at most doubling) or shrink the pass towards the target duration; a pass cut
+                // short by a checkpoint says little about the right size, so only full passes adjust it.
+                if range.1 == per_pass[lane] {
+                    let ratio = TARGET_PASS.as_secs_f64() / elapsed.as_secs_f64().max(1e-6);
+                    per_pass[lane] = ((range.1 as f64 * ratio.min(2.0)) as u32).clamp(1, max_per_pass);
+                }
+            }
+            Err(lost) if (0..n).any(|l| lanes.is_alive(l)) => {
+                eprintln!(
+                    "warning: {} failed ({:#}); the other devices render its {} unsaved pass(es) again",
+                    lost.device,
+                    lost.error,
+                    lost.ranges.len()
+                );
+                samples.give_back(&lost.ranges);
+            }
+            Err(lost) => return Err(lost.error.context(format!("{} failed", lost.device))),
+        }
+        let seconds = (clock.elapsed() - untimed).as_secs_f64();
+        if n > 1 && !resting && observer.wants_rest(seconds) {
+            resting = true;
+        }
+        let idle = running.iter().all(Option::is_none);
+        let at_stop = samples.prefix() == stop;
+        if idle && (n == 1 || resting || at_stop) {
+            resting = false;
+            let t = Instant::now();
+            let flow = observer.at_rest(samples.prefix(), seconds, lanes.backend())?;
+            untimed += t.elapsed();
+            if flow.is_break() {
+                break;
+            }
         }
     }
-    Ok(RenderStats { spp, seconds: rendering.as_secs_f64(), passes })
+    Ok(RenderStats { spp, seconds: (clock.elapsed() - untimed).as_secs_f64(), passes })
 }

@@ -2,13 +2,14 @@
 //! pass loop (progress bar, checkpoints and resuming, streaming to tev, saving the image somewhere
 //! even when its path fails). One function that the command line, a Python binding or an MPI runner
 //! all call; `render.rs` below it owns only the pass loop.
-use crate::backend::{self, Backend, BackendChoice};
+use crate::backend::{self, Backend, BackendChoice, GpuSelection};
 use crate::checkpoint::{self, Checkpoint};
 use crate::film::{self, Film};
+use crate::ranks::{self, Ranks};
 use crate::scene::IntegratorChoice;
 use crate::{buffers, render, tev};
 use anyhow::{bail, Context, Result};
-use std::ops::ControlFlow::Continue;
+use std::ops::ControlFlow::{self, Continue};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -23,6 +24,8 @@ pub struct RenderJob {
     /// `-D name=value` overrides of the scene's `$name` parameters.
     pub defines: Vec<(String, String)>,
     pub backend: BackendChoice,
+    /// The GPUs to render on (several: passes spread over them, sums added).
+    pub gpus: GpuSelection,
     /// Samples per pixel; `None` takes the scene's sampler's count.
     pub spp: Option<u32>,
     pub seed: u32,
@@ -67,9 +70,19 @@ impl RenderReport {
 
 /// Loads the scene, renders it and writes the image (and variance) to `job.output`.
 pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
+    Ok(render_share(job, None)?.expect("one process writes the image"))
+}
+
+/// `render_to_file` as one of several processes (`ranks`: MPI): this one renders its share of the
+/// samples and rank 0 sums the shares and writes the image (`Some` report there, `None` elsewhere).
+pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option<RenderReport>> {
+    let (rank, size) = ranks.map_or((0, 1), |r| (r.rank(), r.size()));
     let output = job.output.as_path();
     film::check_output_path(output)?;
     if let Some((path, _)) = &job.checkpoint {
+        if size > 1 {
+            bail!("--checkpoint is not supported with several MPI ranks yet (each rank holds a share)");
+        }
         check_checkpoint_path(path, output)?;
     }
     let mut scene = crate::load_scene(&job.scene, &job.defines)?;
@@ -82,19 +95,22 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
     }
     let buffers =
         buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", job.scene.display()))?;
-    let mut backend = backend::create(job.backend, &buffers)?;
+    let gpus = if size > 1 { rank_gpus(job, rank)? } else { job.gpus.clone() };
+    let mut backend = backend::create_on(job.backend, &gpus, &buffers)?;
     let seed = job.seed;
     // Hashing every scene buffer is only worth it when there is a checkpoint to match.
     let checkpoint = job
         .checkpoint
         .as_ref()
         .map(|(path, every)| (path, *every, checkpoint::fingerprint(&buffers, seed, spp)));
-    let start = match checkpoint {
-        Some((path, _, fingerprint)) => resume(path, backend.as_mut(), fingerprint, spp)?,
-        None => 0,
+    // This process's samples: [start, end) (all of them, less a checkpoint's, for one process).
+    let (start, end) = match checkpoint {
+        Some((path, _, fingerprint)) => (resume(path, backend.as_mut(), fingerprint, spp)?, spp),
+        None => ranks::share(spp, rank, size),
     };
-    let bar = if job.progress_bar {
-        indicatif::ProgressBar::new(spp as u64)
+    // Rank 0's share starts at 0: its bar counts its own samples to its share's end.
+    let bar = if job.progress_bar && rank == 0 {
+        indicatif::ProgressBar::new(end as u64)
     } else {
         indicatif::ProgressBar::hidden()
     };
@@ -106,9 +122,10 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
     bar.set_position(start as u64);
     let (width, height) = (buffers.params.width, buffers.params.height);
     let name = output.file_name().unwrap_or_default().to_string_lossy().to_string();
-    let mut viewer = match job
+    let viewer = match job
         .tev
         .as_deref()
+        .filter(|_| rank == 0)
         .map(|address| tev::TevStream::connect(address, &name, width, height))
         .transpose()
     {
@@ -118,47 +135,37 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
             None
         }
     };
-    let mut last_save = Instant::now();
-    let mut last_view = Instant::now();
-    let stats = render::render_with_checkpoints(
-        backend.as_mut(),
-        &buffers,
-        start,
-        spp,
+    let observer = Observer {
+        bar: &bar,
+        viewer,
+        checkpoint,
+        last_save: Instant::now(),
+        last_view: Instant::now(),
         seed,
-        &[],
-        |done, _, backend| {
-            bar.set_position(done as u64);
-            if let Some(stream) =
-                viewer.as_mut().filter(|_| last_view.elapsed() >= TEV_INTERVAL || done == spp)
-            {
-                if let Err(e) = stream.update(&Film::from_accum(width, height, &backend.read_accum()?)) {
-                    eprintln!("warning: {e:#}; no more updates to the viewer");
-                    viewer = None;
-                }
-                last_view = Instant::now();
-            }
-            if let Some((path, every, fingerprint)) = checkpoint {
-                if done < spp && last_save.elapsed() >= every {
-                    let c = Checkpoint {
-                        scene: fingerprint,
-                        seed,
-                        spp_total: spp,
-                        spp_done: done,
-                        accum: backend.read_accum()?,
-                    };
-                    // A checkpoint that cannot be written must not cost the render itself.
-                    if let Err(e) = c.save(path) {
-                        eprintln!("warning: {e:#}; the render goes on");
-                    }
-                    last_save = Instant::now();
-                }
-            }
-            Ok(Continue(()))
-        },
-    )?;
+        spp,
+        stop_at: end,
+        size: (width, height),
+    };
+    let clock = Instant::now();
+    let mut seconds = 0.0;
+    if start < end {
+        let stop = if end < spp { vec![end] } else { vec![] };
+        seconds =
+            render::render_observed(backend.as_mut(), &buffers, start, spp, seed, &stop, observer)?.seconds;
+    }
     bar.finish_and_clear();
-    let mut film = Film::from_accum(width, height, &backend.read_accum()?);
+    let accum = match ranks.filter(|_| size > 1) {
+        None => backend.read_accum()?,
+        Some(ranks) => match ranks.reduce(&backend.read_accum()?)? {
+            Some(total) => {
+                // Until the last share is summed: the ranks' render as a whole.
+                seconds = clock.elapsed().as_secs_f64();
+                total
+            }
+            None => return Ok(None),
+        },
+    };
+    let mut film = Film::from_accum(width, height, &accum);
     sanitize(&mut film);
     save_or_recover(&film, output)?;
     if job.variance {
@@ -168,15 +175,103 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
         // The image is safe on disk: the checkpoint has served.
         std::fs::remove_file(path).ok();
     }
-    Ok(RenderReport {
-        backend: backend.describe(),
+    let described = backend.describe();
+    Ok(Some(RenderReport {
+        backend: if size > 1 { format!("{size} MPI ranks, rank 0 on {described}") } else { described },
         width,
         height,
         spp,
-        resumed_at: start,
-        seconds: stats.seconds,
+        resumed_at: if size > 1 { 0 } else { start },
+        seconds,
         invalid_samples: film.invalid_samples,
-    })
+    }))
+}
+
+/// The GPUs a rank uses: with `--gpus all` and several ranks on a node, every n-th GPU of the node
+/// (one rank per GPU, or one rank per node with all of them); an explicit `--gpus` as given.
+fn rank_gpus(job: &RenderJob, rank: usize) -> Result<GpuSelection> {
+    let (local_rank, local_size) = ranks::local_rank();
+    if job.gpus != GpuSelection::All || job.backend == BackendChoice::Cpu || local_size == 1 {
+        return Ok(job.gpus.clone());
+    }
+    let hardware_only = job.backend == BackendChoice::Auto;
+    let Ok(all) = backend::resolve_gpus(&GpuSelection::All, &backend::gpu::adapter_types(), hardware_only)
+    else {
+        return Ok(GpuSelection::All); // no GPU: `auto` renders on the CPU, `gpu` says why not
+    };
+    let mine = ranks::local_gpus(&all, local_rank, local_size);
+    if mine.is_empty() {
+        bail!(
+            "rank {rank}: {local_size} ranks on this node share {} GPU(s), none left for local rank \
+             {local_rank}: start at most one rank per GPU (or --backend cpu)",
+            all.len()
+        );
+    }
+    Ok(GpuSelection::List(mine))
+}
+
+/// The session's side of the pass loop: the progress bar after every pass; the image to tev and the
+/// checkpoint when due, each needing the devices at rest.
+struct Observer<'a> {
+    bar: &'a indicatif::ProgressBar,
+    viewer: Option<tev::TevStream>,
+    /// Path, interval and the render's fingerprint.
+    checkpoint: Option<(&'a PathBuf, Duration, u64)>,
+    last_save: Instant,
+    last_view: Instant,
+    seed: u32,
+    spp: u32,
+    /// The end of this process's share of the samples (`spp` for one process).
+    stop_at: u32,
+    size: (u32, u32),
+}
+
+impl Observer<'_> {
+    fn view_due(&self) -> bool {
+        self.viewer.is_some() && self.last_view.elapsed() >= TEV_INTERVAL
+    }
+    fn save_due(&self) -> bool {
+        self.checkpoint.is_some_and(|(_, every, _)| self.last_save.elapsed() >= every)
+    }
+}
+
+impl render::PassObserver for Observer<'_> {
+    fn progress(&mut self, finished: u32) {
+        self.bar.set_position(finished as u64);
+    }
+
+    fn wants_rest(&mut self, _seconds: f64) -> bool {
+        self.view_due() || self.save_due()
+    }
+
+    fn at_rest(&mut self, done: u32, _: f64, backend: &mut dyn Backend) -> Result<ControlFlow<()>> {
+        let (width, height) = self.size;
+        self.bar.set_position(done as u64);
+        if self.view_due() || (self.viewer.is_some() && done == self.spp) {
+            let film = Film::from_accum(width, height, &backend.read_accum()?);
+            if let Some(Err(e)) = self.viewer.as_mut().map(|stream| stream.update(&film)) {
+                eprintln!("warning: {e:#}; no more updates to the viewer");
+                self.viewer = None;
+            }
+            self.last_view = Instant::now();
+        }
+        if let Some((path, _, fingerprint)) = self.checkpoint.filter(|_| done < self.spp && self.save_due()) {
+            let c = Checkpoint {
+                scene: fingerprint,
+                seed: self.seed,
+                spp_total: self.spp,
+                spp_done: done,
+                accum: backend.read_accum()?,
+            };
+            // A checkpoint that cannot be written must not cost the render itself.
+            if let Err(e) = c.save(path) {
+                eprintln!("warning: {e:#}; the render goes on");
+            }
+            self.last_save = Instant::now();
+        }
+        // The end of this process's share (a rank's); the loop ends by itself at `spp`.
+        Ok(if done >= self.stop_at { ControlFlow::Break(()) } else { Continue(()) })
+    }
 }
 
 /// Refuses a checkpoint file that is also the image or its variance file: the finished render is

@@ -49,26 +49,29 @@ fn adapter_rank(info: &wgpu::AdapterInfo) -> u32 {
     }
 }
 
-/// The best Vulkan adapter; with `hardware_only`, none if only software rasterisers exist.
-pub fn pick_adapter(hardware_only: bool) -> Result<wgpu::Adapter> {
+/// The machine's Vulkan adapters, best first (discrete, integrated, virtual, other, software; the
+/// driver's order within a kind): `--gpus` indices count in this order. Each call enumerates
+/// afresh, so one adapter can be opened twice (two devices on one GPU).
+pub fn adapters() -> Vec<wgpu::Adapter> {
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
         backends: wgpu::Backends::VULKAN,
         ..wgpu::InstanceDescriptor::new_without_display_handle()
     });
     let mut adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::VULKAN));
     adapters.sort_by_key(|a| adapter_rank(&a.get_info()));
-    let adapter = adapters.into_iter().next().ok_or_else(|| {
-        anyhow!("no Vulkan adapter found (install a Vulkan driver, e.g. mesa-vulkan-drivers for lavapipe)")
-    })?;
-    if hardware_only && adapter.get_info().device_type == wgpu::DeviceType::Cpu {
-        bail!("only a software Vulkan adapter ({}) is available", adapter.get_info().name);
-    }
-    Ok(adapter)
+    adapters
+}
+
+/// Each adapter's name and kind, in `adapters()`'s order.
+pub fn adapter_types() -> Vec<(String, wgpu::DeviceType)> {
+    adapters().iter().map(|a| a.get_info()).map(|i| (i.name, i.device_type)).collect()
 }
 
 impl GpuBackend {
-    pub fn new(buffers: &SceneBuffers, hardware_only: bool) -> Result<Self> {
-        let adapter = pick_adapter(hardware_only)?;
+    /// A device, pipelines and buffers on adapter `index` of `adapters()`.
+    pub fn on_adapter(buffers: &SceneBuffers, index: usize) -> Result<Self> {
+        let adapter =
+            adapters().into_iter().nth(index).ok_or_else(|| anyhow!("no Vulkan adapter {index}"))?;
         let info = adapter.get_info();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("caustic"),

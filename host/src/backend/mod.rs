@@ -1,10 +1,13 @@
-//! Rendering backends: the same kernel on the GPU (wgpu compute) or the CPU (rayon).
+//! Rendering backends: the same kernel on the GPU (wgpu compute) or the CPU (rayon), and several
+//! GPUs as one backend (`pool`).
 pub mod cpu;
 pub mod gpu;
+pub mod pool;
 pub mod runtime_dir;
 
 use crate::film::Accumulation;
-use anyhow::Result;
+use crate::schedule::Lanes;
+use anyhow::{bail, Result};
 use caustic_kernel::layout::FrameParams;
 
 /// A device that can add samples to an accumulation buffer (one `PixelAccum` per pixel). Light
@@ -18,6 +21,10 @@ pub trait Backend {
     fn read_accum(&mut self) -> Result<Accumulation>;
     /// Replaces the accumulation buffer (resuming from a checkpoint); `accum` has its exact size.
     fn write_accum(&mut self, accum: &Accumulation) -> Result<()>;
+    /// Several devices that run passes at once (`pool::Pool`); `None` for one device.
+    fn lanes(&mut self) -> Option<&mut dyn Lanes> {
+        None
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -30,14 +37,145 @@ pub enum BackendChoice {
     Cpu,
 }
 
-/// Creates the chosen backend for a scene's buffers.
-pub fn create(choice: BackendChoice, buffers: &crate::buffers::SceneBuffers) -> Result<Box<dyn Backend>> {
-    match choice {
-        BackendChoice::Cpu => Ok(Box::new(cpu::CpuBackend::new(buffers.clone()))),
-        BackendChoice::Gpu => Ok(Box::new(gpu::GpuBackend::new(buffers, false)?)),
-        BackendChoice::Auto => match gpu::GpuBackend::new(buffers, true) {
-            Ok(g) => Ok(Box::new(g)),
-            Err(_) => Ok(Box::new(cpu::CpuBackend::new(buffers.clone()))),
+/// Which GPUs to render on (`--gpus`): every hardware adapter, the first N, or adapters by index
+/// in `gpu::adapters()`'s order (an index may repeat: two devices on one adapter).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum GpuSelection {
+    #[default]
+    All,
+    First(usize),
+    List(Vec<usize>),
+}
+
+impl std::str::FromStr for GpuSelection {
+    type Err = String;
+    /// `all`, `N` (the first N adapters) or a comma-separated list of indices with at least two
+    /// entries or a trailing comma (`0,1`, `1,`).
+    fn from_str(s: &str) -> Result<Self, String> {
+        let bad = || format!("'{s}' is not all, a count or a comma-separated list of adapter indices");
+        if s == "all" {
+            return Ok(GpuSelection::All);
+        }
+        if !s.contains(',') {
+            return match s.parse::<usize>() {
+                Ok(0) => Err("--gpus 0: at least one GPU is needed (use --backend cpu for none)".into()),
+                Ok(n) => Ok(GpuSelection::First(n)),
+                Err(_) => Err(bad()),
+            };
+        }
+        let list: Result<Vec<usize>, _> =
+            s.split(',').filter(|p| !p.is_empty()).map(|p| p.trim().parse::<usize>()).collect();
+        match list {
+            Ok(l) if !l.is_empty() => Ok(GpuSelection::List(l)),
+            _ => Err(bad()),
+        }
+    }
+}
+
+/// The adapter indices `selection` names among adapters of these types (best first), or why not.
+/// `All` and `First` take hardware adapters; with none, `All` takes the best software one unless
+/// `hardware_only`.
+pub fn resolve_gpus(
+    selection: &GpuSelection,
+    adapters: &[(String, wgpu::DeviceType)],
+    hardware_only: bool,
+) -> Result<Vec<usize>> {
+    let listing = || {
+        let lines: Vec<String> =
+            adapters.iter().enumerate().map(|(i, (name, ty))| format!("  {i}: {name} ({ty:?})")).collect();
+        if lines.is_empty() {
+            "no Vulkan adapter found (install a Vulkan driver, e.g. mesa-vulkan-drivers for lavapipe)".into()
+        } else {
+            format!("the Vulkan adapters are:\n{}", lines.join("\n"))
+        }
+    };
+    let hardware: Vec<usize> =
+        (0..adapters.len()).filter(|&i| adapters[i].1 != wgpu::DeviceType::Cpu).collect();
+    let usable =
+        if hardware.is_empty() && !hardware_only && !adapters.is_empty() { vec![0] } else { hardware };
+    match selection {
+        GpuSelection::All if usable.is_empty() => bail!("no hardware GPU; {}", listing()),
+        GpuSelection::All => Ok(usable),
+        GpuSelection::First(n) if *n > usable.len() => {
+            bail!("--gpus {n}: only {} suitable GPU(s); {}", usable.len(), listing())
+        }
+        GpuSelection::First(n) => Ok(usable[..*n].to_vec()),
+        GpuSelection::List(list) => match list.iter().find(|&&i| i >= adapters.len()) {
+            Some(i) => bail!("--gpus: no adapter {i}; {}", listing()),
+            None => Ok(list.clone()),
         },
+    }
+}
+
+/// Creates the chosen backend for a scene's buffers: every GPU `gpus` selects (several become one
+/// `pool::Pool`), or the CPU.
+pub fn create_on(
+    choice: BackendChoice,
+    gpus: &GpuSelection,
+    buffers: &crate::buffers::SceneBuffers,
+) -> Result<Box<dyn Backend + Send>> {
+    let cpu = || -> Box<dyn Backend + Send> { Box::new(cpu::CpuBackend::new(buffers.clone())) };
+    let hardware_only = match choice {
+        BackendChoice::Cpu => return Ok(cpu()),
+        BackendChoice::Gpu => false,
+        BackendChoice::Auto => true,
+    };
+    let indices = match resolve_gpus(gpus, &gpu::adapter_types(), hardware_only) {
+        Ok(i) => i,
+        // Auto falls back to the CPU only when it was not asked for particular GPUs.
+        Err(_) if choice == BackendChoice::Auto && *gpus == GpuSelection::All => return Ok(cpu()),
+        Err(e) => return Err(e),
+    };
+    let mut devices: Vec<Box<dyn Backend + Send>> = Vec::with_capacity(indices.len());
+    for i in indices {
+        devices.push(Box::new(gpu::GpuBackend::on_adapter(buffers, i)?));
+    }
+    if devices.len() == 1 {
+        return Ok(devices.pop().expect("one device"));
+    }
+    let pixels = (buffers.params.width * buffers.params.height) as usize;
+    let splatted = caustic_kernel::integrator::splats(buffers.params.integrator);
+    Ok(Box::new(pool::Pool::new(devices, Accumulation::new(pixels, splatted))?))
+}
+
+/// `create_on` with every suitable GPU (today's single adapter where there is one).
+pub fn create(
+    choice: BackendChoice,
+    buffers: &crate::buffers::SceneBuffers,
+) -> Result<Box<dyn Backend + Send>> {
+    create_on(choice, &GpuSelection::All, buffers)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use wgpu::DeviceType::{Cpu, DiscreteGpu};
+
+    #[test]
+    fn gpu_selections_parse() {
+        let p = |s: &str| s.parse::<GpuSelection>();
+        assert_eq!(p("all"), Ok(GpuSelection::All));
+        assert_eq!(p("2"), Ok(GpuSelection::First(2)));
+        assert_eq!(p("0,0"), Ok(GpuSelection::List(vec![0, 0])));
+        assert_eq!(p("3,"), Ok(GpuSelection::List(vec![3])));
+        assert!(p("0").unwrap_err().contains("at least one"));
+        assert!(p("x").is_err() && p("1,x").is_err() && p(",").is_err());
+    }
+
+    #[test]
+    fn gpu_selections_resolve() {
+        let machine =
+            [("H200".to_string(), DiscreteGpu), ("H200".into(), DiscreteGpu), ("llvmpipe".into(), Cpu)];
+        let r = |s: GpuSelection, hw| resolve_gpus(&s, &machine, hw);
+        assert_eq!(r(GpuSelection::All, true).unwrap(), vec![0, 1]);
+        assert_eq!(r(GpuSelection::First(1), false).unwrap(), vec![0]);
+        assert_eq!(r(GpuSelection::List(vec![2, 2]), false).unwrap(), vec![2, 2]);
+        let e = format!("{:#}", r(GpuSelection::First(3), true).unwrap_err());
+        assert!(e.contains("only 2") && e.contains("2: llvmpipe"), "{e}");
+        assert!(format!("{:#}", r(GpuSelection::List(vec![5]), true).unwrap_err()).contains("no adapter 5"));
+        // Software only: `all` takes it for --backend gpu, not for auto (which then uses the CPU).
+        let soft = [("llvmpipe".to_string(), Cpu)];
+        assert_eq!(resolve_gpus(&GpuSelection::All, &soft, false).unwrap(), vec![0]);
+        assert!(resolve_gpus(&GpuSelection::All, &soft, true).is_err());
     }
 }
