@@ -4,7 +4,7 @@ use caustic::backend::{self, BackendChoice};
 use caustic::film::{variance_path, Film};
 use caustic::scene::IntegratorChoice;
 use caustic::session::{self, RenderJob};
-use caustic::{buffers, compare, render};
+use caustic::{buffers, compare, render, LoadOptions};
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -83,6 +83,9 @@ enum Command {
         backend: Vec<BackendChoice>,
         #[arg(long, default_value_t = 64)]
         spp: u32,
+        /// Refuse a scene that would not render as written (as `render --strict`).
+        #[arg(long)]
+        strict: bool,
     },
 }
 
@@ -106,6 +109,10 @@ struct RunArgs {
     /// `convergence` takes several, comma-separated, and measures one curve each.
     #[arg(long, value_enum, value_delimiter = ',')]
     integrator: Vec<IntegratorChoice>,
+    /// Refuse a scene that would not render as written (an unsupported plugin replaced or left out,
+    /// a property not read) instead of warning.
+    #[arg(long)]
+    strict: bool,
 }
 
 /// `println!` that ends the program quietly when stdout is closed (`caustic compare … | head`), as
@@ -145,6 +152,7 @@ fn main() {
                 backend: run.backend,
                 spp: run.spp,
                 seed: run.seed,
+                strict: run.strict,
                 output,
                 variance,
                 progress_bar: !quiet,
@@ -163,7 +171,9 @@ fn main() {
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
             cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref())
         }
-        Command::Bench { scene, define, backend, spp } => cmd_bench(&scene, &define, &backend, spp),
+        Command::Bench { scene, define, backend, spp, strict } => {
+            cmd_bench(&scene, &define, &backend, spp, LoadOptions { strict })
+        }
         Command::Convergence { run, reference, csv, plot } => {
             cmd_convergence(&run, &reference, csv.as_deref(), plot.as_deref())
         }
@@ -223,9 +233,9 @@ fn cmd_compare(
 
 fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Option<&Path>) -> Result<()> {
     use caustic::convergence;
-    let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed, integrator } = run;
+    let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed, integrator, strict } = run;
     let (choice, seed) = (*choice, *seed);
-    let loaded = caustic::load_scene(scene_path, defines)?;
+    let loaded = caustic::load_scene_with(scene_path, defines, LoadOptions { strict: *strict })?;
     let reference_film = Film::load_exr(reference)?;
     compare::check_finite(&reference_film, reference)?;
     // The scene's own integrator, or each one asked for: one curve each, measured one after the other.
@@ -305,11 +315,12 @@ fn cmd_bench(
     defines: &[(String, String)],
     choices: &[BackendChoice],
     spp: u32,
+    options: LoadOptions,
 ) -> Result<()> {
     if spp == 0 {
         anyhow::bail!("--spp must be at least 1");
     }
-    let scene = caustic::load_scene(scene_path, defines)?;
+    let scene = caustic::load_scene_with(scene_path, defines, options)?;
     let buffers = buffers::build(&scene)?;
     say!("| backend | resolution | spp | seconds | Msamples/s |");
     say!("|---|---|---|---|---|");

@@ -94,10 +94,11 @@ impl Loader {
             "plastic" | "roughplastic" => self.plastic(props)?,
             "twosided" => self.twosided(props)?,
             other => {
-                self.warn(&format!(
+                let message = format!(
                     "{}: bsdf type '{other}' is not supported yet; rendering it as grey diffuse",
                     props.loc
-                ));
+                );
+                self.substituted(format!("bsdf '{other}'"), &props.loc, message);
                 props.mark_all_used();
                 Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }
             }
@@ -144,10 +145,11 @@ impl Loader {
             (None, None) => bail!("{}: twosided needs a nested <bsdf>", props.loc),
         };
         if nested.len() + refs.len() > 1 {
-            self.warn(&format!(
+            let message = format!(
                 "{}: twosided with two different BSDFs is not supported; using the first on both sides",
                 props.loc
-            ));
+            );
+            self.substituted("twosided with two BSDFs".to_string(), &props.loc, message);
         }
         let inner_props = self.props(props.src, inner_entry.node)?;
         let index = self.load_bsdf(&inner_props)?;
