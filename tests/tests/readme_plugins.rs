@@ -29,6 +29,9 @@ fn scene_using(family: &str, plugin: &str) -> Option<String> {
         ("spectrum", _) if plugin != "regular" && plugin != "blackbody" && plugin != "rawconstant" => {
             return None
         }
+        ("bsdf", "mask") => {
+            r#"<shape type="sphere"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></shape>"#.into()
+        }
         ("bsdf", "twosided") => {
             r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>"#.into()
         }

@@ -93,6 +93,7 @@ impl Loader {
             "dielectric" | "thindielectric" | "roughdielectric" => self.dielectric(props)?,
             "plastic" | "roughplastic" => self.plastic(props)?,
             "twosided" => self.twosided(props)?,
+            "mask" => self.mask(props)?,
             other => {
                 let message = format!(
                     "{}: bsdf type '{other}' is not supported yet; rendering it as grey diffuse",
@@ -134,6 +135,28 @@ impl Loader {
         let mut m = Material { kind: BSDF_PHONG, eta: exponent, ..Default::default() };
         set_reflectance(&mut m, kd);
         set_specular(&mut m, ks);
+        Ok(m)
+    }
+
+    /// Mitsuba's `mask`: `opacity` (number, colour or texture; its luminance, default 0.5) and one
+    /// nested BSDF, which the material record copies (`caustic_kernel::mask` renders it).
+    fn mask(&mut self, props: &Props) -> Result<Material> {
+        let nested: Vec<_> = props.nested("bsdf").into_iter().chain(props.nested("ref")).collect();
+        let inner_entry = match nested.as_slice() {
+            [one] => *one,
+            [] => bail!("{}: mask needs a nested <bsdf>", props.loc),
+            _ => bail!("{}: mask takes one nested BSDF (Mitsuba refuses more)", props.loc),
+        };
+        let inner_props = self.props(props.src, inner_entry.node)?;
+        let index = self.load_bsdf(&inner_props)?;
+        let mut m = self.materials[index as usize];
+        if m.flags & MATERIAL_MASK != 0 {
+            bail!("{}: a mask inside a mask is not supported", props.loc);
+        }
+        let opacity = self.color_param(props, "opacity", SpectrumUse::Reflectance, [0.5; 3])?;
+        m.flags |= MATERIAL_MASK;
+        m.opacity = caustic_kernel::spectrum::luminance(glam::Vec3::from(opacity.rgb)).clamp(0.0, 1.0);
+        m.opacity_texture = opacity.texture;
         Ok(m)
     }
 
