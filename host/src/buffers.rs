@@ -511,6 +511,11 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         tables.extend(caustic_kernel::wavelength::build_table(&cie_xyz_table(), XYZ_TO_SRGB));
     }
 
+    // Only `path` lets paths through masks (`caustic_kernel::mask`); the others would render them opaque.
+    if materials.iter().any(|m| m.flags & MATERIAL_MASK != 0) && scene.integrator.kind != IntegratorKind::Path
+    {
+        bail!("the mask BSDF is rendered by the path integrator only (not yet by direct, ptracer or ibpt)");
+    }
     let s = &scene.sensor;
     let crop = s.crop.unwrap_or(crate::scene::Crop { x: 0, y: 0, width: s.width, height: s.height });
     let (integrator_kind, emitter_samples, bsdf_samples) = match scene.integrator.kind {
@@ -594,6 +599,9 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     }
     if materials.iter().any(caustic_kernel::wavelength::disperses) {
         f |= features::DISPERSION;
+    }
+    if materials.iter().any(|m| m.flags & MATERIAL_MASK != 0) {
+        f |= features::MASK;
     }
     f
 }

@@ -23,16 +23,34 @@ pub mod tev;
 use anyhow::Result;
 use std::path::Path;
 
+/// How a scene file is read.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LoadOptions {
+    /// Refuse a Mitsuba scene that would not render as written (an unknown plugin replaced or left
+    /// out, a property not read) instead of warning: for pipelines that must not produce a wrong
+    /// image silently. The error names the file and line of each such element.
+    pub strict: bool,
+}
+
 /// Loads a scene by its extension: `.xml` (Mitsuba 3) or `.obj` (with its MTL library).
 pub fn load_scene(path: &Path, defines: &[(String, String)]) -> Result<scene::Scene> {
+    load_scene_with(path, defines, LoadOptions::default())
+}
+
+/// As `load_scene`, with options (`--strict`).
+pub fn load_scene_with(
+    path: &Path,
+    defines: &[(String, String)],
+    options: LoadOptions,
+) -> Result<scene::Scene> {
     match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-        Some("xml") => mitsuba::load(path, defines),
+        Some("xml") => mitsuba::load_with(path, defines, options),
         Some("obj") => {
             let mut warnings = Vec::new();
             if !defines.is_empty() {
                 scene::warn(&mut warnings, "-D definitions do not apply to OBJ files".to_string());
             }
-            let mut scene = obj_scene::load(path)?;
+            let mut scene = obj_scene::load(path, options.strict)?;
             warnings.append(&mut scene.warnings);
             scene.warnings = warnings;
             Ok(scene)

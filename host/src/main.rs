@@ -4,7 +4,7 @@ use caustic::backend::{self, BackendChoice, GpuSelection};
 use caustic::film::{variance_path, Film};
 use caustic::scene::IntegratorChoice;
 use caustic::session::{self, RenderJob};
-use caustic::{buffers, compare, render};
+use caustic::{buffers, compare, render, LoadOptions};
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -90,6 +90,9 @@ enum Command {
         /// print the speed-up over one GPU and each GPU's share of the samples.
         #[arg(long)]
         scaling: bool,
+        /// Refuse a scene that would not render as written (as `render --strict`).
+        #[arg(long)]
+        strict: bool,
     },
 }
 
@@ -117,6 +120,10 @@ struct RunArgs {
     /// `convergence` takes several, comma-separated, and measures one curve each.
     #[arg(long, value_enum, value_delimiter = ',')]
     integrator: Vec<IntegratorChoice>,
+    /// Refuse a scene that would not render as written (an unsupported plugin replaced or left out,
+    /// a property not read) instead of warning.
+    #[arg(long)]
+    strict: bool,
 }
 
 /// `println!` that ends the program quietly when stdout is closed (`caustic compare … | head`), as
@@ -172,6 +179,7 @@ fn main() {
                     gpus: run.gpus,
                     spp: run.spp,
                     seed: run.seed,
+                    strict: run.strict,
                     output,
                     variance,
                     progress_bar: !quiet,
@@ -191,11 +199,11 @@ fn main() {
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
             cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref())
         }
-        Command::Bench { scene, define, backend, spp, gpus, scaling } => {
+        Command::Bench { scene, define, backend, spp, gpus, scaling, strict } => {
             if scaling {
-                cmd_bench_scaling(&scene, &define, &gpus, spp)
+                cmd_bench_scaling(&scene, &define, &gpus, spp, LoadOptions { strict })
             } else {
-                cmd_bench(&scene, &define, &backend, &gpus, spp)
+                cmd_bench(&scene, &define, &backend, &gpus, spp, LoadOptions { strict })
             }
         }
         Command::Convergence { run, reference, csv, plot } => {
@@ -257,9 +265,10 @@ fn cmd_compare(
 
 fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Option<&Path>) -> Result<()> {
     use caustic::convergence;
-    let RunArgs { scene: scene_path, backend: choice, gpus, spp, define: defines, seed, integrator } = run;
+    let RunArgs { scene: scene_path, backend: choice, gpus, spp, define: defines, seed, integrator, strict } =
+        run;
     let (choice, seed) = (*choice, *seed);
-    let loaded = caustic::load_scene(scene_path, defines)?;
+    let loaded = caustic::load_scene_with(scene_path, defines, LoadOptions { strict: *strict })?;
     let reference_film = Film::load_exr(reference)?;
     compare::check_finite(&reference_film, reference)?;
     // The scene's own integrator, or each one asked for: one curve each, measured one after the other.
@@ -340,11 +349,12 @@ fn cmd_bench(
     choices: &[BackendChoice],
     gpus: &GpuSelection,
     spp: u32,
+    options: LoadOptions,
 ) -> Result<()> {
     if spp == 0 {
         anyhow::bail!("--spp must be at least 1");
     }
-    let scene = caustic::load_scene(scene_path, defines)?;
+    let scene = caustic::load_scene_with(scene_path, defines, options)?;
     let buffers = buffers::build(&scene)?;
     say!("| backend | resolution | spp | seconds | Msamples/s |");
     say!("|---|---|---|---|---|");
@@ -379,11 +389,12 @@ fn cmd_bench_scaling(
     defines: &[(String, String)],
     gpus: &GpuSelection,
     spp: u32,
+    options: LoadOptions,
 ) -> Result<()> {
     if spp == 0 {
         anyhow::bail!("--spp must be at least 1");
     }
-    let scene = caustic::load_scene(scene_path, defines)?;
+    let scene = caustic::load_scene_with(scene_path, defines, options)?;
     let buffers = buffers::build(&scene)?;
     let all = backend::resolve_gpus(gpus, &backend::gpu::adapter_types(), false)?;
     let mut counts: Vec<usize> = (0..).map(|k| 1usize << k).take_while(|&c| c < all.len()).collect();

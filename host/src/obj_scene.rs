@@ -46,13 +46,19 @@ fn convert_material(
     (material, emission)
 }
 
-pub fn load(path: &Path) -> Result<Scene> {
+/// Loads an OBJ file as a scene; `strict` refuses it when its material library does not load
+/// (which otherwise gives every triangle the default grey).
+pub fn load(path: &Path, strict: bool) -> Result<Scene> {
     let mut warnings = Vec::new();
     let (mesh, mtl) = mesh::load_obj(path, true)?;
-    let mtl = mtl.unwrap_or_else(|message| {
-        warn(&mut warnings, message);
-        Vec::new()
-    });
+    let mtl = match mtl {
+        Ok(mtl) => mtl,
+        Err(message) if strict => anyhow::bail!("{message} (--strict)"),
+        Err(message) => {
+            warn(&mut warnings, message);
+            Vec::new()
+        }
+    };
     let mut materials =
         vec![Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }];
     let mut emissions = vec![None];

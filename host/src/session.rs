@@ -29,6 +29,8 @@ pub struct RenderJob {
     /// Samples per pixel; `None` takes the scene's sampler's count.
     pub spp: Option<u32>,
     pub seed: u32,
+    /// Refuse a scene that would not render as written (`LoadOptions::strict`).
+    pub strict: bool,
     /// `.exr`, `.png` or `.ppm`.
     pub output: PathBuf,
     /// Also write the per-pixel variance of the estimate beside the image (`film::variance_path`).
@@ -85,7 +87,8 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         }
         check_checkpoint_path(path, output)?;
     }
-    let mut scene = crate::load_scene(&job.scene, &job.defines)?;
+    let options = crate::LoadOptions { strict: job.strict };
+    let mut scene = crate::load_scene_with(&job.scene, &job.defines, options)?;
     if let Some(choice) = job.integrator {
         scene.integrator = scene.integrator.overridden(choice);
     }

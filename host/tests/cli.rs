@@ -382,6 +382,51 @@ fn compare_refuses_non_finite_pixels() {
 }
 
 /// `bench --spp 0` is refused (it printed NaN throughput).
+/// `render --strict`, `bench --strict` and `convergence --strict` refuse a scene with an unsupported
+/// BSDF, naming file and line; without it `render` renders the scene with one warning about the
+/// BSDF and a summary line.
+#[test]
+fn strict_refuses_what_would_be_substituted() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-strict-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("hair.xml");
+    std::fs::write(
+        &scene,
+        concat!(
+            "<scene version=\"3.0.0\">\n",
+            "<sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"4\"/><integer name=\"height\" value=\"4\"/></film></sensor>\n",
+            "<shape type=\"sphere\"><bsdf type=\"hair\"/></shape>\n",
+            "<emitter type=\"constant\"/>\n",
+            "</scene>\n"
+        ),
+    )
+    .unwrap();
+    let (scene, out_path) = (scene.to_str().unwrap(), dir.join("hair.exr"));
+    let out_path = out_path.to_str().unwrap();
+    let render = ["render", scene, "--backend", "cpu", "--spp", "1", "-o", out_path, "-q"];
+    for args in [
+        [&render[..], &["--strict"]].concat(),
+        vec!["bench", scene, "--backend", "cpu", "--spp", "1", "--strict"],
+        vec!["convergence", scene, out_path, "--backend", "cpu", "--spp", "1", "--strict"],
+    ] {
+        let out = caustic(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        assert!(
+            err.contains("error:") && err.contains("hair.xml:3") && err.contains("'hair'"),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    assert!(!std::path::Path::new(out_path).exists(), "--strict wrote an image");
+    let out = caustic(&render);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert_eq!(err.matches("'hair'").count(), 1, "{err}");
+    assert!(err.contains("1 element substituted"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn bench_refuses_zero_spp() {
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");

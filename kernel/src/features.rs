@@ -29,6 +29,8 @@ pub const DIRECT_INTEGRATOR: u32 = 1 << 21;
 pub const LIGHT_TRACER: u32 = 1 << 22;
 /// Dispersive dielectrics: paths carry a wavelength (`wavelength`).
 pub const DISPERSION: u32 = 1 << 23;
+/// `mask` materials: paths and shadow rays pass through surfaces (`mask`).
+pub const MASK: u32 = 1 << 24;
 
 // The kinds must fit their bit ranges.
 const _: () = assert!(BSDF_FUZZY_METAL < 12 && LIGHT_ENVMAP < 8);

@@ -87,6 +87,9 @@ pub const MATERIAL_NONLINEAR: u32 = 4;
 pub const MATERIAL_DISPERSIVE: u32 = 8;
 /// Material flag: the dispersion follows Sellmeier's law (else Cauchy's; `wavelength`).
 pub const MATERIAL_SELLMEIER: u32 = 16;
+/// Mitsuba's `mask`: the surface is there with probability `opacity` (or `opacity_texture`'s
+/// luminance) and otherwise lets the path through unchanged (`crate::mask`).
+pub const MATERIAL_MASK: u32 = 32;
 
 /// A BSDF record (112 bytes). Which fields a model reads is documented by the model's `from_material`;
 /// colours are linear RGB with an unused fourth lane. `Default` is a black diffuse without textures.
@@ -109,6 +112,12 @@ pub struct Material {
     pub specular_texture: u32,
     /// Start of a model's precomputed table in `tables` (rough plastic's transmittance), or `NONE`.
     pub table: u32,
+    /// `MATERIAL_MASK`: the probability that a path meets the surface (1: opaque).
+    pub opacity: f32,
+    /// Texture whose luminance replaces `opacity`, or `NONE`.
+    pub opacity_texture: u32,
+    /// Keeps the arrays below at 16-byte offsets.
+    pub pad: [u32; 2],
     /// Diffuse reflectance (diffuse, Phong `kd`, plastic).
     pub reflectance: [f32; 4],
     /// Specular reflectance (Phong `ks`, conductors, dielectrics, plastics).
@@ -134,6 +143,9 @@ impl Default for Material {
             reflectance_texture: NONE,
             specular_texture: NONE,
             table: NONE,
+            opacity: 1.0,
+            opacity_texture: NONE,
+            pad: [0; 2],
             reflectance: [0.0; 4],
             specular_reflectance: [0.0; 4],
             specular_transmittance: [0.0; 4],

@@ -20,6 +20,7 @@ pub mod frame;
 pub mod integrator;
 pub mod layout;
 pub mod light;
+pub mod mask;
 pub mod math;
 pub mod rng;
 pub mod sampling;

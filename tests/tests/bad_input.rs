@@ -98,6 +98,87 @@ fn unsupported_elements_warn_and_the_rest_loads() {
     assert!(w.contains("unsupported.xml:5") && w.contains("teapot"), "{w}");
 }
 
+/// Without `--strict`, a scene with deviations (unsupported plugins substituted or left out,
+/// properties not read) still loads, with one warning per kind of deviation however many instances
+/// (saying how many more and where the last is) and one summary line counting them. With
+/// `--strict` the same scene is refused, every deviation named with its file and line.
+#[test]
+fn deviations_warn_once_per_kind_and_strict_refuses_them() {
+    let hair = "<shape type=\"sphere\"><bsdf type=\"hair\"/></shape>";
+    let path = write_scene(
+        "deviations.xml",
+        &format!(
+            "<scene version=\"3.0.0\">\n{SENSOR}\n{hair}\n{hair}\n{hair}\n<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n<emitter type=\"projector\"/>\n</scene>\n"
+        ),
+    );
+    let scene = caustic::load_scene(&path, &[]).expect("loads without --strict");
+    assert_eq!(scene.shapes.len(), 4, "the substituted BSDFs' shapes are kept");
+    let about_hair: Vec<&String> = scene.warnings.iter().filter(|w| w.contains("'hair'")).collect();
+    assert_eq!(about_hair.len(), 1, "one warning for three hair BSDFs: {:?}", scene.warnings);
+    assert!(
+        about_hair[0].contains("deviations.xml:3")
+            && about_hair[0].contains("2 more like it, the last at")
+            && about_hair[0].contains("deviations.xml:5"),
+        "{}",
+        about_hair[0]
+    );
+    let summary = scene.warnings.last().expect("a summary line");
+    assert!(
+        summary.contains("4 elements substituted")
+            && summary.contains("1 property ignored")
+            && summary.contains("3 kinds of deviation")
+            && summary.contains("--strict"),
+        "{summary}"
+    );
+    assert_eq!(scene.warnings.len(), 4, "hair, wobble, projector and the summary: {:?}", scene.warnings);
+
+    let strict = caustic::LoadOptions { strict: true };
+    let e = format!("{:#}", caustic::load_scene_with(&path, &[], strict).expect_err("--strict refuses it"));
+    for needle in [
+        "deviations.xml:3",
+        "hair",
+        "deviations.xml:5",
+        "deviations.xml:6",
+        "wobble",
+        "deviations.xml:7",
+        "projector",
+    ] {
+        assert!(e.contains(needle), "{needle} not in: {e}");
+    }
+
+    // A scene caustic reads as written loads under --strict, and without a summary line.
+    let clean = write_scene(
+        "clean.xml",
+        &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<shape type=\"sphere\"/>\n</scene>\n"),
+    );
+    let scene = caustic::load_scene_with(&clean, &[], strict).expect("a clean scene loads strictly");
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+}
+
+/// Every scene shipped in scenes/ and every shared Mitsuba scene the conformance test renders is read
+/// as written: each loads under `--strict`.
+#[test]
+fn shipped_and_reference_scenes_load_strictly() {
+    let strict = caustic::LoadOptions { strict: true };
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+        .collect();
+    if let Some(shared) = caustic_tests::shared_dir_if_present() {
+        let dir = shared.join("scenes/mitsuba");
+        let list = std::fs::read_to_string(dir.join("SCENES.txt")).unwrap();
+        scenes.extend(list.lines().filter(|l| !l.trim().is_empty()).map(|l| dir.join(l.trim())));
+    }
+    assert!(scenes.len() >= 6, "{scenes:?}");
+    for path in &scenes {
+        // As the conformance test (and Mitsuba's reference renders): some scenes use $spp undefined.
+        if let Err(e) = caustic::load_scene_with(path, &caustic_tests::defines(&[("spp", "16")]), strict) {
+            panic!("{} does not load under --strict: {e:#}", path.display());
+        }
+    }
+}
+
 #[test]
 fn defaults_and_overrides() {
     let path = write_scene("defaults.xml", "<scene version=\"3.0.0\">\n<default name=\"res\" value=\"8\"/>\n<sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"$res\"/><integer name=\"height\" value=\"$res\"/></film></sensor>\n</scene>\n");

@@ -187,7 +187,8 @@ fn case_failures(case: &Value, dir: &std::path::Path) -> Vec<String> {
     let expect = case["mitsuba"].as_object().unwrap();
     let loaded = caustic::mitsuba::load(&path, &[]);
     if let Some(refused) = expect.get("error") {
-        return error_case_failures(name, refused.as_bool().unwrap(), loaded);
+        let strict = caustic::mitsuba::load_with(&path, &[], caustic::LoadOptions { strict: true });
+        return error_case_failures(name, refused.as_bool().unwrap(), loaded, strict);
     }
     let scene = match loaded {
         Ok(s) => s,
@@ -227,11 +228,13 @@ fn case_failures(case: &Value, dir: &std::path::Path) -> Vec<String> {
 
 /// A scene Mitsuba refuses (`refused`) must be refused by caustic, with a message naming the scene
 /// file and line; one whose only fault is a property the plugin does not read (Mitsuba refuses it,
-/// caustic warns and ignores it) must load with that warning.
+/// caustic warns and ignores it) must load with that warning, and be refused under `--strict`
+/// (`strict`: that strict load), naming file and line.
 fn error_case_failures<E: std::fmt::Display>(
     name: &str,
     refused: bool,
     loaded: Result<Scene, E>,
+    strict: Result<Scene, E>,
 ) -> Vec<String> {
     match (refused, loaded) {
         (false, Ok(_)) => vec![],
@@ -245,11 +248,18 @@ fn error_case_failures<E: std::fmt::Display>(
             }
         }
         (true, Ok(scene)) if name.starts_with("error_unreferenced_") => {
-            if scene.warnings.iter().any(|w| w.contains("is not supported; ignored")) {
-                vec![]
-            } else {
-                vec![format!("an unread property loads without a warning: {:?}", scene.warnings)]
+            let mut out = Vec::new();
+            if !scene.warnings.iter().any(|w| w.contains("is not supported; ignored")) {
+                out.push(format!("an unread property loads without a warning: {:?}", scene.warnings));
             }
+            match strict {
+                Ok(_) => out.push("an unread property loads under --strict".to_string()),
+                Err(e) if !format!("{e:#}").contains("scene.xml:") => {
+                    out.push(format!("--strict refuses it without naming file and line: {e:#}"))
+                }
+                Err(_) => {}
+            }
+            out
         }
         (true, Ok(_)) => vec!["Mitsuba refuses it, caustic loads it".to_string()],
     }

@@ -107,11 +107,13 @@ impl Loader {
             "dielectric" | "thindielectric" | "roughdielectric" => self.dielectric(props)?,
             "plastic" | "roughplastic" => self.plastic(props)?,
             "twosided" => self.twosided(props)?,
+            "mask" => self.mask(props)?,
             other => {
-                self.warn(&format!(
+                let message = format!(
                     "{}: bsdf type '{other}' is not supported yet; rendering it as grey diffuse",
                     props.loc
-                ));
+                );
+                self.substituted(format!("bsdf '{other}'"), &props.loc, message);
                 props.mark_all_used();
                 Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }
             }
@@ -150,6 +152,28 @@ impl Loader {
         Ok(m)
     }
 
+    /// Mitsuba's `mask`: `opacity` (number, colour or texture; its luminance, default 0.5) and one
+    /// nested BSDF, which the material record copies (`caustic_kernel::mask` renders it).
+    fn mask(&mut self, props: &Props) -> Result<Material> {
+        let nested: Vec<_> = props.nested("bsdf").into_iter().chain(props.nested("ref")).collect();
+        let inner_entry = match nested.as_slice() {
+            [one] => *one,
+            [] => bail!("{}: mask needs a nested <bsdf>", props.loc),
+            _ => bail!("{}: mask takes one nested BSDF (Mitsuba refuses more)", props.loc),
+        };
+        let inner_props = self.props(props.src, inner_entry.node)?;
+        let index = self.load_bsdf(&inner_props)?;
+        let mut m = self.materials[index as usize];
+        if m.flags & MATERIAL_MASK != 0 {
+            bail!("{}: a mask inside a mask is not supported", props.loc);
+        }
+        let opacity = self.color_param(props, "opacity", SpectrumUse::Reflectance, [0.5; 3])?;
+        m.flags |= MATERIAL_MASK;
+        m.opacity = caustic_kernel::spectrum::luminance(glam::Vec3::from(opacity.rgb)).clamp(0.0, 1.0);
+        m.opacity_texture = opacity.texture;
+        Ok(m)
+    }
+
     fn twosided(&mut self, props: &Props) -> Result<Material> {
         let nested = props.nested("bsdf");
         let refs = props.nested("ref");
@@ -158,10 +182,11 @@ impl Loader {
             (None, None) => bail!("{}: twosided needs a nested <bsdf>", props.loc),
         };
         if nested.len() + refs.len() > 1 {
-            self.warn(&format!(
+            let message = format!(
                 "{}: twosided with two different BSDFs is not supported; using the first on both sides",
                 props.loc
-            ));
+            );
+            self.substituted("twosided with two BSDFs".to_string(), &props.loc, message);
         }
         let inner_props = self.props(props.src, inner_entry.node)?;
         let index = self.load_bsdf(&inner_props)?;

@@ -12,10 +12,11 @@ impl Loader {
     /// The radiance of an `<emitter>` nested in a shape, or `None` (with a warning) for other kinds.
     pub(crate) fn load_shape_emitter(&mut self, props: &Props) -> Result<Option<[f32; 3]>> {
         if props.kind != "area" {
-            self.warn(&format!(
+            let message = format!(
                 "{}: emitter type '{}' cannot be attached to a shape; ignored",
                 props.loc, props.kind
-            ));
+            );
+            self.substituted(format!("shape emitter '{}'", props.kind), &props.loc, message);
             props.mark_all_used();
             return Ok(None);
         }
@@ -69,7 +70,8 @@ impl Loader {
             "envmap" => self.envmap(props, Mat3::from_mat4(to_world))?,
             "area" => bail!("{}: an area emitter must be nested in a <shape>", props.loc),
             other => {
-                self.warn(&format!("{}: emitter type '{other}' is not supported yet; ignored", props.loc));
+                let message = format!("{}: emitter type '{other}' is not supported yet; ignored", props.loc);
+                self.substituted(format!("emitter '{other}'"), &props.loc, message);
                 props.mark_all_used();
                 return Ok(());
             }

@@ -62,16 +62,18 @@ impl Loader {
                     bail!("{}: moment needs a nested <integrator>", props.loc)
                 };
                 if nested.len() > 1 {
-                    self.warn(&format!(
+                    let message = format!(
                         "{}: moment with several nested integrators renders only the first",
                         props.loc
-                    ));
+                    );
+                    self.ignored("moment's second integrator".to_string(), &props.loc, message);
                 }
                 let inner = self.props(props.src, inner.node)?;
                 self.load_integrator(&inner)?
             }
             other => {
-                self.warn(&format!("{}: integrator '{other}' is not supported yet; using path", props.loc));
+                let message = format!("{}: integrator '{other}' is not supported yet; using path", props.loc);
+                self.substituted(format!("integrator '{other}'"), &props.loc, message);
                 props.mark_all_used();
                 Integrator::default()
             }

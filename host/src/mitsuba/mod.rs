@@ -6,9 +6,11 @@
 //! primitives all of these share (locations, attributes, number lists, one-or-three-number vectors)
 //! and uses none of them. This module holds the document machinery: `<default>`, `$name`
 //! substitution, `-D` overrides, `<include>`, `<path>`, `id`/`<ref>` (ids unique, as Mitsuba wants
-//! them), and one integrator per scene.
+//! them), and one integrator per scene; `deviations` collects what was substituted or ignored, which
+//! `--strict` (`LoadOptions::strict`) refuses.
 mod bsdfs;
 pub mod cie_tables;
+mod deviations;
 mod emitters;
 mod integrators;
 pub mod ior;
@@ -21,8 +23,10 @@ mod transform;
 mod xml;
 
 use crate::scene::{Integrator, Scene};
+use crate::LoadOptions;
 use anyhow::{bail, Context, Result};
 use caustic_kernel::layout::Material;
+use deviations::Deviations;
 use props::Props;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -47,6 +51,8 @@ pub(crate) struct Loader {
     sensor: Option<crate::scene::Sensor>,
     integrator: Option<Integrator>,
     warnings: Vec<String>,
+    /// What the scene asks for that the loaded scene does not do (reported or refused at the end).
+    deviations: Deviations,
     include_depth: u32,
     /// Every `id` given so far, in any file of the scene, with where: Mitsuba refuses a duplicate.
     ids: HashMap<String, Loc>,
@@ -56,6 +62,11 @@ pub(crate) struct Loader {
 
 /// Loads a Mitsuba 3 scene; `defines` are `-D name=value` overrides.
 pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
+    load_with(path, defines, LoadOptions::default())
+}
+
+/// As `load`; with `options.strict`, any substitution or ignored property is an error.
+pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions) -> Result<Scene> {
     let mut loader = Loader {
         params: defines.iter().cloned().collect(),
         search_paths: Vec::new(),
@@ -69,6 +80,7 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
         sensor: None,
         integrator: None,
         warnings: Vec::new(),
+        deviations: Deviations::default(),
         include_depth: 0,
         ids: HashMap::new(),
         integrator_loc: None,
@@ -84,6 +96,14 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
             sensors::default_sensor()
         }
     };
+    if options.strict {
+        if let Some(e) = loader.deviations.strict_error(path) {
+            return Err(e);
+        }
+    }
+    for line in loader.deviations.report(path) {
+        loader.warn(&line);
+    }
     Ok(Scene {
         sensor,
         integrator: loader.integrator.take().unwrap_or_default(),
@@ -98,6 +118,17 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
 impl Loader {
     pub(crate) fn warn(&mut self, message: &str) {
         crate::scene::warn(&mut self.warnings, message.to_string());
+    }
+
+    /// Records an element replaced by a stand-in or left out; `group` names the kind of element
+    /// (`bsdf 'mask'`), so that 500 of them are reported once.
+    pub(crate) fn substituted(&mut self, group: String, loc: &Loc, message: String) {
+        self.deviations.push(deviations::Kind::Substituted, group, loc, message);
+    }
+
+    /// Records a property or nested element that is not read.
+    pub(crate) fn ignored(&mut self, group: String, loc: &Loc, message: String) {
+        self.deviations.push(deviations::Kind::Ignored, group, loc, message);
     }
 
     fn load_file(&mut self, path: &Path) -> Result<()> {
@@ -193,7 +224,8 @@ impl Loader {
                     self.integrator_loc = Some(loc);
                 }
                 other => {
-                    self.warn(&format!("{loc}: <{other}> is not supported yet; ignored"));
+                    let message = format!("{loc}: <{other}> is not supported yet; ignored");
+                    self.ignored(format!("<{other}>"), &loc, message);
                 }
             }
         }
@@ -277,10 +309,10 @@ impl Loader {
         Props::collect(self, src, node)
     }
 
-    /// Warns about every property and nested element of `props` that the plugin did not read.
+    /// Records every property and nested element of `props` that the plugin did not read.
     pub(crate) fn warn_unused(&mut self, props: &Props) {
-        for message in props.unused() {
-            self.warn(&message);
+        for (loc, group, message) in props.unused() {
+            self.ignored(group, &loc, message);
         }
     }
 }

@@ -184,22 +184,21 @@ impl<'a, 'input> Props<'a, 'input> {
         self.used.borrow_mut().iter_mut().for_each(|u| *u = true);
     }
 
-    /// Messages for the entries no plugin code asked for.
-    pub fn unused(&self) -> Vec<String> {
+    /// The entries no plugin code asked for: where, the group they are reported under (the entry
+    /// and its plugin: `<float name="radius"> of rfilter 'box'`), and the message.
+    pub fn unused(&self) -> Vec<(Loc, String, String)> {
         let used = self.used.borrow();
         self.entries
             .iter()
             .zip(used.iter())
             .filter(|(_, u)| !**u)
-            .map(|(e, _)| match &e.name {
-                Some(n) => format!(
-                    "{}: <{} name=\"{n}\"> of {} '{}' is not supported; ignored",
-                    e.loc, e.tag, self.tag, self.kind
-                ),
-                None => format!(
-                    "{}: <{}> inside {} '{}' is not supported; ignored",
-                    e.loc, e.tag, self.tag, self.kind
-                ),
+            .map(|(e, _)| {
+                let group = match &e.name {
+                    Some(n) => format!("<{} name=\"{n}\"> of {} '{}'", e.tag, self.tag, self.kind),
+                    None => format!("<{}> inside {} '{}'", e.tag, self.tag, self.kind),
+                };
+                let message = format!("{}: {group} is not supported; ignored", e.loc);
+                (e.loc.clone(), group, message)
             })
             .collect()
     }

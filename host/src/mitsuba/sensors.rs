@@ -93,10 +93,11 @@ impl Loader {
     pub(crate) fn load_sensor(&mut self, props: &Props) -> Result<Sensor> {
         let mut sensor = default_sensor();
         if !matches!(props.kind.as_str(), "perspective" | "thinlens" | "orthographic") {
-            self.warn(&format!(
+            let message = format!(
                 "{}: sensor type '{}' is not supported yet; using perspective",
                 props.loc, props.kind
-            ));
+            );
+            self.substituted(format!("sensor '{}'", props.kind), &props.loc, message);
         }
         for e in props.nested("film") {
             let film = self.props(props.src, e.node)?;
@@ -156,7 +157,8 @@ impl Loader {
 
     fn load_film(&mut self, props: &Props, sensor: &mut Sensor) -> Result<()> {
         if props.kind != "hdrfilm" {
-            self.warn(&format!("{}: film type '{}' is treated as hdrfilm", props.loc, props.kind));
+            let message = format!("{}: film type '{}' is treated as hdrfilm", props.loc, props.kind);
+            self.substituted(format!("film '{}'", props.kind), &props.loc, message);
         }
         let width = props.integer("width", 768)?;
         let height = props.integer("height", 576)?;
@@ -177,7 +179,8 @@ impl Loader {
                     Filter::Gaussian { stddev, radius: 4.0 * stddev }
                 }
                 other => {
-                    self.warn(&format!("{}: rfilter '{other}' is not supported; using gaussian", f.loc));
+                    let message = format!("{}: rfilter '{other}' is not supported; using gaussian", f.loc);
+                    self.substituted(format!("rfilter '{other}'"), &f.loc, message);
                     f.mark_all_used();
                     Filter::Gaussian { stddev: 0.5, radius: 2.0 }
                 }
@@ -219,7 +222,8 @@ impl Loader {
             // converges to the same; the noise differs).
             "stratified" | "multijitter" | "orthogonal" | "ldsampler" => SamplerKind::Stratified,
             other => {
-                self.warn(&format!("{}: sampler '{other}' is not supported; using stratified", props.loc));
+                let message = format!("{}: sampler '{other}' is not supported; using stratified", props.loc);
+                self.substituted(format!("sampler '{other}'"), &props.loc, message);
                 SamplerKind::Stratified
             }
         };

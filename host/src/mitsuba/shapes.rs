@@ -54,7 +54,8 @@ impl Loader {
                 Geometry::Sphere { center, radius }
             }
             other => {
-                self.warn(&format!("{}: shape type '{other}' is not supported yet; ignored", props.loc));
+                let message = format!("{}: shape type '{other}' is not supported yet; ignored", props.loc);
+                self.substituted(format!("shape '{other}'"), &props.loc, message);
                 props.mark_all_used();
                 return Ok(());
             }

@@ -99,7 +99,8 @@ pub fn next_event(
         t_min: 0.0,
         t_max: ls.dist * (1.0 - SHADOW_EPSILON),
     };
-    if accel.occluded(&shadow, ls.prim) {
+    let transmittance = crate::mask::transmittance(scene, accel, &shadow, ls.prim);
+    if transmittance <= 0.0 {
         return Rgb::ZERO;
     }
     let weight = if lt.scale > 0.0 {
@@ -112,7 +113,7 @@ pub fn next_event(
     } else {
         power_heuristic(counts.light * ls.pdf, counts.bsdf * ep.pdf)
     };
-    ep.f * ls.radiance * (weight / ls.pdf)
+    ep.f * ls.radiance * (transmittance * weight / ls.pdf)
 }
 
 /// Radiance of the area emitter on `prim` seen along `dir` at `sp`, weighted against light sampling
