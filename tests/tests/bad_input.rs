@@ -240,3 +240,59 @@ fn a_scene_without_shapes_renders_black() {
         }
     }
 }
+
+/// A film whose accumulator exceeds what this GPU binds is refused before any GPU buffer exists,
+/// naming the buffer, the limit, its value and the need (wgpu panicked in `create_bind_group`: on
+/// lavapipe, whose binding limit is 128 MiB, any film over 2048×2048).
+#[test]
+fn a_film_over_the_gpu_binding_limit_is_refused() {
+    let adapter = caustic::backend::gpu::pick_adapter(false).expect("a Vulkan adapter (lavapipe)");
+    let limits = adapter.limits();
+    let limit = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+    // 32-byte accumulator per pixel: one row more than fits.
+    let width = 8192u32;
+    let height = (limit / 32 / width as u64 + 1) as u32;
+    let mut scene = caustic_tests::load_xml(&format!("<scene version=\"3.0.0\">{SENSOR}</scene>"), "limits");
+    (scene.sensor.width, scene.sensor.height) = (width, height);
+    let buffers = caustic::buffers::build(&scene).expect("builds");
+    let need = caustic::memory::render_need(&buffers);
+    if caustic::memory::available().is_some_and(|have| need > have) {
+        eprintln!("notice: a {width}×{height} film needs more memory than this machine has; test skipped");
+        return;
+    }
+    let e = match caustic::backend::create(caustic::backend::BackendChoice::Gpu, &buffers) {
+        Ok(_) => panic!("a {width}×{height} film was accepted by a GPU binding {limit} bytes"),
+        Err(e) => format!("{e:#}"),
+    };
+    let bytes = (width as u64 * height as u64 * 32).to_string();
+    assert!(e.contains("film accumulator") && e.contains("max_") && e.contains(&limit.to_string()), "{e}");
+    assert!(e.contains(&bytes), "the need ({bytes} bytes) is not named: {e}");
+}
+
+/// A 32768×32768 film (about 120 GiB of host memory) is refused before allocation where the machine
+/// has less available (it aborted: "memory allocation failed"); the estimate against a given
+/// `MemAvailable` is checked everywhere.
+#[test]
+fn a_film_larger_than_memory_is_refused() {
+    let mut scene = caustic_tests::load_xml(&format!("<scene version=\"3.0.0\">{SENSOR}</scene>"), "memory");
+    (scene.sensor.width, scene.sensor.height) = (32768, 32768);
+    let buffers = caustic::buffers::build(&scene).expect("builds");
+    let need = caustic::memory::render_need(&buffers);
+    assert!(need > 100 << 30, "a 32768² film needs {need} bytes?");
+    let e = caustic::memory::check(need, Some(64 << 30), "a 32768×32768 render").unwrap_err().to_string();
+    assert!(e.contains("32768×32768") && e.contains("64.0 GiB available"), "{e}");
+    assert_eq!(
+        caustic::memory::parse_mem_available("MemTotal: 9 kB\nMemAvailable:    2048 kB\n"),
+        Some(2 << 20)
+    );
+    match caustic::memory::available() {
+        Some(have) if have < need => {
+            let e = match caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers) {
+                Ok(_) => panic!("a render needing {need} bytes started with {have} available"),
+                Err(e) => format!("{e:#}"),
+            };
+            assert!(e.contains("GiB") && e.contains("32768×32768"), "{e}");
+        }
+        _ => eprintln!("notice: this machine has memory for a 32768² film; only the estimate was checked"),
+    }
+}

@@ -1,6 +1,7 @@
 //! Rendering backends: the same kernel on the GPU (wgpu compute) or the CPU (rayon).
 pub mod cpu;
 pub mod gpu;
+pub mod limits;
 pub mod runtime_dir;
 
 use crate::film::Accumulation;
@@ -32,11 +33,21 @@ pub enum BackendChoice {
 
 /// Creates the chosen backend for a scene's buffers.
 pub fn create(choice: BackendChoice, buffers: &crate::buffers::SceneBuffers) -> Result<Box<dyn Backend>> {
+    let (w, h) = (buffers.params.width, buffers.params.height);
+    crate::memory::check(
+        crate::memory::render_need(buffers),
+        crate::memory::available(),
+        &format!("a {w}×{h} render"),
+    )?;
     match choice {
         BackendChoice::Cpu => Ok(Box::new(cpu::CpuBackend::new(buffers.clone()))),
         BackendChoice::Gpu => Ok(Box::new(gpu::GpuBackend::new(buffers, false)?)),
         BackendChoice::Auto => match gpu::GpuBackend::new(buffers, true) {
             Ok(g) => Ok(Box::new(g)),
+            Err(e) if e.is::<limits::OverLimit>() => {
+                eprintln!("warning: {e:#}; rendering on the CPU");
+                Ok(Box::new(cpu::CpuBackend::new(buffers.clone())))
+            }
             Err(_) => Ok(Box::new(cpu::CpuBackend::new(buffers.clone()))),
         },
     }
