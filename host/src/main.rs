@@ -132,6 +132,12 @@ fn main() {
     if !matches!(cli.command, Command::Compare { .. }) {
         backend::runtime_dir::ensure_xdg_runtime_dir();
     }
+    // A render saves what it has on SIGINT/SIGTERM; the other commands stop as by default.
+    if matches!(cli.command, Command::Render { .. }) {
+        if let Err(e) = caustic::interrupt::install() {
+            eprintln!("warning: {e:#}; an interrupt will lose the render");
+        }
+    }
     let result = match cli.command {
         Command::Render { run, output, variance, quiet, checkpoint, checkpoint_every, tev } => {
             let output = output.unwrap_or_else(|| {
@@ -177,16 +183,22 @@ fn main() {
 fn cmd_render(job: &RenderJob) -> Result<()> {
     let r = session::render_to_file(job)?;
     let resumed = if r.resumed_at > 0 { format!(" (resumed at {})", r.resumed_at) } else { String::new() };
+    let spp = match r.interrupted {
+        Some(_) => format!("partial: {} of {} spp (interrupted)", r.spp_done, r.spp),
+        None => format!("{} spp", r.spp),
+    };
     say!(
-        "{} | {}x{} | {} spp{resumed} | {:.2} s | {:.2} Msamples/s | {}",
+        "{} | {}x{} | {spp}{resumed} | {:.2} s | {:.2} Msamples/s | {}",
         r.backend,
         r.width,
         r.height,
-        r.spp,
         r.seconds,
         r.msamples_per_second(),
         job.output.display()
     );
+    if let Some(signal) = r.interrupted {
+        std::process::exit(caustic::interrupt::exit_code(signal));
+    }
     Ok(())
 }
 

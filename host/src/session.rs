@@ -8,7 +8,7 @@ use crate::film::{self, Film};
 use crate::scene::IntegratorChoice;
 use crate::{buffers, render, tev};
 use anyhow::{bail, Context, Result};
-use std::ops::ControlFlow::Continue;
+use std::ops::ControlFlow::{Break, Continue};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -54,12 +54,17 @@ pub struct RenderReport {
     pub seconds: f64,
     /// Samples that were not finite and were counted as black.
     pub invalid_samples: u64,
+    /// The signal (SIGINT, SIGTERM) that stopped the render before `spp` samples: the image saved
+    /// holds `spp_done` samples per pixel and says so (EXR comments), the checkpoint is kept.
+    pub interrupted: Option<i32>,
+    /// Samples per pixel in the image saved (`spp` unless interrupted).
+    pub spp_done: u32,
 }
 
 impl RenderReport {
     /// Samples rendered by this session per second, in millions.
     pub fn msamples_per_second(&self) -> f64 {
-        self.width as f64 * self.height as f64 * (self.spp - self.resumed_at) as f64
+        self.width as f64 * self.height as f64 * (self.spp_done - self.resumed_at) as f64
             / self.seconds.max(1e-9)
             / 1e6
     }
@@ -120,6 +125,7 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
     };
     let mut last_save = Instant::now();
     let mut last_view = Instant::now();
+    let mut done_at = start;
     let stats = render::render_with_checkpoints(
         backend.as_mut(),
         &buffers,
@@ -129,6 +135,8 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
         &[],
         |done, _, backend| {
             bar.set_position(done as u64);
+            done_at = done;
+            let interrupted = crate::interrupt::requested().is_some() && done < spp;
             if let Some(stream) =
                 viewer.as_mut().filter(|_| last_view.elapsed() >= TEV_INTERVAL || done == spp)
             {
@@ -139,7 +147,7 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
                 last_view = Instant::now();
             }
             if let Some((path, every, fingerprint)) = checkpoint {
-                if done < spp && last_save.elapsed() >= every {
+                if done < spp && (last_save.elapsed() >= every || interrupted) {
                     let c = Checkpoint {
                         scene: fingerprint,
                         seed,
@@ -154,17 +162,21 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
                     last_save = Instant::now();
                 }
             }
-            Ok(Continue(()))
+            Ok(if interrupted { Break(()) } else { Continue(()) })
         },
     )?;
     bar.finish_and_clear();
+    let interrupted = crate::interrupt::requested().filter(|_| done_at < spp);
     let mut film = Film::from_accum(width, height, &backend.read_accum()?);
+    if interrupted.is_some() {
+        film.comment = Some(format!("caustic: partial render, {done_at} of {spp} spp (interrupted)"));
+    }
     sanitize(&mut film);
     save_or_recover(&film, output)?;
     if job.variance {
         film.save_variance(&film::variance_path(output))?;
     }
-    if let Some((path, _, _)) = checkpoint {
+    if let Some((path, _, _)) = checkpoint.filter(|_| interrupted.is_none()) {
         // The image is safe on disk: the checkpoint has served.
         std::fs::remove_file(path).ok();
     }
@@ -176,6 +188,8 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
         resumed_at: start,
         seconds: stats.seconds,
         invalid_samples: film.invalid_samples,
+        interrupted,
+        spp_done: done_at,
     })
 }
 
