@@ -296,3 +296,80 @@ fn a_film_larger_than_memory_is_refused() {
         _ => eprintln!("notice: this machine has memory for a 32768² film; only the estimate was checked"),
     }
 }
+
+/// Numbers entering a scene from files other than the XML (whose values `Props` checks) are
+/// validated where they enter: texels of envmaps and bitmaps (one Inf texel made 60% of the samples
+/// NaN, counted as black), MTL colours (`Ke nan` rendered black, a negative `Kd` negative pixels),
+/// OBJ coordinates near 1e19 (a panic framing the model), an orthographic camera of scale 0 (a black
+/// image); each is refused naming file and position or line.
+#[test]
+fn hostile_numbers_in_files_are_refused_naming_where() {
+    let texels = |name: &str, at: usize, value: f32| {
+        let mut rgb = vec![[0.5f32; 3]; 4 * 3];
+        rgb[at][1] = value;
+        let film = caustic::film::Film {
+            width: 4,
+            height: 3,
+            rgb,
+            variance: None,
+            invalid_samples: 0,
+            comment: None,
+        };
+        film.save(&write_scene(name, "").with_file_name(name)).unwrap();
+    };
+    texels("inf.exr", 4 + 2, f32::INFINITY);
+    texels("nan.exr", 2 * 4 + 1, f32::NAN);
+    texels("negative.exr", 3, -1.0);
+    for (file, element, pixel) in [
+        ("inf.exr", "<emitter type=\"envmap\"><string name=\"filename\" value=\"inf.exr\"/></emitter>", "(2, 1)"),
+        ("negative.exr", "<emitter type=\"envmap\"><string name=\"filename\" value=\"negative.exr\"/></emitter>", "(3, 0)"),
+        (
+            "nan.exr",
+            "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"nan.exr\"/></texture></bsdf></shape>",
+            "(1, 2)",
+        ),
+    ] {
+        let e = load_err(&format!("texels-{file}.xml"), &format!("<scene version=\"3.0.0\">\n{element}\n</scene>\n"));
+        assert!(e.contains(&format!("texels-{file}.xml:2")) && e.contains(file) && e.contains(pixel), "{file}: {e}");
+    }
+
+    let obj = "mtllib hostile.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
+    for (what, mtl, needle) in [
+        ("ke-nan", "newmtl a\nKd 0.5 0.5 0.5\nnewmtl m\nKd 0.5 0.5 0.5\nKe nan 1 1\n", "hostile.mtl:5"),
+        ("kd-negative", "newmtl m\n\nKd 0.5 -0.5 0.5\n", "hostile.mtl:3"),
+    ] {
+        write_scene("hostile.mtl", mtl);
+        let e = load_err(&format!("{what}.obj"), obj);
+        assert!(e.contains(needle) && e.contains("'m'"), "{what}: {e}");
+    }
+    write_scene("hostile.mtl", "newmtl m\nKd 0.5 0.5 0.5\n");
+    let e = load_err("huge.obj", "mtllib hostile.mtl\nv -2e19 0 0\nv 2e19 0 0\nv 0 2e19 0\nf 1 2 3\n");
+    assert!(e.contains("huge.obj") && e.contains("scale it down"), "{e}");
+
+    let e = load_err(
+        "ortho-zero.xml",
+        "<scene version=\"3.0.0\">\n<sensor type=\"orthographic\"><transform name=\"to_world\"><scale value=\"0\"/></transform></sensor>\n</scene>\n",
+    );
+    assert!(e.contains("ortho-zero.xml:2") && e.contains("orthographic"), "{e}");
+}
+
+/// A rectangle scaled by 1e10 is a rectangle (its squared area overflows f32, and it was dropped as
+/// degenerate), and as an emitter its power is finite and positive.
+#[test]
+fn a_huge_rectangle_is_kept() {
+    let scene = caustic_tests::load_xml(
+        &format!("<scene version=\"3.0.0\">{SENSOR}<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"1e10\"/></transform><emitter type=\"area\"/></shape></scene>"),
+        "huge-rectangle",
+    );
+    match &scene.shapes[0].geometry {
+        caustic::scene::Geometry::Triangles { triangles, .. } => {
+            assert_eq!(triangles.len(), 2, "triangles kept")
+        }
+        _ => panic!("a rectangle is triangles"),
+    }
+    let buffers = caustic::buffers::build(&scene).expect("builds");
+    // Two triangles of equal area: half the light-selection probability each (a power overflowing
+    // f32 would be zero and leave only the uniform half of the mixture).
+    let pmf: Vec<f32> = buffers.lights.iter().map(|l| l.pmf).collect();
+    assert!(pmf.len() == 2 && pmf.iter().all(|p| (p - 0.5).abs() < 1e-6), "{pmf:?}");
+}
