@@ -171,6 +171,25 @@ pub fn check_output_path(path: &Path) -> Result<()> {
     }
 }
 
+/// Fails early (before any rendering) if `path` cannot be written, naming it: creates its folder
+/// and opens the file for writing (without truncating one that exists; one created here is
+/// removed again).
+pub fn check_writable(path: &Path) -> Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let existed = path.exists();
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    if !existed {
+        std::fs::remove_file(path).ok();
+    }
+    Ok(())
+}
+
 /// `image.exr` → `image.variance.exr`.
 pub fn variance_path(path: &Path) -> std::path::PathBuf {
     path.with_extension("variance.exr")

@@ -175,9 +175,25 @@ fn main() {
         }
     };
     if let Err(e) = result {
-        eprintln!("error: {e:#}");
+        eprintln!("error: {}", error_chain(&e));
         std::process::exit(1);
     }
+}
+
+/// The error and its causes, `: `-separated as anyhow's `{:#}`, leaving out a cause whose message
+/// the text already holds (an OS error was printed twice: the exr and image crates put their
+/// source's message into their own).
+fn error_chain(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain() {
+        let message = cause.to_string();
+        if text.is_empty() {
+            text = message;
+        } else if !text.contains(&message) {
+            text = format!("{text}: {message}");
+        }
+    }
+    text
 }
 
 fn cmd_render(job: &RenderJob) -> Result<()> {
@@ -209,6 +225,9 @@ fn cmd_compare(
     reference_spp: u32,
     error_image: Option<&Path>,
 ) -> Result<()> {
+    if let Some(path) = error_image {
+        caustic::film::check_writable(path)?;
+    }
     let a = Film::load_with_variance(image)?;
     let b = Film::load_exr(reference)?;
     compare::check_finite(&a, image)?;
@@ -237,6 +256,9 @@ fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Op
     use caustic::convergence;
     let RunArgs { scene: scene_path, backend: choice, spp, define: defines, seed, integrator } = run;
     let (choice, seed) = (*choice, *seed);
+    for path in [csv, plot].into_iter().flatten() {
+        caustic::film::check_writable(path)?;
+    }
     let loaded = caustic::load_scene(scene_path, defines)?;
     let reference_film = Film::load_exr(reference)?;
     compare::check_finite(&reference_film, reference)?;

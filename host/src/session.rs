@@ -74,6 +74,7 @@ impl RenderReport {
 pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
     let output = job.output.as_path();
     film::check_output_path(output)?;
+    film::check_writable(output)?;
     if let Some((path, _)) = &job.checkpoint {
         check_checkpoint_path(path, output)?;
     }

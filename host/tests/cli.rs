@@ -462,3 +462,82 @@ fn an_interrupted_render_saves_its_partial_image() {
     assert!(checkpoint.exists(), "the checkpoint of the samples done is kept");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// An output path that cannot be written (here: inside a plain file) is an error naming it, given
+/// before any rendering for `-o` (a long render was lost at the end), and for `--error-image`,
+/// `--plot` and `--csv`; the OS's message appears once (it was printed twice).
+#[test]
+fn unwritable_outputs_are_named_before_rendering() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-unwritable-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let blocker = dir.join("a-file");
+    std::fs::write(&blocker, "not a folder").unwrap();
+    let image = dir.join("image.exr");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let ok = caustic(&[
+        "render",
+        scene,
+        "--backend",
+        "cpu",
+        "--spp",
+        "1",
+        "-D",
+        "res=8",
+        "-q",
+        "-o",
+        image.to_str().unwrap(),
+    ]);
+    assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
+    let inside = |name: &str| blocker.join(name).to_str().unwrap().to_string();
+    let (exr, png, svg, csv) = (inside("out.exr"), inside("err.png"), inside("plot.svg"), inside("c.csv"));
+    let image = image.to_str().unwrap();
+    for (what, args) in [
+        // A million samples per pixel: this fails in well under a second only if checked first.
+        (
+            "-o",
+            vec!["render", scene, "--backend", "cpu", "--spp", "1000000", "-D", "res=64", "-q", "-o", &exr],
+        ),
+        ("--error-image", vec!["compare", image, image, "--error-image", &png]),
+        (
+            "--plot",
+            vec![
+                "convergence",
+                scene,
+                image,
+                "--backend",
+                "cpu",
+                "--spp",
+                "1000000",
+                "-D",
+                "res=8",
+                "--plot",
+                &svg,
+            ],
+        ),
+        (
+            "--csv",
+            vec![
+                "convergence",
+                scene,
+                image,
+                "--backend",
+                "cpu",
+                "--spp",
+                "1000000",
+                "-D",
+                "res=8",
+                "--csv",
+                &csv,
+            ],
+        ),
+    ] {
+        let start = std::time::Instant::now();
+        let out = caustic(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && err.contains("a-file"), "{what}: {err}");
+        assert!(start.elapsed().as_secs() < 20, "{what}: rendered before failing");
+        let os = err.rsplit(": ").next().unwrap_or_default().trim();
+        assert_eq!(err.matches(os).count(), 1, "{what}: the OS error twice: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
