@@ -134,8 +134,8 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
         match &shape.geometry {
             Geometry::Triangles { triangles, normals, uvs } => {
                 for (i, t) in triangles.iter().enumerate() {
-                    let geometric = (t[1] - t[0]).cross(t[2] - t[0]);
-                    let area = 0.5 * geometric.length();
+                    // In f64: squaring an f32 cross product overflows for edges over about 1e9.5.
+                    let area = crate::mesh::triangle_area(*t) as f32;
                     let mut flags = flags_base;
                     let uv = uvs.as_ref().map_or(DEFAULT_UVS, |u| u[i]);
                     let mut attr = TriangleAttributes {
@@ -145,7 +145,7 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                         ..Default::default()
                     };
                     if let Some(c) = normals {
-                        let gn = geometric.normalize();
+                        let gn = crate::mesh::face_normal(*t).unwrap_or(Vec3::Z);
                         // Flat triangles skip interpolation: a scene pays nothing for normals it does not need.
                         if c[i].iter().any(|n| n.dot(gn) < 1.0 - 1e-6) {
                             flags |= PRIM_FLAG_SMOOTH;

@@ -110,6 +110,10 @@ pub fn write_csv(path: &Path, curves: &[(&str, &[ConvergencePoint])]) -> Result<
 /// Plots relative MSE against render seconds on log–log axes (SVG), one series per labelled curve,
 /// with a dashed line of slope −1 through the first curve's last point for reference.
 pub fn write_plot(path: &Path, curves: &[(String, Vec<ConvergencePoint>)]) -> Result<()> {
+    draw_plot(path, curves).with_context(|| format!("cannot write {}", path.display()))
+}
+
+fn draw_plot(path: &Path, curves: &[(String, Vec<ConvergencePoint>)]) -> Result<()> {
     use plotters::prelude::*;
     let all: Vec<&ConvergencePoint> =
         curves.iter().flat_map(|(_, c)| c).filter(|p| p.seconds > 0.0 && p.rel_mse > 0.0).collect();

@@ -15,6 +15,8 @@ pub struct Film {
     pub variance: Option<Vec<[f32; 3]>>,
     /// Samples dropped because they were not finite.
     pub invalid_samples: u64,
+    /// A note written into EXR files' `comments` attribute (a partial render says so there).
+    pub comment: Option<String>,
 }
 
 /// A backend's accumulated sums: one `PixelAccum` per pixel, and how their squares were summed.
@@ -89,7 +91,7 @@ impl Film {
             variance.push(var);
             invalid += px.invalid as u64;
         }
-        Film { width, height, rgb, variance: Some(variance), invalid_samples: invalid }
+        Film { width, height, rgb, variance: Some(variance), invalid_samples: invalid, comment: None }
     }
 
     /// The window of `width` × `height` pixels starting at (`x`, `y`) (clamped to the image).
@@ -108,6 +110,7 @@ impl Film {
             rgb: window(&self.rgb),
             variance: self.variance.as_ref().map(window),
             invalid_samples: self.invalid_samples,
+            comment: self.comment.clone(),
         }
     }
 
@@ -118,7 +121,7 @@ impl Film {
         }
         let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
         match ext.as_str() {
-            "exr" => write_exr(path, self.width, self.height, &self.rgb),
+            "exr" => write_exr(path, self.width, self.height, &self.rgb, self.comment.as_deref()),
             "png" => {
                 let img =
                     image::RgbImage::from_fn(self.width, self.height, |x, y| image::Rgb(self.srgb8(x, y)));
@@ -140,7 +143,7 @@ impl Film {
     /// Writes the variance estimate (of each pixel's mean) as an EXR.
     pub fn save_variance(&self, path: &Path) -> Result<()> {
         match &self.variance {
-            Some(v) => write_exr(path, self.width, self.height, v),
+            Some(v) => write_exr(path, self.width, self.height, v, self.comment.as_deref()),
             None => bail!("this image has no variance estimate"),
         }
     }
@@ -165,6 +168,7 @@ impl Film {
             rgb,
             variance: None,
             invalid_samples: 0,
+            comment: None,
         })
     }
 
@@ -191,17 +195,46 @@ pub fn check_output_path(path: &Path) -> Result<()> {
     }
 }
 
+/// Fails early (before any rendering) if `path` cannot be written, naming it: creates its folder
+/// and opens the file for writing (without truncating one that exists; one created here is
+/// removed again).
+pub fn check_writable(path: &Path) -> Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let existed = path.exists();
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    if !existed {
+        std::fs::remove_file(path).ok();
+    }
+    Ok(())
+}
+
 /// `image.exr` → `image.variance.exr`.
 pub fn variance_path(path: &Path) -> std::path::PathBuf {
     path.with_extension("variance.exr")
 }
 
-fn write_exr(path: &Path, width: u32, height: u32, data: &[[f32; 3]]) -> Result<()> {
-    exr::prelude::write_rgb_file(path, width as usize, height as usize, |x, y| {
+fn write_exr(path: &Path, width: u32, height: u32, data: &[[f32; 3]], comment: Option<&str>) -> Result<()> {
+    use exr::prelude::*;
+    let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
         let p = data[y * width as usize + x];
         (p[0], p[1], p[2])
-    })
-    .with_context(|| format!("cannot write {}", path.display()))
+    });
+    let mut image = Image::from_channels((width as usize, height as usize), channels);
+    image.layer_data.attributes.comments = comment.map(Text::from);
+    image.write().to_file(path).with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// The `comments` attribute of an EXR file's first layer, if it has one.
+pub fn exr_comment(path: &Path) -> Result<Option<String>> {
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .with_context(|| format!("cannot read EXR header {}", path.display()))?;
+    Ok(meta.headers.first().and_then(|h| h.own_attributes.comments.as_ref()).map(|t| t.to_string()))
 }
 
 /// The sRGB transfer function, clamped to [0, 1].

@@ -31,7 +31,26 @@ impl LinearImage {
 pub fn load_linear_rgb(path: &Path, raw: bool) -> Result<LinearImage> {
     let is_exr = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("exr"));
     let image = if is_exr { load_exr(path) } else { load_with_image_crate(path, raw) };
-    image.with_context(|| format!("cannot load image {}", path.display()))
+    let image = image.with_context(|| format!("cannot load image {}", path.display()))?;
+    check_texels(&image, path)?;
+    Ok(image)
+}
+
+/// Every texel that enters a scene passes here: an infinite, NaN or negative one is refused, naming
+/// file and texel (one Inf texel in an envmap made its sampling tables infinite and 60% of the
+/// samples NaN, counted as black; Mitsuba takes no negative radiance or reflectance either).
+fn check_texels(image: &LinearImage, path: &Path) -> Result<()> {
+    if let Some(i) = image.rgb.iter().position(|v| !v.is_finite() || *v < 0.0) {
+        let texel = i / 3;
+        let (x, y) = (texel % image.width as usize, texel / image.width as usize);
+        let rgb = image.texel(x as u32, y as u32);
+        bail!(
+            "{}: texel ({x}, {y}) (column, row from the top) is {rgb:?}: texels must be finite and \
+             non-negative",
+            path.display()
+        );
+    }
+    Ok(())
 }
 
 /// The sRGB transfer curve, decoded (encoded value in [0, 1] → linear).

@@ -8,6 +8,8 @@ pub mod compare;
 pub mod convergence;
 pub mod film;
 pub mod image_io;
+pub mod interrupt;
+pub mod memory;
 pub mod mesh;
 pub mod mitsuba;
 #[cfg(feature = "mpi")]

@@ -150,6 +150,12 @@ fn main() {
     if !matches!(cli.command, Command::Compare { .. }) {
         backend::runtime_dir::ensure_xdg_runtime_dir();
     }
+    // A render saves what it has on SIGINT/SIGTERM; the other commands stop as by default.
+    if matches!(cli.command, Command::Render { .. }) {
+        if let Err(e) = caustic::interrupt::install() {
+            eprintln!("warning: {e:#}; an interrupt will lose the render");
+        }
+    }
     let result = match cli.command {
         Command::Render { run, output, variance, quiet, checkpoint, checkpoint_every, tev } => {
             let output = output.unwrap_or_else(|| {
@@ -211,24 +217,46 @@ fn main() {
         }
     };
     if let Err(e) = result {
-        eprintln!("error: {e:#}");
+        eprintln!("error: {}", error_chain(&e));
         std::process::exit(1);
     }
+}
+
+/// The error and its causes, `: `-separated as anyhow's `{:#}`, leaving out a cause whose message
+/// the text already holds (an OS error was printed twice: the exr and image crates put their
+/// source's message into their own).
+fn error_chain(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain() {
+        let message = cause.to_string();
+        if text.is_empty() {
+            text = message;
+        } else if !text.contains(&message) {
+            text = format!("{text}: {message}");
+        }
+    }
+    text
 }
 
 fn cmd_render(ranks: Option<&dyn caustic::ranks::Ranks>, job: &RenderJob) -> Result<()> {
     let Some(r) = session::render_share(job, ranks)? else { return Ok(()) };
     let resumed = if r.resumed_at > 0 { format!(" (resumed at {})", r.resumed_at) } else { String::new() };
+    let spp = match r.interrupted {
+        Some(_) => format!("partial: {} of {} spp (interrupted)", r.spp_done, r.spp),
+        None => format!("{} spp", r.spp),
+    };
     say!(
-        "{} | {}x{} | {} spp{resumed} | {:.2} s | {:.2} Msamples/s | {}",
+        "{} | {}x{} | {spp}{resumed} | {:.2} s | {:.2} Msamples/s | {}",
         r.backend,
         r.width,
         r.height,
-        r.spp,
         r.seconds,
         r.msamples_per_second(),
         job.output.display()
     );
+    if let Some(signal) = r.interrupted {
+        std::process::exit(caustic::interrupt::exit_code(signal));
+    }
     Ok(())
 }
 
@@ -239,6 +267,9 @@ fn cmd_compare(
     reference_spp: u32,
     error_image: Option<&Path>,
 ) -> Result<()> {
+    if let Some(path) = error_image {
+        caustic::film::check_writable(path)?;
+    }
     let a = Film::load_with_variance(image)?;
     let b = Film::load_exr(reference)?;
     compare::check_finite(&a, image)?;
@@ -268,6 +299,9 @@ fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Op
     let RunArgs { scene: scene_path, backend: choice, gpus, spp, define: defines, seed, integrator, strict } =
         run;
     let (choice, seed) = (*choice, *seed);
+    for path in [csv, plot].into_iter().flatten() {
+        caustic::film::check_writable(path)?;
+    }
     let loaded = caustic::load_scene_with(scene_path, defines, LoadOptions { strict: *strict })?;
     let reference_film = Film::load_exr(reference)?;
     compare::check_finite(&reference_film, reference)?;

@@ -113,7 +113,7 @@ impl Mesh {
         let mut sums = vec![Vec3::ZERO; self.positions.len()];
         for tri in self.indices.chunks_exact(3) {
             let p = [0, 1, 2].map(|k| self.positions[tri[k] as usize]);
-            let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+            let n = face_normal(p).unwrap_or(Vec3::ZERO);
             for k in 0..3 {
                 let e1 = (p[(k + 1) % 3] - p[k]).normalize_or_zero();
                 let e2 = (p[(k + 2) % 3] - p[k]).normalize_or_zero();
@@ -140,7 +140,6 @@ impl Mesh {
             if let (Some(out), Some(normals)) = (out.normals.as_mut(), self.normals.as_ref()) {
                 // A corner without a usable normal (zero in the file, or a cancelled sum) takes the
                 // face's own, so that shading never sees a zero or NaN normal.
-                let face_normal = face_normal.normalize();
                 out.push(corner.map(|i| {
                     if normals[i].is_finite() && normals[i] != Vec3::ZERO {
                         normals[i]
@@ -164,11 +163,22 @@ impl Mesh {
     }
 }
 
-/// The face normal of the triangle `p`, unnormalised (its length is twice the area), or None if the
-/// triangle is degenerate: zero area, or not finite. `Mesh::triangles` drops those, and `obj_scene`
-/// indexes the kept triangles by the same test, so both call this one.
+/// The unit face normal of the triangle `p`, or None if the triangle is degenerate: zero area, or
+/// not finite. `Mesh::triangles` drops those, and `obj_scene` indexes the kept triangles by the same
+/// test, so both call this one. Computed in f64: the squared length of an f32 cross product
+/// overflows for edges over about 1e9.5 (a rectangle scaled by 1e10 was dropped as degenerate).
 pub fn face_normal(p: [Vec3; 3]) -> Option<Vec3> {
-    let n = (p[1] - p[0]).cross(p[2] - p[0]);
+    let n = cross64(p);
     let area2 = n.length_squared();
-    (area2 > 0.0 && area2.is_finite()).then_some(n)
+    (area2 > 0.0 && area2.is_finite()).then(|| (n / area2.sqrt()).as_vec3())
+}
+
+/// The triangle's area, computed in f64 (see `face_normal`).
+pub fn triangle_area(p: [Vec3; 3]) -> f64 {
+    0.5 * cross64(p).length()
+}
+
+fn cross64(p: [Vec3; 3]) -> glam::DVec3 {
+    let [a, b, c] = p.map(|v| v.as_dvec3());
+    (b - a).cross(c - a)
 }

@@ -5,10 +5,53 @@ use crate::mesh;
 use crate::scene::{
     look_at, warn, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape,
 };
-use anyhow::Result;
+use anyhow::{bail, Result};
 use caustic_kernel::layout::{Material, BSDF_DIFFUSE, BSDF_PHONG};
 use glam::Vec3;
 use std::path::Path;
+
+/// Refuses an MTL entry with a NaN, infinite or negative `Kd`, `Ks`, `Ke` or `Ns` (`Ke nan`
+/// rendered black, a negative `Kd` negative pixels), naming the MTL file and line.
+fn check_material(m: &tobj::Material, obj: &Path) -> Result<()> {
+    for (key, values) in [
+        ("Kd", m.diffuse.map(Vec::from)),
+        ("Ks", m.specular.map(Vec::from)),
+        ("Ke", m.emissive.map(Vec::from)),
+        ("Ns", m.shininess.map(|n| vec![n])),
+    ] {
+        if let Some(v) = values.filter(|v| v.iter().any(|c| !c.is_finite() || *c < 0.0)) {
+            bail!(
+                "{}: material '{}': {key} must be finite and non-negative, got {v:?}",
+                mtl_location(obj, &m.name, key),
+                m.name
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `file.mtl:line` of `key` in material `name` of the OBJ's material libraries (tobj keeps no
+/// lines), or the OBJ's path when it cannot be found.
+fn mtl_location(obj: &Path, name: &str, key: &str) -> String {
+    let dir = obj.parent().unwrap_or(Path::new(""));
+    let text = std::fs::read_to_string(obj).unwrap_or_default();
+    let libraries =
+        text.lines().filter_map(|l| l.trim().strip_prefix("mtllib ")).flat_map(str::split_whitespace);
+    for library in libraries {
+        let path = dir.join(library);
+        let Ok(mtl) = std::fs::read_to_string(&path) else { continue };
+        let mut current = false;
+        for (i, line) in mtl.lines().enumerate() {
+            let mut words = line.split_whitespace();
+            match words.next() {
+                Some("newmtl") => current = words.next() == Some(name),
+                Some(k) if current && k == key => return format!("{}:{}", path.display(), i + 1),
+                _ => {}
+            }
+        }
+    }
+    obj.display().to_string()
+}
 
 /// The caustic material and emission of an MTL entry.
 fn convert_material(
@@ -46,6 +89,10 @@ fn convert_material(
     (material, emission)
 }
 
+/// The largest model radius framed: the light sits about 5 radii from the model, and squared
+/// distances must stay below f32's 3.4e38 (the square root of which is 1.8e19) with room to spare.
+const MAX_RADIUS: f64 = 1e18;
+
 /// Loads an OBJ file as a scene; `strict` refuses it when its material library does not load
 /// (which otherwise gives every triangle the default grey).
 pub fn load(path: &Path, strict: bool) -> Result<Scene> {
@@ -63,6 +110,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
         vec![Material { kind: BSDF_DIFFUSE, reflectance: [0.5, 0.5, 0.5, 0.0], ..Default::default() }];
     let mut emissions = vec![None];
     for m in &mtl {
+        check_material(m, path)?;
         let (material, emission) = convert_material(m, path, &mut warnings);
         materials.push(material);
         emissions.push(emission);
@@ -103,17 +151,30 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
         .positions
         .iter()
         .fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    // In f64, and refused where single precision cannot hold the result: the camera setup of a
+    // model with coordinates near 1e19 overflowed (a panic in look_at).
+    let (lo, hi) = (lo.as_dvec3(), hi.as_dvec3());
     let center = (lo + hi) * 0.5;
     let radius = ((hi - lo).length() * 0.5).max(1e-3);
+    if radius > MAX_RADIUS {
+        bail!(
+            "{}: the model spans {:.3e} units (from {lo} to {hi}); caustic squares distances in single \
+             precision, so a model over {MAX_RADIUS:.0e} units across cannot be framed: scale it down",
+            path.display(),
+            2.0 * radius
+        );
+    }
     let fov_x = 40.0f32;
-    let distance = radius / (fov_x.to_radians() * 0.5).sin() * 1.1;
-    let eye = center + Vec3::new(0.0, 0.35, 1.0).normalize() * distance;
-    let to_world = look_at(eye, center, Vec3::Y).expect("the view direction is never parallel to +y");
+    let distance = radius / ((fov_x as f64).to_radians() * 0.5).sin() * 1.1;
+    let eye = center + glam::DVec3::new(0.0, 0.35, 1.0).normalize() * distance;
+    let to_world = look_at(eye.as_vec3(), center.as_vec3(), Vec3::Y)
+        .expect("the view direction is never parallel to +y");
     // A sphere light above and to the right, sized and scaled for an irradiance of ≈3 at the model.
-    let light_pos = center + Vec3::new(0.8, 1.6, 1.2).normalize() * distance * 1.5;
+    let light_pos = center + glam::DVec3::new(0.8, 1.6, 1.2).normalize() * distance * 1.5;
     let light_radius = radius * 0.15;
     let d2 = (light_pos - center).length_squared();
-    let radiance = 3.0 * d2 / (std::f32::consts::PI * light_radius * light_radius);
+    let radiance = (3.0 * d2 / (std::f64::consts::PI * light_radius * light_radius)) as f32;
+    let (light_pos, light_radius, distance) = (light_pos.as_vec3(), light_radius as f32, distance as f32);
     materials.push(Material { kind: BSDF_DIFFUSE, ..Default::default() });
     shapes.push(Shape {
         origin: "automatic sphere light".into(),

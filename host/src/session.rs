@@ -9,7 +9,8 @@ use crate::ranks::{self, Ranks};
 use crate::scene::IntegratorChoice;
 use crate::{buffers, render, tev};
 use anyhow::{bail, Context, Result};
-use std::ops::ControlFlow::{self, Continue};
+use std::cell::Cell;
+use std::ops::ControlFlow::{self, Break, Continue};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -59,12 +60,17 @@ pub struct RenderReport {
     pub seconds: f64,
     /// Samples that were not finite and were counted as black.
     pub invalid_samples: u64,
+    /// The signal (SIGINT, SIGTERM) that stopped the render before `spp` samples: the image saved
+    /// holds `spp_done` samples per pixel and says so (EXR comments), the checkpoint is kept.
+    pub interrupted: Option<i32>,
+    /// Samples per pixel in the image saved (`spp` unless interrupted).
+    pub spp_done: u32,
 }
 
 impl RenderReport {
     /// Samples rendered by this session per second, in millions.
     pub fn msamples_per_second(&self) -> f64 {
-        self.width as f64 * self.height as f64 * (self.spp - self.resumed_at) as f64
+        self.width as f64 * self.height as f64 * (self.spp_done - self.resumed_at) as f64
             / self.seconds.max(1e-9)
             / 1e6
     }
@@ -81,6 +87,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
     let (rank, size) = ranks.map_or((0, 1), |r| (r.rank(), r.size()));
     let output = job.output.as_path();
     film::check_output_path(output)?;
+    film::check_writable(output)?;
     if let Some((path, _)) = &job.checkpoint {
         if size > 1 {
             bail!("--checkpoint is not supported with several MPI ranks yet (each rank holds a share)");
@@ -138,6 +145,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
             None
         }
     };
+    let done_at = Cell::new(start);
     let observer = Observer {
         bar: &bar,
         viewer,
@@ -148,6 +156,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         spp,
         stop_at: end,
         size: (width, height),
+        done_at: &done_at,
     };
     let clock = Instant::now();
     let mut seconds = 0.0;
@@ -168,13 +177,19 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
             None => return Ok(None),
         },
     };
+    // A signal stopped the render before its end (the image says so; the checkpoint is kept).
+    let interrupted = crate::interrupt::requested().filter(|_| done_at.get() < end);
+    let spp_done = if interrupted.is_some() { done_at.get() } else { spp };
     let mut film = Film::from_accum(width, height, &accum);
+    if interrupted.is_some() {
+        film.comment = Some(format!("caustic: partial render, {spp_done} of {spp} spp (interrupted)"));
+    }
     sanitize(&mut film);
     save_or_recover(&film, output)?;
     if job.variance {
         film.save_variance(&film::variance_path(output))?;
     }
-    if let Some((path, _, _)) = checkpoint {
+    if let Some((path, _, _)) = checkpoint.filter(|_| interrupted.is_none()) {
         // The image is safe on disk: the checkpoint has served.
         std::fs::remove_file(path).ok();
     }
@@ -187,6 +202,8 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         resumed_at: if size > 1 { 0 } else { start },
         seconds,
         invalid_samples: film.invalid_samples,
+        interrupted,
+        spp_done,
     }))
 }
 
@@ -227,6 +244,8 @@ struct Observer<'a> {
     /// The end of this process's share of the samples (`spp` for one process).
     stop_at: u32,
     size: (u32, u32),
+    /// The samples per pixel done at the last rest (what an interrupted render's image holds).
+    done_at: &'a Cell<u32>,
 }
 
 impl Observer<'_> {
@@ -244,12 +263,15 @@ impl render::PassObserver for Observer<'_> {
     }
 
     fn wants_rest(&mut self, _seconds: f64) -> bool {
-        self.view_due() || self.save_due()
+        self.view_due() || self.save_due() || crate::interrupt::requested().is_some()
     }
 
     fn at_rest(&mut self, done: u32, _: f64, backend: &mut dyn Backend) -> Result<ControlFlow<()>> {
         let (width, height) = self.size;
         self.bar.set_position(done as u64);
+        self.done_at.set(done);
+        // SIGINT or SIGTERM: stop here, saving the checkpoint now (`interrupt`).
+        let interrupted = crate::interrupt::requested().is_some() && done < self.stop_at;
         if self.view_due() || (self.viewer.is_some() && done == self.spp) {
             let film = Film::from_accum(width, height, &backend.read_accum()?);
             if let Some(Err(e)) = self.viewer.as_mut().map(|stream| stream.update(&film)) {
@@ -258,7 +280,9 @@ impl render::PassObserver for Observer<'_> {
             }
             self.last_view = Instant::now();
         }
-        if let Some((path, _, fingerprint)) = self.checkpoint.filter(|_| done < self.spp && self.save_due()) {
+        if let Some((path, _, fingerprint)) =
+            self.checkpoint.filter(|_| done < self.spp && (self.save_due() || interrupted))
+        {
             let c = Checkpoint {
                 scene: fingerprint,
                 seed: self.seed,
@@ -273,7 +297,7 @@ impl render::PassObserver for Observer<'_> {
             self.last_save = Instant::now();
         }
         // The end of this process's share (a rank's); the loop ends by itself at `spp`.
-        Ok(if done >= self.stop_at { ControlFlow::Break(()) } else { Continue(()) })
+        Ok(if done >= self.stop_at || interrupted { Break(()) } else { Continue(()) })
     }
 }
 

@@ -362,7 +362,7 @@ fn compare_refuses_non_finite_pixels() {
         if let Some((at, v)) = bad {
             rgb[at][1] = v;
         }
-        Film { width: 4, height: 3, rgb, variance: None, invalid_samples: 0 }
+        Film { width: 4, height: 3, rgb, variance: None, invalid_samples: 0, comment: None }
     };
     let (good, nan, inf) = (dir.join("good.exr"), dir.join("nan.exr"), dir.join("inf.exr"));
     film(None).save(&good).unwrap();
@@ -470,4 +470,119 @@ fn no_xdg_runtime_dir_message_without_a_display() {
         assert!(!err.contains("XDG_RUNTIME_DIR") && !err.contains("panicked"), "{value:?}: {err}");
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// SIGINT during a long render: the pass under way finishes, the image of the samples done so far is
+/// written and marked partial (the summary line, the EXR's comments), the checkpoint is kept, and
+/// the exit status is 130 (an interrupt lost every sample since the last checkpoint).
+#[cfg(unix)]
+#[test]
+fn an_interrupted_render_saves_its_partial_image() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-sigint-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (image, checkpoint) = (dir.join("partial.exr"), dir.join("partial.ck"));
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let child = Command::new(env!("CARGO_BIN_EXE_caustic"))
+        .args(["render", scene, "--backend", "cpu", "--spp", "1000000", "-D", "res=32", "-q"])
+        .args(["--checkpoint-every", "inf", "--checkpoint", checkpoint.to_str().unwrap()])
+        .args(["-o", image.to_str().unwrap()])
+        .env("XDG_RUNTIME_DIR", "/tmp")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("runs");
+    // Long enough for the render to be under way (the handler is installed first thing).
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    // SAFETY: kill(2) on the child's own process id.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
+    let out = child.wait_with_output().expect("exits");
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert_eq!(out.status.code(), Some(130), "{stdout}\n{stderr}");
+    assert!(stdout.contains("partial:") && stdout.contains("of 1000000 spp (interrupted)"), "{stdout}");
+    let comment = caustic::film::exr_comment(&image).unwrap().unwrap_or_default();
+    assert!(comment.contains("partial render") && comment.contains("of 1000000 spp"), "{comment}");
+    let film = caustic::film::Film::load_exr(&image).unwrap();
+    assert!(film.rgb.iter().flatten().all(|c| c.is_finite()));
+    assert!(film.rgb.iter().map(|p| p[1]).sum::<f32>() > 0.0, "the partial image is black");
+    assert!(checkpoint.exists(), "the checkpoint of the samples done is kept");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// An output path that cannot be written (here: inside a plain file) is an error naming it, given
+/// before any rendering for `-o` (a long render was lost at the end), and for `--error-image`,
+/// `--plot` and `--csv`; the OS's message appears once (it was printed twice).
+#[test]
+fn unwritable_outputs_are_named_before_rendering() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-unwritable-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let blocker = dir.join("a-file");
+    std::fs::write(&blocker, "not a folder").unwrap();
+    let image = dir.join("image.exr");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let ok = caustic(&[
+        "render",
+        scene,
+        "--backend",
+        "cpu",
+        "--spp",
+        "1",
+        "-D",
+        "res=8",
+        "-q",
+        "-o",
+        image.to_str().unwrap(),
+    ]);
+    assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
+    let inside = |name: &str| blocker.join(name).to_str().unwrap().to_string();
+    let (exr, png, svg, csv) = (inside("out.exr"), inside("err.png"), inside("plot.svg"), inside("c.csv"));
+    let image = image.to_str().unwrap();
+    for (what, args) in [
+        // A million samples per pixel: this fails in well under a second only if checked first.
+        (
+            "-o",
+            vec!["render", scene, "--backend", "cpu", "--spp", "1000000", "-D", "res=64", "-q", "-o", &exr],
+        ),
+        ("--error-image", vec!["compare", image, image, "--error-image", &png]),
+        (
+            "--plot",
+            vec![
+                "convergence",
+                scene,
+                image,
+                "--backend",
+                "cpu",
+                "--spp",
+                "1000000",
+                "-D",
+                "res=8",
+                "--plot",
+                &svg,
+            ],
+        ),
+        (
+            "--csv",
+            vec![
+                "convergence",
+                scene,
+                image,
+                "--backend",
+                "cpu",
+                "--spp",
+                "1000000",
+                "-D",
+                "res=8",
+                "--csv",
+                &csv,
+            ],
+        ),
+    ] {
+        let start = std::time::Instant::now();
+        let out = caustic(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success() && err.contains("a-file"), "{what}: {err}");
+        assert!(start.elapsed().as_secs() < 20, "{what}: rendered before failing");
+        let os = err.rsplit(": ").next().unwrap_or_default().trim();
+        assert_eq!(err.matches(os).count(), 1, "{what}: the OS error twice: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
 }

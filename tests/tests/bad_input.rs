@@ -321,3 +321,136 @@ fn a_scene_without_shapes_renders_black() {
         }
     }
 }
+
+/// A film whose accumulator exceeds what this GPU binds is refused before any GPU buffer exists,
+/// naming the buffer, the limit, its value and the need (wgpu panicked in `create_bind_group`: on
+/// lavapipe, whose binding limit is 128 MiB, any film over 2048×2048).
+#[test]
+fn a_film_over_the_gpu_binding_limit_is_refused() {
+    let adapter = caustic::backend::gpu::adapters().into_iter().next().expect("a Vulkan adapter (lavapipe)");
+    let limits = adapter.limits();
+    let limit = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+    // 32-byte accumulator per pixel: one row more than fits.
+    let width = 8192u32;
+    let height = (limit / 32 / width as u64 + 1) as u32;
+    let mut scene = caustic_tests::load_xml(&format!("<scene version=\"3.0.0\">{SENSOR}</scene>"), "limits");
+    (scene.sensor.width, scene.sensor.height) = (width, height);
+    let buffers = caustic::buffers::build(&scene).expect("builds");
+    let need = caustic::memory::render_need(&buffers);
+    if caustic::memory::available().is_some_and(|have| need > have) {
+        eprintln!("notice: a {width}×{height} film needs more memory than this machine has; test skipped");
+        return;
+    }
+    let e = match caustic::backend::create(caustic::backend::BackendChoice::Gpu, &buffers) {
+        Ok(_) => panic!("a {width}×{height} film was accepted by a GPU binding {limit} bytes"),
+        Err(e) => format!("{e:#}"),
+    };
+    let bytes = (width as u64 * height as u64 * 32).to_string();
+    assert!(e.contains("film accumulator") && e.contains("max_") && e.contains(&limit.to_string()), "{e}");
+    assert!(e.contains(&bytes), "the need ({bytes} bytes) is not named: {e}");
+}
+
+/// A 32768×32768 film (about 120 GiB of host memory) is refused before allocation where the machine
+/// has less available (it aborted: "memory allocation failed"); the estimate against a given
+/// `MemAvailable` is checked everywhere.
+#[test]
+fn a_film_larger_than_memory_is_refused() {
+    let mut scene = caustic_tests::load_xml(&format!("<scene version=\"3.0.0\">{SENSOR}</scene>"), "memory");
+    (scene.sensor.width, scene.sensor.height) = (32768, 32768);
+    let buffers = caustic::buffers::build(&scene).expect("builds");
+    let need = caustic::memory::render_need(&buffers);
+    assert!(need > 100 << 30, "a 32768² film needs {need} bytes?");
+    let e = caustic::memory::check(need, Some(64 << 30), "a 32768×32768 render").unwrap_err().to_string();
+    assert!(e.contains("32768×32768") && e.contains("64.0 GiB available"), "{e}");
+    assert_eq!(
+        caustic::memory::parse_mem_available("MemTotal: 9 kB\nMemAvailable:    2048 kB\n"),
+        Some(2 << 20)
+    );
+    match caustic::memory::available() {
+        Some(have) if have < need => {
+            let e = match caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers) {
+                Ok(_) => panic!("a render needing {need} bytes started with {have} available"),
+                Err(e) => format!("{e:#}"),
+            };
+            assert!(e.contains("GiB") && e.contains("32768×32768"), "{e}");
+        }
+        _ => eprintln!("notice: this machine has memory for a 32768² film; only the estimate was checked"),
+    }
+}
+
+/// Numbers entering a scene from files other than the XML (whose values `Props` checks) are
+/// validated where they enter: texels of envmaps and bitmaps (one Inf texel made 60% of the samples
+/// NaN, counted as black), MTL colours (`Ke nan` rendered black, a negative `Kd` negative pixels),
+/// OBJ coordinates near 1e19 (a panic framing the model), an orthographic camera of scale 0 (a black
+/// image); each is refused naming file and position or line.
+#[test]
+fn hostile_numbers_in_files_are_refused_naming_where() {
+    let texels = |name: &str, at: usize, value: f32| {
+        let mut rgb = vec![[0.5f32; 3]; 4 * 3];
+        rgb[at][1] = value;
+        let film = caustic::film::Film {
+            width: 4,
+            height: 3,
+            rgb,
+            variance: None,
+            invalid_samples: 0,
+            comment: None,
+        };
+        film.save(&write_scene(name, "").with_file_name(name)).unwrap();
+    };
+    texels("inf.exr", 4 + 2, f32::INFINITY);
+    texels("nan.exr", 2 * 4 + 1, f32::NAN);
+    texels("negative.exr", 3, -1.0);
+    for (file, element, pixel) in [
+        ("inf.exr", "<emitter type=\"envmap\"><string name=\"filename\" value=\"inf.exr\"/></emitter>", "(2, 1)"),
+        ("negative.exr", "<emitter type=\"envmap\"><string name=\"filename\" value=\"negative.exr\"/></emitter>", "(3, 0)"),
+        (
+            "nan.exr",
+            "<shape type=\"sphere\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"nan.exr\"/></texture></bsdf></shape>",
+            "(1, 2)",
+        ),
+    ] {
+        let e = load_err(&format!("texels-{file}.xml"), &format!("<scene version=\"3.0.0\">\n{element}\n</scene>\n"));
+        assert!(e.contains(&format!("texels-{file}.xml:2")) && e.contains(file) && e.contains(pixel), "{file}: {e}");
+    }
+
+    let obj = "mtllib hostile.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
+    for (what, mtl, needle) in [
+        ("ke-nan", "newmtl a\nKd 0.5 0.5 0.5\nnewmtl m\nKd 0.5 0.5 0.5\nKe nan 1 1\n", "hostile.mtl:5"),
+        ("kd-negative", "newmtl m\n\nKd 0.5 -0.5 0.5\n", "hostile.mtl:3"),
+    ] {
+        write_scene("hostile.mtl", mtl);
+        let e = load_err(&format!("{what}.obj"), obj);
+        assert!(e.contains(needle) && e.contains("'m'"), "{what}: {e}");
+    }
+    write_scene("hostile.mtl", "newmtl m\nKd 0.5 0.5 0.5\n");
+    let e = load_err("huge.obj", "mtllib hostile.mtl\nv -2e19 0 0\nv 2e19 0 0\nv 0 2e19 0\nf 1 2 3\n");
+    assert!(e.contains("huge.obj") && e.contains("scale it down"), "{e}");
+
+    let e = load_err(
+        "ortho-zero.xml",
+        "<scene version=\"3.0.0\">\n<sensor type=\"orthographic\"><transform name=\"to_world\"><scale value=\"0\"/></transform></sensor>\n</scene>\n",
+    );
+    assert!(e.contains("ortho-zero.xml:2") && e.contains("orthographic"), "{e}");
+}
+
+/// A rectangle scaled by 1e10 is a rectangle (its squared area overflows f32, and it was dropped as
+/// degenerate), and as an emitter its power is finite and positive.
+#[test]
+fn a_huge_rectangle_is_kept() {
+    let scene = caustic_tests::load_xml(
+        &format!("<scene version=\"3.0.0\">{SENSOR}<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"1e10\"/></transform><emitter type=\"area\"/></shape></scene>"),
+        "huge-rectangle",
+    );
+    match &scene.shapes[0].geometry {
+        caustic::scene::Geometry::Triangles { triangles, .. } => {
+            assert_eq!(triangles.len(), 2, "triangles kept")
+        }
+        _ => panic!("a rectangle is triangles"),
+    }
+    let buffers = caustic::buffers::build(&scene).expect("builds");
+    // Two triangles of equal area: half the light-selection probability each (a power overflowing
+    // f32 would be zero and leave only the uniform half of the mixture).
+    let pmf: Vec<f32> = buffers.lights.iter().map(|l| l.pmf).collect();
+    assert!(pmf.len() == 2 && pmf.iter().all(|p| (p - 0.5).abs() < 1e-6), "{pmf:?}");
+}

@@ -161,6 +161,7 @@ fn convergence_against_the_exact_furnace_image() {
         rgb: vec![[1.0; 3]; (w * h) as usize],
         variance: None,
         invalid_samples: 0,
+        comment: None,
     };
     let mut backend = caustic::backend::create(BackendChoice::Cpu, &buffers).unwrap();
     let points = caustic::convergence::measure(backend.as_mut(), &buffers, &exact, 256, 9).unwrap();

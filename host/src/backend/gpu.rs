@@ -73,6 +73,8 @@ impl GpuBackend {
         let adapter =
             adapters().into_iter().nth(index).ok_or_else(|| anyhow!("no Vulkan adapter {index}"))?;
         let info = adapter.get_info();
+        // Before any GPU call that could panic on a buffer this device cannot hold.
+        super::limits::check(buffers, &adapter.limits(), &info.name)?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("caustic"),
             required_features: wgpu::Features::empty(),
@@ -178,7 +180,7 @@ impl GpuBackend {
         let lights = storage("lights", bytemuck::cast_slice(&buffers.lights));
         let tables = storage("tables", bytemuck::cast_slice(&buffers.tables));
         let textures = storage("textures", bytemuck::cast_slice(&buffers.textures));
-        let pixels = (buffers.params.width * buffers.params.height) as u64;
+        let pixels = buffers.params.width as u64 * buffers.params.height as u64;
         let accum_size = pixels * std::mem::size_of::<PixelAccum>() as u64;
         let accum_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("accum"),

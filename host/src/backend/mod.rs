@@ -2,6 +2,7 @@
 //! GPUs as one backend (`pool`).
 pub mod cpu;
 pub mod gpu;
+pub mod limits;
 pub mod pool;
 pub mod runtime_dir;
 
@@ -114,6 +115,12 @@ pub fn create_on(
     gpus: &GpuSelection,
     buffers: &crate::buffers::SceneBuffers,
 ) -> Result<Box<dyn Backend + Send>> {
+    let (w, h) = (buffers.params.width, buffers.params.height);
+    crate::memory::check(
+        crate::memory::render_need(buffers),
+        crate::memory::available(),
+        &format!("a {w}×{h} render"),
+    )?;
     let cpu = || -> Box<dyn Backend + Send> { Box::new(cpu::CpuBackend::new(buffers.clone())) };
     let hardware_only = match choice {
         BackendChoice::Cpu => return Ok(cpu()),
@@ -128,7 +135,15 @@ pub fn create_on(
     };
     let mut devices: Vec<Box<dyn Backend + Send>> = Vec::with_capacity(indices.len());
     for i in indices {
-        devices.push(Box::new(gpu::GpuBackend::on_adapter(buffers, i)?));
+        match gpu::GpuBackend::on_adapter(buffers, i) {
+            Ok(g) => devices.push(Box::new(g)),
+            // A scene this GPU cannot hold: `auto` renders it on the CPU.
+            Err(e) if choice == BackendChoice::Auto && e.is::<limits::OverLimit>() => {
+                eprintln!("warning: {e:#}; rendering on the CPU");
+                return Ok(cpu());
+            }
+            Err(e) => return Err(e),
+        }
     }
     if devices.len() == 1 {
         return Ok(devices.pop().expect("one device"));

@@ -19,8 +19,12 @@ pub type Materials = std::result::Result<Vec<tobj::Material>, String>;
 pub fn load_obj(path: &Path, with_materials: bool) -> Result<(Mesh, Materials)> {
     let options =
         tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
-    let (models, materials) =
-        tobj::load_obj(path, &options).with_context(|| format!("cannot load OBJ mesh {}", path.display()))?;
+    // tobj 4 panics on an MTL colour of fewer than three numbers (`Kd 0.8 0.1`: an unwrap inside
+    // it, found by tests/tests/fuzz.rs); that panic becomes an error naming the file.
+    let loaded = std::panic::catch_unwind(|| tobj::load_obj(path, &options)).map_err(|_| {
+        anyhow::anyhow!("cannot load OBJ mesh {}: its material library has a malformed line", path.display())
+    })?;
+    let (models, materials) = loaded.with_context(|| format!("cannot load OBJ mesh {}", path.display()))?;
     let materials = if with_materials {
         materials
             .map_err(|e| format!("{}: material library not loaded ({e}); using defaults", path.display()))

@@ -134,10 +134,16 @@ impl Loader {
                 // to_world's scale.
                 let aspect = sensor.width as f32 / sensor.height as f32;
                 let half_width = to_world.x_axis.truncate().length();
-                Projection::Orthographic {
-                    half_width,
-                    half_height: to_world.y_axis.truncate().length() / aspect,
+                let half_height = to_world.y_axis.truncate().length() / aspect;
+                // A zero scale sees nothing: every ray starts on one line and the image is black.
+                if !(half_width > 0.0
+                    && half_height > 0.0
+                    && half_width.is_finite()
+                    && half_height.is_finite())
+                {
+                    bail!("{}: the orthographic camera's to_world scales x or y to {half_width} × {}: it sees nothing", props.loc, half_height * aspect);
                 }
+                Projection::Orthographic { half_width, half_height }
             }
             _ => {
                 props.float("focus_distance", 0.0)?; // meaningful only for thin-lens cameras

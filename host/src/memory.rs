@@ -1,0 +1,59 @@
+//! Host memory: what a render will allocate, checked against what the machine has before anything
+//! is allocated. A 32768×32768 film needs about 120 GiB here; allocating it aborted the process
+//! ("memory allocation failed") instead of refusing with a message.
+use crate::buffers::SceneBuffers;
+use anyhow::{bail, Result};
+use caustic_kernel::layout::PixelAccum;
+use caustic_kernel::splat::SPLAT_STRIDE;
+
+/// Host bytes a render of `buffers` needs at its peak: the scene, and per pixel three copies of the
+/// accumulator (the backend's own, or the GPU's read-back staging; the copy read back; the one the
+/// GPU's mapping is collected into), the finished image's means and variances, and a pass's splat
+/// words for light tracing.
+pub fn render_need(buffers: &SceneBuffers) -> u64 {
+    let pixels = buffers.params.width as u64 * buffers.params.height as u64;
+    let accum = std::mem::size_of::<PixelAccum>() as u64;
+    let image = 2 * 3 * 4;
+    let splat = if caustic_kernel::integrator::splats(buffers.params.integrator) {
+        SPLAT_STRIDE as u64 * 4
+    } else {
+        0
+    };
+    let scene: u64 = super::backend::limits::buffer_sizes(buffers)
+        .into_iter()
+        .filter(|(what, _)| !matches!(*what, "film accumulator" | "light-tracing splats"))
+        .map(|(_, size)| size)
+        .sum();
+    scene + pixels * (3 * accum + image + splat)
+}
+
+/// The memory the kernel says can be allocated without swapping (`MemAvailable` of /proc/meminfo);
+/// `None` where that is not known (another OS, an old kernel).
+pub fn available() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    parse_mem_available(&info)
+}
+
+/// `MemAvailable:  22937888 kB` → bytes.
+pub fn parse_mem_available(meminfo: &str) -> Option<u64> {
+    let line = meminfo.lines().find_map(|l| l.strip_prefix("MemAvailable:"))?;
+    let kib: u64 = line.trim().strip_suffix("kB")?.trim().parse().ok()?;
+    kib.checked_mul(1024)
+}
+
+/// Refuses `need` bytes for `what` when more than `available` (unknown: no check).
+pub fn check(need: u64, available: Option<u64>, what: &str) -> Result<()> {
+    match available {
+        Some(have) if need > have => bail!(
+            "{what} needs about {:.1} GiB of memory and this machine has {:.1} GiB available; \
+             render a smaller film (or a crop window)",
+            gib(need),
+            gib(have)
+        ),
+        _ => Ok(()),
+    }
+}
+
+fn gib(bytes: u64) -> f64 {
+    bytes as f64 / (1u64 << 30) as f64
+}

@@ -1,0 +1,166 @@
+//! A mutation fuzzer for the loaders, on stable Rust: the corpus in tests/fuzz/corpus (a Mitsuba
+//! scene with OBJ/MTL, PLY, PNG and EXR files it uses, and a checkpoint made here) is mutated byte by
+//! byte (flips, random bytes, insertions, deletions, truncation, splices of the file into itself,
+//! interesting numbers) and every mutant is loaded: a loader must return Ok or an error, never panic.
+//! A short run (CAUSTIC_FUZZ_SECONDS, default 10) belongs to the normal test suite; set it higher
+//! for a longer one. A panicking mutant is kept in the temporary folder named in the failure.
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// xorshift64*: a deterministic stream per seed, so a failure reproduces with CAUSTIC_FUZZ_SEED.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+const INTERESTING: &[&[u8]] = &[
+    b"0",
+    b"-1",
+    b"nan",
+    b"inf",
+    b"1e39",
+    b"-1e19",
+    b"4294967295",
+    b"65536",
+    b"\xff\xff\xff\x7f",
+    b"\0\0\0\0",
+];
+
+fn mutate(data: &[u8], rng: &mut Rng) -> Vec<u8> {
+    let mut d = data.to_vec();
+    for _ in 0..1 + rng.below(4) {
+        let at = rng.below(d.len() + 1);
+        match rng.below(7) {
+            0 if !d.is_empty() => {
+                let i = at.min(d.len() - 1);
+                d[i] ^= 1 << rng.below(8);
+            }
+            1 if !d.is_empty() => {
+                let i = at.min(d.len() - 1);
+                d[i] = rng.next() as u8;
+            }
+            2 => d.insert(at, rng.next() as u8),
+            3 if at < d.len() => {
+                let end = (at + 1 + rng.below(16)).min(d.len());
+                d.drain(at..end);
+            }
+            4 => d.truncate(at),
+            5 if !d.is_empty() => {
+                let from = rng.below(d.len());
+                let piece: Vec<u8> = d[from..(from + 1 + rng.below(32)).min(d.len())].to_vec();
+                d.splice(at..at, piece);
+            }
+            _ => {
+                let word = INTERESTING[rng.below(INTERESTING.len())];
+                let end = (at + word.len()).min(d.len());
+                d.splice(at..end, word.iter().copied());
+            }
+        }
+    }
+    d
+}
+
+/// Loads `file` (in `dir`) the way the renderer would.
+fn load(dir: &Path, file: &str) -> Result<(), String> {
+    fn e(e: impl std::fmt::Display) -> String {
+        format!("{e:#}")
+    }
+    match file {
+        // The scene loads the PLY mesh (the PLY reader is the mesh module's own).
+        "scene.xml" | "mesh.ply" => {
+            let scene = caustic::load_scene(&dir.join("scene.xml"), &[]).map_err(e)?;
+            caustic::buffers::build(&scene).map_err(e)?;
+        }
+        "mesh.obj" | "mesh.mtl" => {
+            let scene = caustic::load_scene(&dir.join("mesh.obj"), &[]).map_err(e)?;
+            caustic::buffers::build(&scene).map_err(e)?;
+        }
+        "env.exr" | "texture.png" => {
+            drop(caustic::image_io::load_linear_rgb(&dir.join(file), false).map_err(e)?)
+        }
+        "checkpoint" => drop(caustic::checkpoint::Checkpoint::load(&dir.join(file)).map_err(e)?),
+        other => panic!("no loader for {other}"),
+    }
+    Ok(())
+}
+
+fn corpus() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fuzz/corpus")
+}
+
+#[test]
+fn loaders_never_panic_on_mutated_files() {
+    let seconds: u64 = std::env::var("CAUSTIC_FUZZ_SECONDS").ok().and_then(|s| s.parse().ok()).unwrap_or(10);
+    let seed: u64 = std::env::var("CAUSTIC_FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(0x5eed);
+    let dir = std::env::temp_dir().join(format!("caustic-fuzz-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut files: Vec<String> = std::fs::read_dir(corpus())
+        .unwrap()
+        .map(|f| f.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    let pristine: Vec<(String, Vec<u8>)> =
+        files.iter().map(|f| (f.clone(), std::fs::read(corpus().join(f)).unwrap())).collect();
+    // A checkpoint of two pixels, made through the API (its format carries a checksum).
+    let checkpoint = dir.join("checkpoint");
+    caustic::checkpoint::Checkpoint {
+        scene: 7,
+        seed: 1,
+        spp_total: 4,
+        spp_done: 2,
+        accum: caustic::film::Accumulation::new(2, false),
+    }
+    .save(&checkpoint)
+    .unwrap();
+    let mut targets = pristine.clone();
+    targets.push(("checkpoint".into(), std::fs::read(&checkpoint).unwrap()));
+    for (name, bytes) in &pristine {
+        std::fs::write(dir.join(name), bytes).unwrap();
+    }
+    // Every pristine file loads: the corpus exercises the loaders past their first check.
+    for (name, _) in &targets {
+        load(&dir, name).unwrap_or_else(|e| panic!("the corpus's {name} does not load: {e}"));
+    }
+    std::panic::set_hook(Box::new(|_| {}));
+    let mut rng = Rng(seed | 1);
+    let (start, mut runs, mut errors) = (Instant::now(), 0u64, 0u64);
+    let mut panics = Vec::new();
+    while start.elapsed() < Duration::from_secs(seconds) && panics.len() < 5 {
+        let (name, bytes) = &targets[rng.below(targets.len())];
+        let mutant = mutate(bytes, &mut rng);
+        std::fs::write(dir.join(name), &mutant).unwrap();
+        match std::panic::catch_unwind(|| load(&dir, name)) {
+            Ok(Ok(())) => {}
+            Ok(Err(_)) => errors += 1,
+            Err(payload) => {
+                let message = payload
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+                    .unwrap_or_default();
+                let kept = dir.join(format!("panic-{}-{name}", panics.len()));
+                std::fs::write(&kept, &mutant).unwrap();
+                panics.push(format!("{name}: {message} (mutant kept as {})", kept.display()));
+            }
+        }
+        std::fs::write(dir.join(name), bytes).unwrap();
+        runs += 1;
+    }
+    let _ = std::panic::take_hook();
+    println!(
+        "{runs} mutants in {:.1} s, {errors} clean errors, {} panics",
+        start.elapsed().as_secs_f64(),
+        panics.len()
+    );
+    assert!(panics.is_empty(), "loaders panicked:\n{}", panics.join("\n"));
+    std::fs::remove_dir_all(&dir).ok();
+}
