@@ -524,11 +524,11 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
             (INTEGRATOR_DIRECT, emitter_samples, bsdf_samples)
         }
         IntegratorKind::Ptracer => {
-            check_light_tracing(scene, &lights, "ptracer")?;
+            check_light_tracing(scene, "ptracer")?;
             (INTEGRATOR_PTRACER, 1, 1)
         }
         IntegratorKind::Ibpt => {
-            check_light_tracing(scene, &lights, "ibpt")?;
+            check_light_tracing(scene, "ibpt")?;
             (INTEGRATOR_IBPT, 1, 1)
         }
     };
@@ -606,20 +606,10 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     f
 }
 
-/// What light tracing does not cover yet is refused, never rendered without it: infinite emitters
-/// (directional, constant, envmap; under IBPT the camera paths alone render them) and cameras other
-/// than the pinhole perspective one.
-fn check_light_tracing(scene: &Scene, lights: &[Light], name: &str) -> Result<()> {
+/// What light tracing does not cover yet is refused, never rendered without it: cameras other than the
+/// pinhole perspective one.
+fn check_light_tracing(scene: &Scene, name: &str) -> Result<()> {
     let integrator = name;
-    for l in lights.iter().filter(|_| integrator == "ptracer") {
-        let name = match l.kind {
-            LIGHT_DIRECTIONAL => "directional",
-            LIGHT_CONSTANT => "constant",
-            LIGHT_ENVMAP => "envmap",
-            _ => continue,
-        };
-        bail!("{integrator}: {name} emitters are not light-traced yet (render this scene with path or ibpt)");
-    }
     if camera(scene).kind != CAMERA_PERSPECTIVE {
         bail!(
             "{integrator}: only the perspective (pinhole) sensor is supported (render this scene with path)"

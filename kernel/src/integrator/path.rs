@@ -52,7 +52,7 @@ pub fn li(
     let mut lt_scale = 0.0f32;
     let mut lambda = NO_WAVELENGTH;
     // Throughputs only turn negative in a channel in scenes with dispersion (`wavelength`); the others
-    // keep the cheaper maximum (measured: 2.5% on the plain diffuse preview on the H100).
+    // keep the plain maximum: they run the instructions they ran before dispersion existed.
     let dispersion = features::has(scene.features, features::DISPERSION);
     let magnitude = |t: Rgb| if dispersion { max_abs_component(t) } else { max_component(t) };
     let mut mask_passes = 0u32;

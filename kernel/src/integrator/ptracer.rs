@@ -167,6 +167,15 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
     // with E = p(point)·p(direction)/|cos| of the emission.
     let hit_density = if es.delta_position { 0.0 } else { emission::hit_density(scene, es.light) };
     let inv_hit_sq = if hit_density > 0.0 { 1.0 / (hit_density * hit_density) } else { 0.0 };
+    if es.infinite && params.hide_emitters == 0 && max_depth != 0 {
+        // The emitter seen directly: a point past the scene, closer than the far clip plane (where
+        // camera rays stop and see the environment).
+        let eye = vec3(camera.origin);
+        let (far_point, value) = emission::visible_infinite(scene, &es, eye, 0.999 * camera.far_clip, u_pos);
+        if let Some(c) = camera.connect(far_point) {
+            splat_to_camera(scene, params, &accel, words, far_point, &c, value, NONE, u_round, NO_MIS);
+        }
+    }
     if !es.delta_position && params.hide_emitters == 0 && max_depth != 0 {
         if let Some(c) = camera.connect(es.origin) {
             let weighting =

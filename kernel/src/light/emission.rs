@@ -3,19 +3,22 @@
 //! `Le·|cos| / (pmf · p(point) · p(direction))` that the light path starts with.
 //!
 //! Supported: area emitters on triangles, disks and spheres (uniform by area, cosine-weighted
-//! directions), point lights (uniform directions) and spots (uniform inside the cutoff cone). The
-//! infinite emitters (directional, constant, envmap) are not traced: the host refuses such scenes for
-//! light tracing rather than render them without that light.
-use super::{area, point, radiance, to_world, LightSample};
+//! directions), point lights (uniform directions) and spots (uniform inside the cutoff cone); for
+//! plain light tracing also the infinite emitters (directional, constant, envmap), as Mitsuba's
+//! `ptracer` traces them: a direction drawn as next-event estimation draws it towards the emitter, and
+//! a start uniformly on the disk of the scene's bounding sphere that faces it. (Under IBPT the camera
+//! paths alone carry infinite emitters' light: no light path starts there.)
+use super::{area, directional, infinite, point, radiance, to_world, LightSample};
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::{
-    FrameParams, Light, SceneView, LIGHT_AREA, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, NONE, PRIM_DISK,
-    PRIM_FLAG_FLIP,
+    FrameParams, Light, SceneView, INTEGRATOR_PTRACER, LIGHT_AREA, LIGHT_CONSTANT, LIGHT_DIRECTIONAL,
+    LIGHT_ENVMAP, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, NONE, PRIM_DISK, PRIM_FLAG_FLIP,
 };
 use crate::math::{vec3, PI};
 use crate::sampling::{
-    sample_cdf, square_to_cosine_hemisphere, square_to_uniform_cone, square_to_uniform_sphere,
+    sample_cdf, square_to_concentric_disk, square_to_cosine_hemisphere, square_to_uniform_cone,
+    square_to_uniform_sphere,
 };
 use crate::shape::{disk, triangle, RAY_EPSILON};
 use crate::spectrum::Rgb;
@@ -37,8 +40,10 @@ pub struct EmissionSample {
     /// `Le` toward any direction is `radiance · area / pmf` per unit `cos`: what connecting the emitter
     /// point itself to the camera carries, `position_weight · Le(ω)·cos θ` (area emitters only).
     pub position_weight: f32,
-    /// The emitter is a point (point, spot): the camera cannot see it directly.
+    /// The emitter is a point (point, spot) or at infinity: the camera cannot see the sampled point.
     pub delta_position: bool,
+    /// The emitter is at infinity (directional, constant, envmap; `visible_infinite` shows it).
+    pub infinite: bool,
     /// The emitting primitive (which a ray leaving it must not re-hit), or `NONE`.
     pub prim: u32,
     /// The emitter's index in the light list (`NONE`: nothing was sampled).
@@ -55,10 +60,48 @@ impl EmissionSample {
             weight: Rgb::ZERO,
             position_weight: 0.0,
             delta_position: false,
+            infinite: false,
             prim: NONE,
             light: NONE,
         }
     }
+}
+
+/// Whether `kind` is an emitter at infinity.
+#[inline]
+pub fn is_infinite(kind: u32) -> bool {
+    kind == LIGHT_DIRECTIONAL || kind == LIGHT_CONSTANT || kind == LIGHT_ENVMAP
+}
+
+/// A direction towards infinite emitter `light` as seen from `p`, as next-event estimation draws it
+/// (without the selection probability); none for the kinds the scene does not use.
+fn infinite_direction(scene: &SceneView, light: &Light, p: Vec3, u: Vec2) -> LightSample {
+    let uses = |kind: u32| crate::features::has(scene.features, crate::features::light(kind));
+    match light.kind {
+        LIGHT_DIRECTIONAL if uses(LIGHT_DIRECTIONAL) => directional::sample(light, p),
+        LIGHT_CONSTANT if uses(LIGHT_CONSTANT) => infinite::sample_constant(light, p, u),
+        LIGHT_ENVMAP if uses(LIGHT_ENVMAP) => infinite::sample_envmap(light, scene, p, u),
+        _ => LightSample::none(),
+    }
+}
+
+/// For plain light tracing: the infinite emitter of `s` seen directly by a camera at `eye`, as
+/// Mitsuba's `ptracer` shows it: a direction drawn from the eye towards the emitter and a point that
+/// far along it (`far`: past the scene, within the camera's clip range), with the radiance that point
+/// sends to the eye over the densities, in the area measure of the point (`Le·dist² / pdf(ω)`).
+/// Directional lights (a Dirac delta of direction) are never seen.
+pub fn visible_infinite(scene: &SceneView, s: &EmissionSample, eye: Vec3, far: f32, u: Vec2) -> (Vec3, Rgb) {
+    let light = scene.lights[s.light as usize];
+    if light.kind == LIGHT_DIRECTIONAL {
+        return (eye, Rgb::ZERO);
+    }
+    let ls = infinite_direction(scene, &light, eye, u);
+    let pdf = ls.pdf * light.pmf;
+    if !(pdf > 0.0) {
+        return (eye, Rgb::ZERO);
+    }
+    let dist = ls.dist.min(far);
+    (eye + ls.wi * dist, ls.radiance * (dist * dist / pdf))
 }
 
 /// Chooses an emitter by `u_select` and samples a point (`u_pos`) and a direction (`u_dir`) on it.
@@ -109,6 +152,28 @@ pub fn sample(
         s.position_weight = area / light.pmf;
         s.weight = le * (s.position_weight * PI);
         s.prim = light.prim;
+        return s;
+    }
+    if is_infinite(light.kind) {
+        if params.integrator != INTEGRATOR_PTRACER {
+            return EmissionSample::none();
+        }
+        // The scene's bounding sphere (centre, radius) is in `position`.
+        let centre = vec3([light.position[0], light.position[1], light.position[2]]);
+        let r = light.position[3];
+        let ls = infinite_direction(scene, &light, centre, u_dir);
+        if !(ls.pdf > 0.0) || !(r > 0.0) {
+            return EmissionSample::none();
+        }
+        // A start on the disk of radius r tangent to the sphere on the emitter's side (density
+        // 1/(π r²)), travelling away from the emitter.
+        let d = square_to_concentric_disk(u_pos) * r;
+        s.origin = centre + ls.wi * r + Frame::from_normal(ls.wi).to_world(Vec3::new(d.x, d.y, 0.0));
+        s.p = s.origin;
+        s.dir = -ls.wi;
+        s.weight = ls.radiance * (PI * r * r / (ls.pdf * light.pmf));
+        s.delta_position = true;
+        s.infinite = true;
         return s;
     }
     if light.kind == LIGHT_POINT || light.kind == LIGHT_SPOT {
