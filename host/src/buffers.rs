@@ -606,13 +606,14 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     f
 }
 
-/// What light tracing does not cover yet is refused, never rendered without it: cameras other than the
-/// pinhole perspective one.
+/// What light tracing does not cover yet is refused, never rendered without it: the orthographic
+/// camera (light tracing connects to the pinhole and to points of a thin lens's aperture).
 fn check_light_tracing(scene: &Scene, name: &str) -> Result<()> {
     let integrator = name;
-    if camera(scene).kind != CAMERA_PERSPECTIVE {
+    if !camera(scene).connectable() {
         bail!(
-            "{integrator}: only the perspective (pinhole) sensor is supported (render this scene with path)"
+            "{integrator}: the orthographic sensor is not supported, only perspective and thinlens (render \
+             this scene with path)"
         );
     }
     Ok(())

@@ -45,6 +45,8 @@ pub struct CameraConnection {
     pub dist: f32,
     /// `We·cos θc / d²`: what the connection contributes per unit of `f·cos` arriving at the camera.
     pub importance: f32,
+    /// The point of the camera the connection reaches (the pinhole, or a point of the aperture).
+    pub point: Vec3,
 }
 
 /// A ray with its valid parameter interval.
@@ -83,13 +85,34 @@ impl Camera {
         }
     }
 
-    /// The pinhole camera seen from a world point `p`, for light tracing: where `p` lands on the film
-    /// (fractions of width and height) and the importance `We·cos θc / d²` that the connection carries,
-    /// with `We = 1 / (A·cos⁴θc)` normalised over the whole film (`A`: the image plane's area at unit
-    /// distance), so that a pixel of a `W×H` film receives `1/(W·H)` of it in expectation. `None` when
-    /// `p` is behind the camera, outside the film or the clip range.
-    pub fn connect(&self, p: Vec3) -> Option<CameraConnection> {
-        if self.kind != CAMERA_PERSPECTIVE {
+    /// Whether light tracing can connect to this camera (pinhole and thin lens; not orthographic).
+    #[inline]
+    pub fn connectable(&self) -> bool {
+        self.kind == CAMERA_PERSPECTIVE || self.kind == CAMERA_THIN_LENS
+    }
+
+    /// The camera seen from a world point `p`, for light tracing: `u_lens` picks the point of a thin
+    /// lens's aperture the connection reaches (uniformly, as camera rays pick it; ignored by the
+    /// pinhole). `None` when `p` is behind the camera, outside the film or the clip range.
+    #[inline]
+    pub fn connect(&self, p: Vec3, u_lens: Vec2) -> Option<CameraConnection> {
+        let lens = if self.kind == CAMERA_THIN_LENS {
+            square_to_concentric_disk(u_lens) * self.aperture_radius
+        } else {
+            Vec2::ZERO
+        };
+        self.connect_through(p, lens)
+    }
+
+    /// `connect` through the aperture point `lens` (local x, y; the origin for the pinhole): where `p`
+    /// lands on the film (fractions of width and height) and the importance `We·cos θc / d²` of the
+    /// connection, with `We = 1 / (A·cos⁴θc)` normalised over the whole film (`A`: the image plane's
+    /// area at unit distance; θc and d measured from the aperture point), so that a pixel of a `W×H`
+    /// film receives `1/(W·H)` of it in expectation. For a thin lens the density `1/(π r²)` of the
+    /// aperture point cancels the lens's share of `We`, and a fixed aperture point maps directions to
+    /// the focus plane as a pinhole there does: the same expression holds.
+    pub fn connect_through(&self, p: Vec3, lens: Vec2) -> Option<CameraConnection> {
+        if !self.connectable() {
             return None;
         }
         let d = p - vec3(self.origin);
@@ -97,19 +120,33 @@ impl Camera {
         if !(local.z > 0.0) || local.z < self.near_clip || local.z > self.far_clip {
             return None;
         }
-        let film = Vec2::new(
-            0.5 * (1.0 - local.x / (local.z * self.tan_half_x)),
-            0.5 * (1.0 - local.y / (local.z * self.tan_half_y)),
-        );
+        let aperture = Vec3::new(lens.x, lens.y, 0.0);
+        let v = local - aperture;
+        // Where the ray from the aperture point through `p` crosses the focus plane, in units of the
+        // focus distance (the pinhole's image plane at unit distance when the aperture is the origin).
+        let (mut x, mut y) = (v.x / v.z, v.y / v.z);
+        if self.kind == CAMERA_THIN_LENS {
+            x += lens.x / self.focus_distance;
+            y += lens.y / self.focus_distance;
+        }
+        let film = Vec2::new(0.5 * (1.0 - x / self.tan_half_x), 0.5 * (1.0 - y / self.tan_half_y));
         if !(film.x >= 0.0 && film.x < 1.0 && film.y >= 0.0 && film.y < 1.0) {
             return None;
         }
-        let dist2 = local.length_squared();
+        let dist2 = v.length_squared();
         let dist = dist2.sqrt();
-        let cos_theta = local.z / dist;
+        let cos_theta = v.z / dist;
         let area = 4.0 * self.tan_half_x * self.tan_half_y;
         let importance = 1.0 / (area * cos_theta * cos_theta * cos_theta * dist2);
-        Some(CameraConnection { film, dir: -d / dist, dist, importance })
+        let point = self.to_world_point(aperture);
+        Some(CameraConnection { film, dir: (point - p) / dist, dist, importance, point })
+    }
+
+    /// The aperture point (local x, y) of a camera ray starting at world point `origin`.
+    #[inline]
+    pub fn lens_point_of(&self, origin: Vec3) -> Vec2 {
+        let d = origin - vec3(self.origin);
+        Vec2::new(d.dot(vec3(self.axis_x)), d.dot(vec3(self.axis_y)))
     }
 
     #[inline]

@@ -371,3 +371,34 @@ fn ptracer_environment_gpu_matches_cpu() {
     assert!(image_mean(&cpu) > 0.05, "the light-traced environment is dark");
     assert!(max_diff < 1e-3, "GPU and CPU light tracing differ by {max_diff}");
 }
+
+/// A thin-lens camera (strongly defocused: aperture radius 0.4, focus 6 units away, behind the scene;
+/// the sphere's edge blurs over about 3 pixels): light tracing connects to points of the aperture and IBPT weighs through the aperture point
+/// its camera ray used; both give path tracing's image.
+#[test]
+fn ptracer_and_ibpt_see_through_a_thin_lens_like_path() {
+    let thin_lens = |xml: String| {
+        xml.replace(
+            r#"<sensor type="perspective">"#,
+            r#"<sensor type="thinlens"><float name="aperture_radius" value="0.4"/><float name="focus_distance" value="6"/>"#,
+        )
+    };
+    let emitter = EMITTERS[0].1;
+    let path = render_scene(
+        &load_xml(&thin_lens(corner("path", emitter, 24)), "lens-path"),
+        BackendChoice::Cpu,
+        4096,
+        61,
+    );
+    for (integrator, seed) in [("ptracer", 52), ("ibpt", 53)] {
+        let scene = load_xml(&thin_lens(corner(integrator, emitter, 24)), &format!("lens-{integrator}"));
+        let other = render_replicated(&scene, 512, seed);
+        let (z, worst) = agreement(&other, &path);
+        println!(
+            "thin lens, {integrator}: mean {:.5}, path {:.5}: image z {z:+.2}, worst pixel |z| {worst:.2}",
+            other.mean,
+            image_mean(&path)
+        );
+        assert!(z.abs() < 4.5 && worst < 5.0, "{integrator} and path disagree (z {z:+.2}, worst {worst:.2})");
+    }
+}

@@ -78,7 +78,9 @@ pub fn li(
         let sp = surface_point(&prim, scene.attributes, &hit, &ray);
         if ibpt && depth == 0 {
             // Light tracing reaches the first vertex by connecting it to the camera.
-            lt_scale = match params.camera.connect(sp.p) {
+            // Through the aperture point this camera ray left from (thin lens).
+            let lens = params.camera.lens_point_of(camera_ray.origin);
+            lt_scale = match params.camera.connect_through(sp.p, lens) {
                 Some(c) => {
                     mis::camera_scale_at_first_vertex(c.importance * pixel_density, film_scale(params))
                 }

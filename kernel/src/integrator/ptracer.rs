@@ -118,7 +118,7 @@ fn splat_to_camera<W: AtomicWords>(
     if (pos.x + r) < params.crop_x as f32 || (pos.y + r) < params.crop_y as f32 || x0 > x1 || y0 > y1 {
         return;
     }
-    let d = vec3(params.camera.origin) - origin;
+    let d = c.point - origin;
     let dist = d.length();
     let shadow = Ray { origin, dir: d / dist, t_min: 0.0, t_max: dist * (1.0 - SHADOW_EPSILON) };
     // With `hide_emitters` camera rays pass through emitters (`path`), so the segment to the camera
@@ -148,6 +148,21 @@ fn splat_to_camera<W: AtomicWords>(
     }
 }
 
+/// The aperture point of a thin lens that the emitter's connections reach: a dimension past the
+/// emitter sample's, before the first bounce's.
+const DIM_LENS_AT_EMITTER: u32 = 6;
+/// Within a bounce's dimensions (`path::DIMS_PER_BOUNCE`), the two after Russian roulette's.
+const DIM_LENS_IN_BOUNCE: u32 = 5;
+
+/// The 2D sample that picks a thin lens's aperture point for a connection, from dimensions `dim` and
+/// `dim + 1`, which no other decision uses.
+#[inline]
+fn lens_sample(sampler: &Sampler, dim: u32) -> Vec2 {
+    let mut s = *sampler;
+    s.set_dimension(dim);
+    s.next_2d()
+}
+
 /// Traces the light path of (`path_index`, sample) and splats its camera connections (weighted against
 /// the camera strategies under IBPT).
 pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &mut Sampler, words: &mut W) {
@@ -158,6 +173,7 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
     let u_pos = sampler.next_2d();
     let u_dir = sampler.next_2d();
     let u_round = sampler.next_1d();
+    let u_lens_at_emitter = lens_sample(sampler, DIM_LENS_AT_EMITTER);
     let es = emission::sample(scene, params, u_select, u_pos, u_dir);
     if es.light == NONE || max_component(es.weight) <= 0.0 {
         return;
@@ -172,12 +188,12 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         // camera rays stop and see the environment).
         let eye = vec3(camera.origin);
         let (far_point, value) = emission::visible_infinite(scene, &es, eye, 0.999 * camera.far_clip, u_pos);
-        if let Some(c) = camera.connect(far_point) {
+        if let Some(c) = camera.connect(far_point, u_lens_at_emitter) {
             splat_to_camera(scene, params, &accel, words, far_point, &c, value, NONE, u_round, NO_MIS);
         }
     }
     if !es.delta_position && params.hide_emitters == 0 && max_depth != 0 {
-        if let Some(c) = camera.connect(es.origin) {
+        if let Some(c) = camera.connect(es.origin, u_lens_at_emitter) {
             let weighting =
                 ConnectionMis { kind: if ibpt { MIS_EMITTER } else { MIS_NONE }, inv_hit_sq, ..NO_MIS };
             let le = emission::emitted_towards(scene, &es, c.dir);
@@ -198,7 +214,8 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
     let dispersion = crate::features::has(scene.features, crate::features::DISPERSION);
     let magnitude = |t: Rgb| if dispersion { max_abs_component(t) } else { max_component(t) };
     while max_depth == NONE || depth < max_depth {
-        sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
+        let bounce_dims = DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE;
+        sampler.set_dimension(bounce_dims);
         let hit = match accel.trace(&ray, false, NONE) {
             Some(h) => h,
             None => break,
@@ -206,7 +223,7 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         let prim = scene.prims[hit.prim as usize];
         let sp = surface_point(&prim, scene.attributes, &hit, &ray);
         let mut material = scene.materials[prim.material as usize];
-        let dim_wavelength = DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE + DIM_WAVELENGTH;
+        let dim_wavelength = bounce_dims + DIM_WAVELENGTH;
         beta *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);
         let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features);
         let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, ray.dir);
@@ -220,7 +237,7 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
 
         // This vertex is `depth` segments from the emitter: connecting it makes `depth + 1`.
         if smooth {
-            if let Some(c) = camera.connect(sp.p) {
+            if let Some(c) = camera.connect(sp.p, lens_sample(sampler, bounce_dims + DIM_LENS_IN_BOUNCE)) {
                 let to_camera = frame.to_local(c.dir);
                 let f = bsdf.eval(wo, to_camera, IMPORTANCE);
                 let corr = shading_normal_correction(wo_world, c.dir, frame.n, ng);
