@@ -85,3 +85,13 @@ pub fn render_buffers(buffers: &buffers::SceneBuffers, choice: BackendChoice, sp
     assert!(film.rgb.iter().flatten().all(|c| c.is_finite()), "non-finite pixel");
     film
 }
+
+/// The largest per-channel |difference| between two images of one size (GPU against CPU, one image
+/// against another of the same seed).
+pub fn max_abs_difference(a: &Film, b: &Film) -> f32 {
+    a.rgb
+        .iter()
+        .zip(&b.rgb)
+        .flat_map(|(p, q)| (0..3).map(move |c| (p[c] - q[c]).abs()))
+        .fold(0.0f32, f32::max)
+}

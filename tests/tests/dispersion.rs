@@ -110,25 +110,33 @@ fn dispersive_glass_keeps_the_furnace_white() {
     }
 }
 
-/// A corner lit by a small sphere light through a dispersive glass sphere (dispersed caustics on the
-/// floor): light tracing and IBPT estimate the image path tracing does.
-fn dispersive_corner(integrator: &str) -> Scene {
-    let xml = format!(
+/// A floor and a back wall coloured `floor` and `wall` (RGB), a glass sphere (`glass`: its shape
+/// with its BSDF) and a sphere light (`light`), seen by a `res`² box-filtered camera.
+fn glass_corner(integrator: &str, res: u32, floor: &str, wall: &str, glass: &str, light: &str) -> String {
+    format!(
         r#"<scene version="3.0.0">
     <integrator type="{integrator}"><integer name="max_depth" value="8"/></integrator>
     <sensor type="perspective"><float name="fov" value="50"/>
         <transform name="to_world"><lookat origin="0, -3, 1.6" target="0, 0, 0.4" up="0, 0, 1"/></transform>
-        <film type="hdrfilm"><integer name="width" value="20"/><integer name="height" value="20"/><rfilter type="box"/></film></sensor>
+        <film type="hdrfilm"><integer name="width" value="{res}"/><integer name="height" value="{res}"/><rfilter type="box"/></film></sensor>
     <shape type="rectangle"><transform name="to_world"><scale value="2"/></transform>
-        <bsdf type="diffuse"><rgb name="reflectance" value="0.7"/></bsdf></shape>
+        <bsdf type="diffuse"><rgb name="reflectance" value="{floor}"/></bsdf></shape>
     <shape type="rectangle"><transform name="to_world"><scale value="2"/><rotate x="1" angle="90"/><translate y="1.5" z="1"/></transform>
-        <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.6, 0.5"/></bsdf></bsdf></shape>
-    <shape type="sphere"><float name="radius" value="0.4"/><point name="center" x="0.2" y="0.2" z="0.5"/>
-        <bsdf type="roughdielectric"><float name="alpha" value="0.3"/><float name="int_ior" value="1.6"/><float name="abbe_number" value="12"/></bsdf></shape>
-    <shape type="sphere"><float name="radius" value="0.25"/><point name="center" x="0.6" y="0.4" z="1.7"/>
-        <emitter type="area"><rgb name="radiance" value="20"/></emitter></shape>
+        <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="{wall}"/></bsdf></bsdf></shape>
+    {glass}
+    {light}
 </scene>"#
-    );
+    )
+}
+
+/// A corner lit by a small sphere light through a dispersive glass sphere (dispersed caustics on the
+/// floor): light tracing and IBPT estimate the image path tracing does.
+fn dispersive_corner(integrator: &str) -> Scene {
+    let glass = r#"<shape type="sphere"><float name="radius" value="0.4"/><point name="center" x="0.2" y="0.2" z="0.5"/>
+        <bsdf type="roughdielectric"><float name="alpha" value="0.3"/><float name="int_ior" value="1.6"/><float name="abbe_number" value="12"/></bsdf></shape>"#;
+    let light = r#"<shape type="sphere"><float name="radius" value="0.25"/><point name="center" x="0.6" y="0.4" z="1.7"/>
+        <emitter type="area"><rgb name="radiance" value="20"/></emitter></shape>"#;
+    let xml = glass_corner(integrator, 20, "0.7", "0.3, 0.6, 0.5", glass, light);
     load_xml(&xml, &format!("dispersive-corner-{integrator}"))
 }
 
@@ -154,13 +162,8 @@ fn dispersion_gpu_matches_cpu() {
     let scene = dispersive_corner("ibpt");
     let cpu = render_scene(&scene, BackendChoice::Cpu, 4, 5);
     let gpu = render_scene(&scene, BackendChoice::Gpu, 4, 5);
-    let (mut max_diff, mut negative) = (0.0f32, 0usize);
-    for (a, b) in cpu.rgb.iter().zip(&gpu.rgb) {
-        for c in 0..3 {
-            max_diff = max_diff.max((a[c] - b[c]).abs());
-            negative += (a[c] < 0.0) as usize;
-        }
-    }
+    let max_diff = max_abs_difference(&cpu, &gpu);
+    let negative = cpu.rgb.iter().flatten().filter(|&&c| c < 0.0).count();
     println!("dispersive ibpt GPU vs CPU: max |difference| {max_diff:e}; {negative} negative CPU values");
     assert!(max_diff < 1e-3, "GPU and CPU differ by {max_diff}");
 }
@@ -240,22 +243,13 @@ fn prism_deviation_follows_snell_with_the_glass_index() {
 #[test]
 fn negligible_dispersion_renders_the_rgb_image() {
     let scene = |b: &str| {
-        let xml = format!(
-            r#"<scene version="3.0.0">
-    <integrator type="path"><integer name="max_depth" value="8"/></integrator>
-    <sensor type="perspective"><float name="fov" value="50"/>
-        <transform name="to_world"><lookat origin="0, -3, 1.6" target="0, 0, 0.4" up="0, 0, 1"/></transform>
-        <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/><rfilter type="box"/></film></sensor>
-    <shape type="rectangle"><transform name="to_world"><scale value="2"/></transform>
-        <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.3, 0.1"/></bsdf></shape>
-    <shape type="rectangle"><transform name="to_world"><scale value="2"/><rotate x="1" angle="90"/><translate y="1.5" z="1"/></transform>
-        <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.1, 0.4, 0.8"/></bsdf></bsdf></shape>
-    <shape type="sphere"><float name="radius" value="0.5"/><point name="center" x="0" y="0" z="0.5"/>
-        <bsdf type="roughdielectric"><float name="alpha" value="0.2"/><float name="int_ior" value="1.5"/>{b}</bsdf></shape>
-    <shape type="sphere"><float name="radius" value="0.4"/><point name="center" x="0.6" y="0.4" z="1.8"/>
-        <emitter type="area"><rgb name="radiance" value="8"/></emitter></shape>
-</scene>"#
+        let glass = format!(
+            r#"<shape type="sphere"><float name="radius" value="0.5"/><point name="center" x="0" y="0" z="0.5"/>
+        <bsdf type="roughdielectric"><float name="alpha" value="0.2"/><float name="int_ior" value="1.5"/>{b}</bsdf></shape>"#
         );
+        let light = r#"<shape type="sphere"><float name="radius" value="0.4"/><point name="center" x="0.6" y="0.4" z="1.8"/>
+        <emitter type="area"><rgb name="radiance" value="8"/></emitter></shape>"#;
+        let xml = glass_corner("path", 16, "0.8, 0.3, 0.1", "0.1, 0.4, 0.8", &glass, light);
         load_xml(&xml, &format!("rgb-vs-spectral-{}", b.len()))
     };
     let spectral = scene(r#"<float name="cauchy_b" value="1e-7"/>"#);

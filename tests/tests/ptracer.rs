@@ -107,13 +107,8 @@ fn ptracer_gpu_matches_cpu() {
     let scene = load_xml(&corner("ptracer", EMITTERS[0].1, 12), "gpu-cpu");
     let cpu = render_scene(&scene, BackendChoice::Cpu, 4, 5);
     let gpu = render_scene(&scene, BackendChoice::Gpu, 4, 5);
-    let (mut max_diff, mut total) = (0.0f32, 0.0f64);
-    for (a, b) in cpu.rgb.iter().zip(&gpu.rgb) {
-        for c in 0..3 {
-            max_diff = max_diff.max((a[c] - b[c]).abs());
-            total += a[c] as f64;
-        }
-    }
+    let max_diff = max_abs_difference(&cpu, &gpu);
+    let total: f64 = cpu.rgb.iter().flatten().map(|&c| c as f64).sum();
     println!("ptracer GPU vs CPU: max |difference| {max_diff:e}, image sum {total:.4}");
     assert!(total > 0.1, "the light-traced image is dark");
     assert!(max_diff < 1e-3, "GPU and CPU light tracing differ by {max_diff}");
@@ -163,12 +158,7 @@ fn ibpt_gpu_matches_cpu() {
     let scene = load_xml(&corner("ibpt", EMITTERS[0].1, 12), "ibpt-gpu-cpu");
     let cpu = render_scene(&scene, BackendChoice::Cpu, 2, 5);
     let gpu = render_scene(&scene, BackendChoice::Gpu, 2, 5);
-    let max_diff = cpu
-        .rgb
-        .iter()
-        .zip(&gpu.rgb)
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
-        .fold(0.0f32, f32::max);
+    let max_diff = max_abs_difference(&cpu, &gpu);
     println!("ibpt GPU vs CPU: max |difference| {max_diff:e}");
     assert!(max_diff < 1e-3, "GPU and CPU IBPT differ by {max_diff}");
 }
@@ -358,12 +348,7 @@ fn ptracer_environment_gpu_matches_cpu() {
     let scene = load_xml(&corner("ptracer", sky, 12), "env-gpu-cpu");
     let cpu = render_scene(&scene, BackendChoice::Cpu, 4, 5);
     let gpu = render_scene(&scene, BackendChoice::Gpu, 4, 5);
-    let max_diff = cpu
-        .rgb
-        .iter()
-        .zip(&gpu.rgb)
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
-        .fold(0.0f32, f32::max);
+    let max_diff = max_abs_difference(&cpu, &gpu);
     println!(
         "environment ptracer GPU vs CPU: max |difference| {max_diff:e}, CPU mean {:.4}",
         image_mean(&cpu)
