@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Throughput of caustic against Mitsuba 3, scene by scene, side by side in one run.
+
+For each scene of ../shared/scenes/mitsuba/SCENES.txt (or --scenes), interleaved: Mitsuba renders it
+once to compile its kernels, then twice timed; caustic's `bench` (which warms up and times its render
+loop alone) runs twice; each side keeps its best. The table gives both throughputs in Msamples/s and
+caustic's ratio; the last line the geometric mean. Only the render loops are timed, not loading.
+
+Usage (from the repository root, after `cargo build --release`):
+    python3 scripts/speed-vs-mitsuba.py --variant cuda_ad_rgb --backend gpu      # a CUDA GPU
+    python3 scripts/speed-vs-mitsuba.py --variant llvm_ad_rgb --backend cpu      # CPU against CPU
+    python3 scripts/speed-vs-mitsuba.py --scenes cbox,bsdf_dielectric_glass --spp 64
+
+Mitsuba comes from the package registry: without `import mitsuba` working, the script makes a venv
+(.venv-mitsuba, or --venv) and installs mitsuba==3.9.1 there, then re-runs itself with it. The llvm
+variant needs libLLVM: Debian's `libllvm19`; DRJIT_LIBLLVM_PATH is set to it when found.
+"""
+import argparse
+import glob
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+MITSUBA_VERSION = "3.9.1"
+
+
+def ensure_mitsuba(venv):
+    try:
+        import mitsuba  # noqa: F401
+        return
+    except ImportError:
+        pass
+    python = os.path.join(venv, "bin", "python")
+    if os.environ.get("CAUSTIC_SPEED_REEXEC"):
+        sys.exit("mitsuba does not import even in " + venv)
+    if not os.path.exists(python):
+        subprocess.check_call([sys.executable, "-m", "venv", venv])
+    subprocess.check_call([python, "-m", "pip", "install", "-q", f"mitsuba=={MITSUBA_VERSION}", "numpy"])
+    os.environ["CAUSTIC_SPEED_REEXEC"] = "1"
+    os.execv(python, [python] + sys.argv)
+
+
+def scene_list(shared, names):
+    listed = [l.strip() for l in open(os.path.join(shared, "scenes/mitsuba/SCENES.txt")) if l.strip()]
+    by_name = {os.path.splitext(os.path.basename(p))[0]: p for p in listed}
+    if names:
+        missing = [n for n in names if n not in by_name]
+        if missing:
+            sys.exit(f"unknown scenes {missing}; known: {sorted(by_name)}")
+        return [(n, by_name[n]) for n in names]
+    return list(by_name.items())
+
+
+def mitsuba_throughput(mi, dr, path, spp, rounds):
+    scene = mi.load_file(path)
+    sensor = scene.sensors()[0]
+    w, h = sensor.film().crop_size()
+    mi.render(scene, spp=spp)  # compiles the kernels
+    dr.sync_thread()
+    best = 0.0
+    for _ in range(rounds):
+        start = time.perf_counter()
+        image = mi.render(scene, spp=spp)
+        dr.eval(image)
+        dr.sync_thread()
+        best = max(best, w * h * spp / (time.perf_counter() - start) / 1e6)
+    return best
+
+
+def caustic_throughput(binary, backend, path, spp, rounds):
+    best = 0.0
+    for _ in range(rounds):
+        out = subprocess.run([binary, "bench", path, "--backend", backend, "--spp", str(spp)],
+                             capture_output=True, text=True)
+        rows = [l for l in out.stdout.splitlines() if l.startswith("| ") and not l.startswith("| backend")]
+        numbers = [re.findall(r"[0-9.]+", r.split("|")[5]) for r in rows if len(r.split("|")) > 5]
+        if not numbers or not numbers[0]:
+            sys.exit(f"caustic bench failed on {path}:\n{out.stdout}{out.stderr}")
+        best = max(best, float(numbers[0][0]))
+    return best
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--shared", default=os.path.join(os.path.dirname(__file__), "../../shared"))
+    ap.add_argument("--caustic", default="target/release/caustic")
+    ap.add_argument("--variant", default="cuda_ad_rgb")
+    ap.add_argument("--backend", default="gpu", choices=["gpu", "cpu"])
+    ap.add_argument("--spp", type=int, default=256)
+    ap.add_argument("--rounds", type=int, default=2)
+    ap.add_argument("--scenes", default="", help="comma-separated scene names (default: all 23)")
+    ap.add_argument("--venv", default=".venv-mitsuba")
+    args = ap.parse_args()
+    ensure_mitsuba(args.venv)
+    if "llvm" in args.variant and "DRJIT_LIBLLVM_PATH" not in os.environ:
+        found = sorted(glob.glob("/usr/lib/x86_64-linux-gnu/libLLVM.so.1*") + glob.glob("/usr/lib/llvm-*/lib/libLLVM*.so*"))
+        if found:
+            os.environ["DRJIT_LIBLLVM_PATH"] = found[-1]
+    import drjit as dr
+    import mitsuba as mi
+    mi.set_variant(args.variant)
+    shared = os.path.realpath(args.shared)
+    scenes = scene_list(shared, [s for s in args.scenes.split(",") if s])
+    print(f"caustic {args.backend} ({args.caustic}) against Mitsuba {mi.__version__} {args.variant}, "
+          f"{args.spp} spp, best of {args.rounds}, interleaved")
+    print("| scene | Mitsuba Msamples/s | caustic Msamples/s | caustic / Mitsuba |")
+    print("|---|---|---|---|")
+    ratios = []
+    for name, rel in scenes:
+        path = os.path.join(shared, "scenes/mitsuba", rel)
+        m = mitsuba_throughput(mi, dr, path, args.spp, args.rounds)
+        c = caustic_throughput(args.caustic, args.backend, path, args.spp, args.rounds)
+        ratios.append(c / m)
+        print(f"| {name} | {m:.2f} | {c:.2f} | {c / m:.2f} |", flush=True)
+    geo = math.exp(sum(math.log(r) for r in ratios) / len(ratios))
+    print(f"geometric mean of caustic / Mitsuba over {len(ratios)} scenes: {geo:.2f}")
+
+
+if __name__ == "__main__":
+    main()
