@@ -315,6 +315,11 @@ pub struct FrameParams {
     /// Where the wavelength table starts in the table buffer (`wavelength`; scenes with dispersion).
     pub wavelength_table: u32,
 
+    /// 1 when the filter has negative lobes (`mitchell`, `lanczos`): its signed running sum follows
+    /// its CDF in the table buffer and camera samples carry signed weights (`film`); 0 otherwise.
+    pub filter_signed: u32,
+    pub _pad: [u32; 3],
+
     pub camera: crate::camera::Camera,
 }
 
