@@ -54,3 +54,21 @@ fn negative_lobed_filters_match_mitsuba_on_the_gpu() {
     assert_agrees(BackendChoice::Gpu, 256, "lanczos");
     assert_agrees(BackendChoice::Gpu, 256, "mitchell");
 }
+
+/// Mitsuba accepts `lobes` = 0 and then renders black (its filter is zero everywhere); caustic refuses
+/// it, naming the file and line.
+#[test]
+fn lanczos_without_lobes_is_refused() {
+    let dir = std::env::temp_dir().join(format!("caustic-filters-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("lobes.xml");
+    std::fs::write(
+        &path,
+        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"><film type=\"hdrfilm\">\n\
+         <rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"0\"/></rfilter></film></sensor>\n</scene>\n",
+    )
+    .unwrap();
+    let message = format!("{:#}", caustic::load_scene(&path, &[]).err().expect("lobes = 0 refused"));
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(message.contains("lobes.xml:3") && message.contains("lobes"), "{message}");
+}
