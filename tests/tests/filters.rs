@@ -68,7 +68,8 @@ fn lanczos_without_lobes_is_refused() {
          <rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"0\"/></rfilter></film></sensor>\n</scene>\n",
     )
     .unwrap();
-    let message = format!("{:#}", caustic::load_scene(&path, &[]).err().expect("lobes = 0 refused"));
+    let Err(e) = caustic::load_scene(&path, &[]) else { panic!("lanczos with lobes = 0 loaded") };
+    let message = format!("{e:#}");
     std::fs::remove_dir_all(&dir).ok();
     assert!(message.contains("lobes.xml:3") && message.contains("lobes"), "{message}");
 }
