@@ -1,7 +1,7 @@
 //! Scene description → the kernel's buffers: primitives in BVH order, BVH2 nodes (built by `obvhs`),
 //! per-triangle attributes, materials, textures, lights with power-proportional selection, and the
 //! table buffer (sampling distributions, texels, precomputed BSDF tables).
-use crate::scene::{Emitter, Filter, Geometry, IntegratorKind, Projection, SamplerKind, Scene};
+use crate::scene::{Emitter, Geometry, IntegratorKind, Projection, SamplerKind, Scene};
 use anyhow::{bail, Result};
 use caustic_kernel::bvh::STACK_SIZE;
 use caustic_kernel::camera::{Camera, CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, CAMERA_THIN_LENS};
@@ -271,25 +271,6 @@ fn bounding_sphere(nodes: &[BvhNode], has_prims: bool) -> (Vec3, f32) {
     (centre, (0.5 * (hi - lo).length() * (1.0 + 1e-4)).max(1e-4))
 }
 
-/// Inclusive CDF of a filter's 1D weight over [-radius, radius].
-fn filter_cdf(filter: &Filter) -> Vec<f32> {
-    const SUB: usize = 32;
-    let r = filter.radius();
-    let width = 2.0 * r / FILTER_BINS as f32;
-    let mut cdf = Vec::with_capacity(FILTER_BINS as usize);
-    let mut total = 0.0f64;
-    for b in 0..FILTER_BINS {
-        let mut mass = 0.0f64;
-        for s in 0..SUB {
-            let x = -r + (b as f32 + (s as f32 + 0.5) / SUB as f32) * width;
-            mass += filter.weight(x) as f64;
-        }
-        total += mass;
-        cdf.push(total);
-    }
-    cdf.iter().map(|&c| (c / total) as f32).collect()
-}
-
 /// Normalised inclusive CDF of non-negative weights (uniform when they sum to zero).
 fn cdf_of(weights: &[f64]) -> Vec<f32> {
     let total: f64 = weights.iter().sum();
@@ -481,7 +462,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         // box is [-1, 1]³ to it, and traversal read children that do not exist (CPU panic, GPU garbage).
         vec![BvhNode { min: [0.0; 3], prim_count: 1, max: [0.0; 3], first: 0 }]
     };
-    let mut tables = filter_cdf(&scene.sensor.filter);
+    let (mut tables, filter_signed) = crate::filter_table::filter_tables(&scene.sensor.filter, FILTER_BINS)?;
     let filter_cdf_offset = 0;
     let mut textures = place_textures(scene, &mut tables);
     let env_light =
@@ -544,6 +525,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         filter_cdf_offset,
         filter_bins: FILTER_BINS,
         filter_radius: s.filter.radius(),
+        filter_signed: filter_signed as u32,
         hide_emitters: scene.integrator.hide_emitters as u32,
         env_light,
         crop_x: crop.x,

@@ -7,6 +7,7 @@ pub mod checkpoint;
 pub mod compare;
 pub mod convergence;
 pub mod film;
+pub mod filter_table;
 pub mod image_io;
 pub mod interrupt;
 pub mod memory;

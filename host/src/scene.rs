@@ -6,19 +6,40 @@ use glam::{Mat3, Mat4, Vec2, Vec3};
 /// Reconstruction filter of the film (Mitsuba's `rfilter`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Filter {
-    Box { radius: f32 },
-    Tent { radius: f32 },
-    Gaussian { stddev: f32, radius: f32 },
+    Box {
+        radius: f32,
+    },
+    Tent {
+        radius: f32,
+    },
+    Gaussian {
+        stddev: f32,
+        radius: f32,
+    },
+    /// Mitchell and Netravali's piecewise cubic with parameters `b` and `c`, radius 2 (Mitsuba's
+    /// `mitchell`; its `catmullrom` is this with b = 0, c = 1/2). Negative between |x| ≈ 1 and 2.
+    Mitchell {
+        b: f32,
+        c: f32,
+    },
+    /// A sinc windowed by a wider sinc, `lobes` lobes on each side and as many pixels of radius
+    /// (Mitsuba's `lanczos`). Negative on every other lobe.
+    Lanczos {
+        lobes: u32,
+    },
 }
 
 impl Filter {
     pub fn radius(&self) -> f32 {
         match *self {
             Filter::Box { radius } | Filter::Tent { radius } | Filter::Gaussian { radius, .. } => radius,
+            Filter::Mitchell { .. } => 2.0,
+            Filter::Lanczos { lobes } => lobes as f32,
         }
     }
 
-    /// The 1D filter weight at offset `x` (the 2D filter is the product of two).
+    /// The 1D filter weight at offset `x` (the 2D filter is the product of two). Negative for the
+    /// negative lobes of `Mitchell` and `Lanczos`.
     pub fn weight(&self, x: f32) -> f32 {
         match *self {
             Filter::Box { radius } => {
@@ -33,7 +54,39 @@ impl Filter {
                 let alpha = -1.0 / (2.0 * stddev * stddev);
                 ((alpha * x * x).exp() - (alpha * radius * radius).exp()).max(0.0)
             }
+            Filter::Mitchell { b, c } => mitchell_netravali(b, c, x.abs()),
+            Filter::Lanczos { lobes } => {
+                let l = lobes as f32;
+                if x.abs() >= l {
+                    0.0
+                } else {
+                    sinc(x) * sinc(x / l)
+                }
+            }
         }
+    }
+}
+
+/// Mitchell and Netravali's cubic at `t` = |x| ≥ 0: 1 at 0 for b = 0, C¹ everywhere, zero from 2.
+fn mitchell_netravali(b: f32, c: f32, t: f32) -> f32 {
+    let (t2, t3) = (t * t, t * t * t);
+    let k = if t < 1.0 {
+        (12.0 - 9.0 * b - 6.0 * c) * t3 + (-18.0 + 12.0 * b + 6.0 * c) * t2 + (6.0 - 2.0 * b)
+    } else if t < 2.0 {
+        (-b - 6.0 * c) * t3 + (6.0 * b + 30.0 * c) * t2 - (12.0 * b + 48.0 * c) * t + (8.0 * b + 24.0 * c)
+    } else {
+        0.0
+    };
+    k / 6.0
+}
+
+/// sin(πx)/(πx), 1 at 0.
+fn sinc(x: f32) -> f32 {
+    let px = std::f32::consts::PI * x;
+    if px.abs() < 1e-6 {
+        1.0
+    } else {
+        px.sin() / px
     }
 }
 

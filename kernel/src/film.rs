@@ -2,11 +2,16 @@
 //! end: it develops the accumulated sums into an image and writes files.)
 //!
 //! Reconstruction filters are applied by filter importance sampling: each sample's offset from the
-//! pixel centre is drawn from the (separable) filter itself, so every sample has weight 1 and no
-//! splatting to neighbours is needed. In expectation this is the image Mitsuba's `hdrfilm` develops
-//! (sum of w·L over sum of w), including at the border, where Mitsuba only draws samples inside the
-//! image: the filter is truncated to the image there. The filter comes as a tabulated CDF over
-//! `[-radius, radius]` so that every filter shares one code path.
+//! pixel centre is drawn from the (separable) filter itself, so no splatting to neighbours is needed.
+//! In expectation this is the image Mitsuba's `hdrfilm` develops (sum of w·L over sum of w),
+//! including at the border, where Mitsuba only draws samples inside the image: the filter is
+//! truncated to the image there. The filter comes as a tabulated CDF over `[-radius, radius]` so
+//! that every filter shares one code path.
+//!
+//! Filters with negative lobes (`mitchell`, `lanczos`) are sampled in proportion to |w|, and each
+//! sample carries the weight sign(w)·∫|w|/∫w (both integrals over the truncated filter), so that its
+//! expectation is ∫w·L/∫w as Mitsuba's ratio of sums converges to. Their table holds, after the CDF of
+//! |w|, the running sum of w in the same units; every other filter has weight exactly 1.
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
@@ -15,14 +20,28 @@ use crate::layout::{FrameParams, SAMPLER_STRATIFIED};
 use crate::rng::Sampler;
 use crate::sampling::sample_cdf;
 
+/// Where the signed running sum of a filter with negative lobes starts in the table buffer (the CDF of
+/// |w| itself where there are none: the two are then one table).
+fn signed_table(params: &FrameParams) -> u32 {
+    if params.filter_signed != 0 {
+        params.filter_cdf_offset + params.filter_bins
+    } else {
+        params.filter_cdf_offset
+    }
+}
+
 /// The filter's CDF at `x` (piecewise linear between the tabulated bin edges).
 fn filter_cdf_at(tables: &[f32], params: &FrameParams, x: f32) -> f32 {
+    running_sum_at(tables, params, params.filter_cdf_offset, x)
+}
+
+/// The running sum of the table at `base` (the CDF of |w|, or the signed one) at `x`.
+fn running_sum_at(tables: &[f32], params: &FrameParams, base: u32, x: f32) -> f32 {
     let bins = params.filter_bins;
     let r = params.filter_radius;
     let t = ((x + r) / (2.0 * r) * bins as f32).clamp(0.0, bins as f32);
     let i = (t as u32).min(bins - 1);
     let frac = t - i as f32;
-    let base = params.filter_cdf_offset;
     let prev = if i == 0 { 0.0 } else { tables[(base + i - 1) as usize] };
     prev + frac * (tables[(base + i) as usize] - prev)
 }
@@ -54,7 +73,31 @@ fn pixel_sample(params: &FrameParams, sample_index: u32, sampler: &mut Sampler) 
     Vec2::new((sx as f32 + u.x) / n as f32, (sy as f32 + u.y) / n as f32)
 }
 
-/// Film position (fractions of width and height) of sample `sample_index` in pixel (px, py).
+/// A camera sample on the film.
+#[derive(Clone, Copy)]
+pub struct FilmSample {
+    /// Fractions of the full image's width and height.
+    pub pos: Vec2,
+    /// What the sample's estimate is multiplied by: 1 unless the filter has negative lobes.
+    pub weight: f32,
+}
+
+/// The weight of a sample drawn at offset `d` from the pixel centre along one axis, the filter
+/// truncated to `[lo, hi]`: the sign of w there (the bin's signed over absolute mass) times
+/// ∫|w|/∫w over `[lo, hi]`; 0 where the truncated filter sums to nothing.
+fn axis_weight(tables: &[f32], params: &FrameParams, d: f32, lo: f32, hi: f32) -> f32 {
+    let signed = signed_table(params);
+    let abs_density = filter_density(tables, params, params.filter_cdf_offset, d);
+    let abs_mass = filter_cdf_at(tables, params, hi) - filter_cdf_at(tables, params, lo);
+    let signed_mass = running_sum_at(tables, params, signed, hi) - running_sum_at(tables, params, signed, lo);
+    if abs_density > 0.0 && signed_mass > 1e-6 * abs_mass {
+        filter_density(tables, params, signed, d) / abs_density * (abs_mass / signed_mass)
+    } else {
+        0.0
+    }
+}
+
+/// Film position and weight of sample `sample_index` in pixel (px, py).
 pub fn sample_position(
     params: &FrameParams,
     tables: &[f32],
@@ -62,53 +105,74 @@ pub fn sample_position(
     py: u32,
     sample_index: u32,
     sampler: &mut Sampler,
-) -> Vec2 {
+) -> FilmSample {
     let u = pixel_sample(params, sample_index, sampler);
     let r = params.filter_radius;
     // Pixel centre in the full image (the rendered pixels may be a crop of it).
     let cx = (params.crop_x + px) as f32 + 0.5;
     let cy = (params.crop_y + py) as f32 + 0.5;
     let (full_w, full_h) = (params.full_width as f32, params.full_height as f32);
-    let dx = sample_filter_1d(tables, params, u.x, (-cx).max(-r), (full_w - cx).min(r));
-    let dy = sample_filter_1d(tables, params, u.y, (-cy).max(-r), (full_h - cy).min(r));
-    Vec2::new((cx + dx) / full_w, (cy + dy) / full_h)
+    let (x_lo, x_hi) = ((-cx).max(-r), (full_w - cx).min(r));
+    let (y_lo, y_hi) = ((-cy).max(-r), (full_h - cy).min(r));
+    let dx = sample_filter_1d(tables, params, u.x, x_lo, x_hi);
+    let dy = sample_filter_1d(tables, params, u.y, y_lo, y_hi);
+    let weight = if params.filter_signed != 0 {
+        axis_weight(tables, params, dx, x_lo, x_hi) * axis_weight(tables, params, dy, y_lo, y_hi)
+    } else {
+        1.0
+    };
+    FilmSample { pos: Vec2::new((cx + dx) / full_w, (cy + dy) / full_h), weight }
 }
 
-/// The filter's density at offset `x` (pixels) from a pixel centre, as `sample_position` draws it:
+/// The filter's density at offset `x` (pixels) from a pixel centre, as `sample_position` draws it
+/// (`base`: the CDF of |w|), or the signed filter in the same units (`base`: `signed_table`):
 /// piecewise constant over the tabulated bins, zero outside the radius.
-fn filter_density(tables: &[f32], params: &FrameParams, x: f32) -> f32 {
+fn filter_density(tables: &[f32], params: &FrameParams, base: u32, x: f32) -> f32 {
     let r = params.filter_radius;
     if !(x > -r && x < r) {
         return 0.0;
     }
     let bins = params.filter_bins;
     let i = (((x + r) / (2.0 * r) * bins as f32) as u32).min(bins - 1);
-    let base = params.filter_cdf_offset;
     let prev = if i == 0 { 0.0 } else { tables[(base + i - 1) as usize] };
     (tables[(base + i) as usize] - prev) * bins as f32 / (2.0 * r)
 }
 
 /// The filter's mass inside the image along one axis for a pixel centred at `c` in an image `full`
-/// pixels wide: what `sample_position` renormalises the truncated filter by.
-fn axis_mass(tables: &[f32], params: &FrameParams, c: f32, full: f32) -> f32 {
+/// pixels wide: what `sample_position` renormalises the truncated filter by (`base`: the CDF of |w|),
+/// or the signed filter's (`base`: `signed_table`).
+fn axis_mass(tables: &[f32], params: &FrameParams, base: u32, c: f32, full: f32) -> f32 {
     let r = params.filter_radius;
-    filter_cdf_at(tables, params, (full - c).min(r)) - filter_cdf_at(tables, params, (-c).max(-r))
+    running_sum_at(tables, params, base, (full - c).min(r))
+        - running_sum_at(tables, params, base, (-c).max(-r))
 }
 
 /// The density (per unit of pixel area) with which camera samples of pixel (`px`, `py`) of the full
-/// image land at film position `pos` (in pixels of the full image): the reconstruction filter centred
-/// on the pixel, truncated to the image and renormalised, exactly as `sample_position` draws it. Light
-/// tracing splats a connection into each pixel with this weight, so both estimate the same filtered
-/// pixel; IBPT's MIS compares the two strategies through it.
+/// image land at film position `pos` (in pixels of the full image): the reconstruction filter's |w|
+/// centred on the pixel, truncated to the image and renormalised, exactly as `sample_position` draws
+/// it. IBPT's MIS compares the camera and light-tracing strategies through it.
 pub fn pixel_density(tables: &[f32], params: &FrameParams, pos: Vec2, px: u32, py: u32) -> f32 {
+    filter_at(tables, params, params.filter_cdf_offset, pos, px, py)
+}
+
+/// What a light-tracing connection landing at `pos` (pixels of the full image) contributes to pixel
+/// (`px`, `py`) per unit of its value: the filter w centred on the pixel, truncated to the image and
+/// divided by its sum there, so that splats and camera samples (`sample_position`) estimate the same
+/// filtered pixel. Negative on a negative lobe; `pixel_density` where the filter has none.
+pub fn pixel_weight(tables: &[f32], params: &FrameParams, pos: Vec2, px: u32, py: u32) -> f32 {
+    filter_at(tables, params, signed_table(params), pos, px, py)
+}
+
+/// The filter of table `base` centred on pixel (`px`, `py`) at `pos`, over its truncated sum.
+fn filter_at(tables: &[f32], params: &FrameParams, base: u32, pos: Vec2, px: u32, py: u32) -> f32 {
     let (cx, cy) = (px as f32 + 0.5, py as f32 + 0.5);
-    let fx = filter_density(tables, params, pos.x - cx);
-    let fy = filter_density(tables, params, pos.y - cy);
-    if fx <= 0.0 || fy <= 0.0 {
+    let fx = filter_density(tables, params, base, pos.x - cx);
+    let fy = filter_density(tables, params, base, pos.y - cy);
+    if fx == 0.0 || fy == 0.0 {
         return 0.0;
     }
-    let mass = axis_mass(tables, params, cx, params.full_width as f32)
-        * axis_mass(tables, params, cy, params.full_height as f32);
+    let mass = axis_mass(tables, params, base, cx, params.full_width as f32)
+        * axis_mass(tables, params, base, cy, params.full_height as f32);
     if mass > 0.0 {
         fx * fy / mass
     } else {

@@ -116,8 +116,11 @@ pub struct Material {
     pub opacity: f32,
     /// Texture whose luminance replaces `opacity`, or `NONE`.
     pub opacity_texture: u32,
-    /// Keeps the arrays below at 16-byte offsets.
-    pub pad: [u32; 2],
+    /// Rough conductors and dielectrics: textures whose luminance replaces `alpha_u` and `alpha_v`
+    /// (Mitsuba's textured `alpha`, `alpha_u`, `alpha_v`), or `NONE`. (Also keep the arrays below at
+    /// 16-byte offsets.)
+    pub alpha_u_texture: u32,
+    pub alpha_v_texture: u32,
     /// Diffuse reflectance (diffuse, Phong `kd`, plastic).
     pub reflectance: [f32; 4],
     /// Specular reflectance (Phong `ks`, conductors, dielectrics, plastics).
@@ -145,7 +148,8 @@ impl Default for Material {
             table: NONE,
             opacity: 1.0,
             opacity_texture: NONE,
-            pad: [0; 2],
+            alpha_u_texture: NONE,
+            alpha_v_texture: NONE,
             reflectance: [0.0; 4],
             specular_reflectance: [0.0; 4],
             specular_transmittance: [0.0; 4],
@@ -314,6 +318,11 @@ pub struct FrameParams {
     pub bsdf_samples: u32,
     /// Where the wavelength table starts in the table buffer (`wavelength`; scenes with dispersion).
     pub wavelength_table: u32,
+
+    /// 1 when the filter has negative lobes (`mitchell`, `lanczos`): its signed running sum follows
+    /// its CDF in the table buffer and camera samples carry signed weights (`film`); 0 otherwise.
+    pub filter_signed: u32,
+    pub _pad: [u32; 3],
 
     pub camera: crate::camera::Camera,
 }

@@ -13,7 +13,7 @@ what Mitsuba loaded) and the values Mitsuba computes from it, under keys the Rus
   - sensors: `rays`, primary rays for film positions (fractions of the crop window) and aperture
     samples: the ray's first point (Mitsuba starts it on the near clip plane), its direction and its
     last point (on the far clip plane); `film_size`, `crop_size`, `crop_offset`; `filter` and
-    `filter_radius` of the film's rfilter; `sample_count` of the sampler (after the sampler's own
+    `filter_radius` of the film's rfilter and `filter_weights`, its weights at FILTER_POINTS; `sample_count` of the sampler (after the sampler's own
     rounding: stratified and orthogonal to squares, ldsampler to powers of four, multijitter to a
     near-square grid);
   - integrators: `max_depth` (-1 unbounded), `rr_depth`, `emitter_samples`, `bsdf_samples`;
@@ -101,13 +101,18 @@ def sensor_cases():
          '<sensor type="orthographic"><transform name="to_world"><scale x="2" y="3"/>'
          '<lookat origin="0, 0, -5" target="0, 0, 0" up="0, 1, 0"/></transform>' + film(40, 20) + '</sensor>'),
     ]
-    for f in ["box", "tent", "gaussian"]:
+    for f in ["box", "tent", "gaussian", "mitchell", "catmullrom", "lanczos"]:
         cases.append((f"filter_{f}_default", f'<sensor type="perspective"><film type="hdrfilm"><rfilter type="{f}"/></film></sensor>'))
     cases += [
         ("filter_tent_radius",
          '<sensor type="perspective"><film type="hdrfilm"><rfilter type="tent"><float name="radius" value="1.5"/></rfilter></film></sensor>'),
         ("filter_gaussian_stddev",
          '<sensor type="perspective"><film type="hdrfilm"><rfilter type="gaussian"><float name="stddev" value="0.3"/></rfilter></film></sensor>'),
+        ("filter_mitchell_b_c",
+         '<sensor type="perspective"><film type="hdrfilm"><rfilter type="mitchell"><float name="B" value="0.2"/>'
+         '<float name="C" value="0.6"/></rfilter></film></sensor>'),
+        ("filter_lanczos_lobes",
+         '<sensor type="perspective"><film type="hdrfilm"><rfilter type="lanczos"><integer name="lobes" value="2"/></rfilter></film></sensor>'),
     ]
     for s in ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]:
         cases.append((f"sampler_{s}_default", f'<sensor type="perspective"><sampler type="{s}"/></sensor>'))
@@ -235,6 +240,10 @@ def vec(v):
     return [float(v[0]), float(v[1]), float(v[2])]
 
 
+# Offsets (pixels) at which the filter's weight is compared (clear of the box's and tent's edges).
+FILTER_POINTS = [0.0, 0.3, 0.7, 1.2, 1.7, 2.3, 2.9, 3.5]
+
+
 def sensor_values(scene):
     sensor = scene.sensors()[0]
     f = sensor.film()
@@ -247,7 +256,10 @@ def sensor_values(scene):
             rays.append({"film": p, "lens": u, "start": vec(ray.o), "dir": vec(ray.d),
                          "end": vec(ray.o + ray.d * ray.maxt)})
     rfilter = f.rfilter()
-    name = {"BoxFilter": "box", "TentFilter": "tent", "GaussianFilter": "gaussian"}[rfilter.class_name()]
+    # catmullrom is the Mitchell-Netravali filter with B = 0, C = 1/2: caustic loads it as that.
+    name = {"BoxFilter": "box", "TentFilter": "tent", "GaussianFilter": "gaussian",
+            "MitchellNetravaliFilter": "mitchell", "CatmullRomFilter": "mitchell",
+            "LanczosSincFilter": "lanczos"}[rfilter.class_name()]
     return {
         "rays": rays,
         "film_size": [int(size[0]), int(size[1])],
@@ -255,6 +267,7 @@ def sensor_values(scene):
         "crop_offset": [int(offset[0]), int(offset[1])],
         "filter": name,
         "filter_radius": float(rfilter.radius()),
+        "filter_weights": [float(rfilter.eval(x)) for x in FILTER_POINTS],
         "sample_count": int(sensor.sampler().sample_count()),
     }
 

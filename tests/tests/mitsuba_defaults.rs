@@ -57,6 +57,8 @@ fn sensor_failures(scene: &Scene, expect: &serde_json::Map<String, Value>) -> Ve
         Filter::Box { radius } => ("box", radius),
         Filter::Tent { radius } => ("tent", radius),
         Filter::Gaussian { radius, .. } => ("gaussian", radius),
+        Filter::Mitchell { .. } => ("mitchell", s.filter.radius()),
+        Filter::Lanczos { lobes } => ("lanczos", lobes as f32),
     };
     let mut out = Vec::new();
     let checks: Vec<(&str, Vec<f64>)> = vec![
@@ -69,6 +71,13 @@ fn sensor_failures(scene: &Scene, expect: &serde_json::Map<String, Value>) -> Ve
     for (key, value) in checks {
         out.extend(compare(key, &expect[key], &value, TOL));
     }
+    // The filter's weights at Mitsuba's sample offsets (`FILTER_POINTS` of the script).
+    const FILTER_POINTS: [f32; 8] = [0.0, 0.3, 0.7, 1.2, 1.7, 2.3, 2.9, 3.5];
+    let weights: Vec<f64> = FILTER_POINTS.iter().map(|&x| s.filter.weight(x) as f64).collect();
+    // Mitsuba's CPU variants (the reference is scalar_rgb) evaluate the Gaussian by a polynomial fit
+    // to exp, 4.2e-4 off at x = 0 (measured); its CUDA variant, like caustic, by exp itself.
+    let weight_tol = if filter == "gaussian" { 1e-3 } else { TOL };
+    out.extend(compare("filter_weights", &expect["filter_weights"], &weights, weight_tol));
     if expect["filter"] != filter {
         out.push(format!("filter: Mitsuba {}, caustic {filter}", expect["filter"]));
     }

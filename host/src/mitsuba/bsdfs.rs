@@ -214,14 +214,23 @@ impl Loader {
         if has_u != has_v {
             bail!("{}: 'alpha_u' and 'alpha_v' must be given together", props.loc);
         }
-        let alpha = props.float("alpha", 0.1)?;
-        let alpha_u = props.float("alpha_u", alpha)?;
-        let alpha_v = props.float("alpha_v", alpha)?;
+        // Each may be a texture (its luminance; `caustic_kernel::bsdf::Bsdf::new`), whose mean stands
+        // in where one number is needed.
+        let mut param = |name: &str, default: f32| -> Result<(f32, u32)> {
+            Ok(match self.scalar_texture(props, name)? {
+                Some((texture, mean)) => (mean, texture),
+                None => (props.float(name, default)?, NONE),
+            })
+        };
+        let alpha = param("alpha", 0.1)?;
+        let (alpha_u, alpha_u_texture) = if has_u { param("alpha_u", 0.1)? } else { alpha };
+        let (alpha_v, alpha_v_texture) = if has_v { param("alpha_v", 0.1)? } else { alpha };
         for (name, a) in [("alpha_u", alpha_u), ("alpha_v", alpha_v)] {
             if !(0.0..=10.0).contains(&a) {
                 bail!("{}: {name} must be in [0, 10], got {a}", props.loc);
             }
         }
+        (m.alpha_u_texture, m.alpha_v_texture) = (alpha_u_texture, alpha_v_texture);
         if !props.boolean("sample_visible", true)? {
             self.warn(&format!("{}: sample_visible=false is not supported; caustic always samples visible normals (same image, less noise)", props.loc));
         }
@@ -332,6 +341,15 @@ impl Loader {
         };
         if rough {
             self.microfacet(props, &mut m)?;
+            // Its precomputed transmittance table is for one roughness.
+            if m.alpha_u_texture != NONE || m.alpha_v_texture != NONE {
+                let message = format!(
+                    "{}: a textured alpha of roughplastic is not supported; using the texture's mean, {}",
+                    props.loc, m.alpha_u
+                );
+                self.substituted("textured roughplastic alpha".into(), &props.loc, message);
+                (m.alpha_u_texture, m.alpha_v_texture) = (NONE, NONE);
+            }
         }
         set_reflectance(
             &mut m,

@@ -1,5 +1,5 @@
 //! Sensor plugins (`perspective`) with their film (`hdrfilm`), reconstruction filter (`box`, `tent`,
-//! `gaussian`) and sampler (`independent`; `stratified`, `multijitter`, `orthogonal` and `ldsampler`
+//! `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`; `stratified`, `multijitter`, `orthogonal` and `ldsampler`
 //! all use caustic's stratified sequence with the sample count Mitsuba would take).
 use super::props::Props;
 use super::Loader;
@@ -183,6 +183,15 @@ impl Loader {
                 "gaussian" => {
                     let stddev = f.float("stddev", 0.5)?;
                     Filter::Gaussian { stddev, radius: 4.0 * stddev }
+                }
+                "mitchell" => Filter::Mitchell { b: f.float("B", 1.0 / 3.0)?, c: f.float("C", 1.0 / 3.0)? },
+                "catmullrom" => Filter::Mitchell { b: 0.0, c: 0.5 },
+                "lanczos" => {
+                    let lobes = f.integer("lobes", 3)?;
+                    if !(1..=16).contains(&lobes) {
+                        bail!("{}: lanczos 'lobes' must be between 1 and 16, got {lobes}", f.loc);
+                    }
+                    Filter::Lanczos { lobes: lobes as u32 }
                 }
                 other => {
                     let message = format!("{}: rfilter '{other}' is not supported; using gaussian", f.loc);

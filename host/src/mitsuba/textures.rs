@@ -1,5 +1,5 @@
 //! Texture plugins: `bitmap` (image files, sRGB-decoded unless `raw`, bilinear or nearest, wrap modes)
-//! and `checkerboard`; both with `to_uv`. Also colour parameters that may be a texture.
+//! and `checkerboard`; both with `to_uv`. Also colour and scalar parameters that may be a texture.
 use super::props::{Entry, Props};
 use super::spectrum::SpectrumUse;
 use super::Loader;
@@ -106,6 +106,40 @@ impl Loader {
         props.mark_used(name);
         let index = self.texture_entry(props, entry)?;
         Ok(ColorParam { rgb: self.texture_mean(index), texture: index })
+    }
+
+    /// A scalar BSDF parameter given as a nested `<texture>` or a `<ref>` to one (marked used): the
+    /// index of a texture whose luminance is the value Mitsuba's `eval_1` takes, and that value's mean;
+    /// `None` when `name` is no texture. For a checkerboard that is a grey copy: each colour becomes its
+    /// channel mean (Mitsuba reads a colour as one number so), and the two trade places, because
+    /// Mitsuba 3.9.1's scalar `eval_1` gives `color0` to the cells where its colour `eval` gives
+    /// `color1` (checkerboard.cpp; caustic renders scalar checkerboards as Mitsuba does).
+    pub(crate) fn scalar_texture(&mut self, props: &Props, name: &str) -> Result<Option<(u32, f32)>> {
+        let Some(entry) = props
+            .entries
+            .iter()
+            .find(|e| e.name.as_deref() == Some(name) && matches!(e.tag.as_str(), "texture" | "ref"))
+        else {
+            return Ok(None);
+        };
+        props.mark_used(name);
+        let index = self.texture_entry(props, entry)?;
+        let mut texture = self.textures[index as usize].clone();
+        if texture.record.kind == TEXTURE_CHECKERBOARD {
+            let grey = |c: [f32; 4]| {
+                let m = (c[0] + c[1] + c[2]) / 3.0;
+                [m, m, m, c[3]]
+            };
+            let (color0, color1) = (texture.record.color0, texture.record.color1);
+            texture.record.color0 = grey(color1);
+            texture.record.color1 = grey(color0);
+            self.textures.push(texture);
+            let grey_index = self.textures.len() as u32 - 1;
+            let mean = self.texture_mean(grey_index)[0];
+            return Ok(Some((grey_index, mean)));
+        }
+        let mean = caustic_kernel::spectrum::luminance(glam::Vec3::from(self.texture_mean(index)));
+        Ok(Some((index, mean)))
     }
 
     fn texture_entry(&mut self, props: &Props, entry: &Entry) -> Result<u32> {

@@ -18,7 +18,7 @@ pub mod thin_dielectric;
 use crate::features;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::*;
-use crate::spectrum::Rgb;
+use crate::spectrum::{luminance, Rgb};
 use crate::texture;
 
 /// Which quantity a path carries (pbrt-v4's `TransportMode`): radiance, traced from the camera, or
@@ -194,11 +194,22 @@ impl<'a> Bsdf<'a> {
     /// The BSDF of `m` at texture coordinates `uv` in a scene using `features`.
     pub fn new(m: &Material, textures: &[Texture], tables: &'a [f32], uv: Vec2, features: u32) -> Bsdf<'a> {
         let (mut reflectance, mut specular) = (vec3_of(m.reflectance), vec3_of(m.specular_reflectance));
+        let mut material = *m;
         if features::has(features, features::TEXTURES) {
             reflectance = texture::eval_or(textures, tables, m.reflectance_texture, reflectance, uv);
             specular = texture::eval_or(textures, tables, m.specular_texture, specular, uv);
+            // Textured roughness: the texture's luminance, as Mitsuba's `eval_1` (the loader gives a
+            // checkerboard grey colours, so that this is their mean, as Mitsuba takes it).
+            if m.alpha_u_texture != NONE {
+                material.alpha_u =
+                    luminance(texture::eval(&textures[m.alpha_u_texture as usize], tables, uv));
+            }
+            if m.alpha_v_texture != NONE {
+                material.alpha_v =
+                    luminance(texture::eval(&textures[m.alpha_v_texture as usize], tables, uv));
+            }
         }
-        Bsdf { material: *m, reflectance, specular, tables, features }
+        Bsdf { material, reflectance, specular, tables, features }
     }
 
     /// A BSDF without textures (tests, tools).

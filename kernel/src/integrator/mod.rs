@@ -32,19 +32,19 @@ pub struct PixelSums {
 }
 
 /// A camera sample of pixel (`px`, `py`): its sampler (keyed by seed, pixel and sample), the film
-/// position it lands on (fractions of the full image) and the primary ray.
+/// sample (where it lands, in fractions of the full image, and its filter weight) and the primary ray.
 #[inline]
 fn camera_sample(
     params: &FrameParams,
     tables: &[f32],
     pixel: u32,
     sample_index: u32,
-) -> (Sampler, Vec2, Ray) {
+) -> (Sampler, film::FilmSample, Ray) {
     let (px, py) = (pixel % params.width, pixel / params.width);
     let mut sampler = Sampler::new(params.seed, pixel, sample_index);
-    let film_pos = film::sample_position(params, tables, px, py, sample_index, &mut sampler);
+    let film_sample = film::sample_position(params, tables, px, py, sample_index, &mut sampler);
     let u_lens = sampler.next_2d();
-    (sampler, film_pos, params.camera.generate_ray(film_pos, u_lens))
+    (sampler, film_sample, params.camera.generate_ray(film_sample.pos, u_lens))
 }
 
 /// Renders `params.sample_count` samples of one pixel (row-major index).
@@ -52,14 +52,18 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
     let mut sums = PixelSums { sum: Rgb::ZERO, sum_sq: Rgb::ZERO, invalid: 0 };
     let mut s = 0;
     while s < params.sample_count {
-        let (mut sampler, _, ray) = camera_sample(params, scene.tables, pixel, params.sample_base + s);
-        let l = if params.integrator == INTEGRATOR_DIRECT
+        let (mut sampler, film_sample, ray) =
+            camera_sample(params, scene.tables, pixel, params.sample_base + s);
+        let mut l = if params.integrator == INTEGRATOR_DIRECT
             && features::has(scene.features, features::DIRECT_INTEGRATOR)
         {
             direct::li(scene, params, ray, &mut sampler)
         } else {
             path::li(scene, params, ray, &mut sampler, 1.0)
         };
+        if params.filter_signed != 0 {
+            l *= film_sample.weight;
+        }
         if is_finite3(l) {
             sums.sum += l;
             sums.sum_sq += l * l;
@@ -88,10 +92,15 @@ pub fn splat_camera_paths<W: AtomicWords>(
     let (px, py) = (pixel % params.width, pixel / params.width);
     let mut s = 0;
     while s < params.sample_count {
-        let (mut sampler, film_pos, ray) = camera_sample(params, scene.tables, pixel, params.sample_base + s);
+        let (mut sampler, film_sample, ray) =
+            camera_sample(params, scene.tables, pixel, params.sample_base + s);
+        let film_pos = film_sample.pos;
         let pos = Vec2::new(film_pos.x * params.full_width as f32, film_pos.y * params.full_height as f32);
         let density = film::pixel_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);
-        let l = path::li(scene, params, ray, &mut sampler, density);
+        let mut l = path::li(scene, params, ray, &mut sampler, density);
+        if params.filter_signed != 0 {
+            l *= film_sample.weight;
+        }
         sampler.set_dimension(DIM_SPLAT_ROUNDING);
         if is_finite3(l) {
             crate::splat::splat(words, pixel, l, sampler.next_1d());

@@ -90,7 +90,7 @@ impl ConnectionMis {
 /// Connects the point `origin` (already moved off its surface) to the camera through `c` and, unless
 /// something blocks the way, splats `value · importance` into every rendered pixel whose
 /// reconstruction filter covers the point, weighted by the filter as the pixel's camera samples are
-/// (`film::pixel_density`; one pixel for the box). `skip`: a primitive the shadow ray ignores (the
+/// (`film::pixel_weight`; one pixel for the box). `skip`: a primitive the shadow ray ignores (the
 /// emitter it starts on).
 #[allow(clippy::too_many_arguments)]
 fn splat_to_camera<W: AtomicWords>(
@@ -140,7 +140,13 @@ fn splat_to_camera<W: AtomicWords>(
             if density > 0.0 {
                 let pixel = (y - params.crop_y) * params.width + (x - params.crop_x);
                 let weight = weighting.weight(importance * density);
-                splat(words, pixel, value * (importance * density * weight), u);
+                // The filter itself (negative on a negative lobe) where the MIS weight takes the density.
+                let filter = if params.filter_signed != 0 {
+                    film::pixel_weight(scene.tables, params, pos, x, y)
+                } else {
+                    density
+                };
+                splat(words, pixel, value * (importance * filter * weight), u);
             }
             x += 1;
         }

@@ -1,0 +1,73 @@
+//! Textured roughness (`alpha`, `alpha_u`, `alpha_v` of rough conductors and dielectrics) against
+//! Mitsuba 3.9.1: checkerboard roughness on a conductor floor, a dielectric sphere (coloured checks,
+//! which Mitsuba reads as their channel mean) and a conductor card with textured `alpha_u` and
+//! `alpha_v` (equal, so that the orientation of caustic's shading frame does not matter)
+//! (`tests/data/rough_textures.xml`; the reference `rough_textures.exr` is written by
+//! `rough_textures.py`), per-pixel z-test and mean-luminance z-score on the CPU and the GPU backend,
+//! with a negative control (the floor's rough checks at 0.3 for 0.4).
+use caustic::backend::BackendChoice;
+use caustic::compare::compare;
+use caustic::film::Film;
+use caustic_tests::*;
+use std::path::PathBuf;
+
+const REFERENCE_SPP: f64 = 16384.0;
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
+}
+
+fn check(choice: BackendChoice, spp: u32, alpha1: &str) -> (f64, f64) {
+    let scene =
+        caustic::load_scene(&data("rough_textures.xml"), &defines(&[("alpha1", alpha1)])).expect("loads");
+    let film = render_scene(&scene, choice, spp, 7);
+    let reference = Film::load_exr(&data("rough_textures.exr")).expect("reference loads");
+    let c = compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
+    let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());
+    println!(
+        "rough textures {choice:?} {spp} spp, alpha1 {alpha1}: RMSE {:.5}, luminance ratio {:.4}, z {z:+.2}, pass {pass:.4}",
+        c.rmse, c.luminance_ratio
+    );
+    (pass, z)
+}
+
+#[test]
+fn textured_roughness_matches_mitsuba_on_the_cpu() {
+    let (pass, z) = check(BackendChoice::Cpu, 1024, "0.4");
+    assert!(pass >= 0.99, "only {:.2}% of pixels agree with Mitsuba", pass * 100.0);
+    assert!(z.abs() < 4.0, "mean luminance differs from Mitsuba by {z:.2} standard errors");
+    let (pass, z) = check(BackendChoice::Cpu, 1024, "0.3");
+    assert!(pass < 0.99 || z.abs() >= 4.0, "alpha 0.3 for 0.4 went unnoticed (pass {pass:.4}, z {z:+.2})");
+}
+
+#[test]
+fn textured_roughness_matches_mitsuba_on_the_gpu() {
+    let (pass, z) = check(BackendChoice::Gpu, 256, "0.4");
+    assert!(pass >= 0.99, "only {:.2}% of pixels agree with Mitsuba", pass * 100.0);
+    assert!(z.abs() < 4.0, "mean luminance differs from Mitsuba by {z:.2} standard errors");
+}
+
+/// roughplastic's precomputed table holds one roughness: a textured alpha is replaced by its mean and
+/// counted as a substitution (which `--strict` refuses).
+#[test]
+fn textured_roughplastic_alpha_is_a_substitution() {
+    let xml = r#"<scene version="3.0.0"><shape type="sphere"><bsdf type="roughplastic">
+        <texture type="checkerboard" name="alpha"><float name="color0" value="0.1"/><float name="color1" value="0.3"/></texture>
+        </bsdf></shape></scene>"#;
+    let scene = load_xml(xml, "roughplastic-alpha");
+    let m = &scene.materials[0];
+    assert_eq!(
+        (m.alpha_u_texture, m.alpha_v_texture),
+        (caustic_kernel::layout::NONE, caustic_kernel::layout::NONE)
+    );
+    assert!((m.alpha_u - 0.2).abs() < 1e-6, "mean alpha {}", m.alpha_u);
+    let dir = std::env::temp_dir().join(format!("caustic-rough-textures-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("scene.xml");
+    std::fs::write(&path, xml).unwrap();
+    let strict = caustic::load_scene_with(&path, &[], caustic::LoadOptions { strict: true });
+    std::fs::remove_dir_all(&dir).ok();
+    let Err(e) = strict else { panic!("--strict accepted a substituted roughplastic alpha") };
+    let message = format!("{e:#}");
+    assert!(message.contains("roughplastic"), "{message}");
+}
