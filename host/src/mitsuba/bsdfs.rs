@@ -167,10 +167,18 @@ impl Loader {
         if m.flags & MATERIAL_MASK != 0 {
             bail!("{}: a mask inside a mask is not supported", props.loc);
         }
-        let opacity = self.color_param(props, "opacity", SpectrumUse::Reflectance, [0.5; 3])?;
+        // A number as Mitsuba reads it (`Texture::eval_1`: a texture's luminance, a checkerboard's
+        // colours on the other cells than as a colour: `scalar_texture`).
+        let (opacity, texture) = match self.scalar_texture(props, "opacity")? {
+            Some((texture, mean)) => (mean, texture),
+            None => {
+                let c = props.color("opacity", SpectrumUse::Reflectance, [0.5; 3])?;
+                (caustic_kernel::spectrum::luminance(glam::Vec3::from(c)), NONE)
+            }
+        };
         m.flags |= MATERIAL_MASK;
-        m.opacity = caustic_kernel::spectrum::luminance(glam::Vec3::from(opacity.rgb)).clamp(0.0, 1.0);
-        m.opacity_texture = opacity.texture;
+        m.opacity = opacity.clamp(0.0, 1.0);
+        m.opacity_texture = texture;
         Ok(m)
     }
 
