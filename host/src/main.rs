@@ -377,6 +377,20 @@ fn integrator_name(kind: &caustic::scene::IntegratorKind) -> &'static str {
     }
 }
 
+/// What both benchmarks start from: a sample count of at least one and the scene's buffers.
+fn bench_buffers(
+    scene_path: &Path,
+    defines: &[(String, String)],
+    spp: u32,
+    options: LoadOptions,
+) -> Result<buffers::SceneBuffers> {
+    if spp == 0 {
+        anyhow::bail!("--spp must be at least 1");
+    }
+    let scene = caustic::load_scene_with(scene_path, defines, options)?;
+    buffers::build(&scene)
+}
+
 fn cmd_bench(
     scene_path: &Path,
     defines: &[(String, String)],
@@ -385,11 +399,7 @@ fn cmd_bench(
     spp: u32,
     options: LoadOptions,
 ) -> Result<()> {
-    if spp == 0 {
-        anyhow::bail!("--spp must be at least 1");
-    }
-    let scene = caustic::load_scene_with(scene_path, defines, options)?;
-    let buffers = buffers::build(&scene)?;
+    let buffers = bench_buffers(scene_path, defines, spp, options)?;
     say!("| backend | resolution | spp | seconds | Msamples/s |");
     say!("|---|---|---|---|---|");
     for &choice in choices {
@@ -425,11 +435,7 @@ fn cmd_bench_scaling(
     spp: u32,
     options: LoadOptions,
 ) -> Result<()> {
-    if spp == 0 {
-        anyhow::bail!("--spp must be at least 1");
-    }
-    let scene = caustic::load_scene_with(scene_path, defines, options)?;
-    let buffers = buffers::build(&scene)?;
+    let buffers = bench_buffers(scene_path, defines, spp, options)?;
     let all = backend::resolve_gpus(gpus, &backend::gpu::adapter_types(), false)?;
     let mut counts: Vec<usize> = (0..).map(|k| 1usize << k).take_while(|&c| c < all.len()).collect();
     counts.push(all.len());
