@@ -95,3 +95,34 @@ pub fn max_abs_difference(a: &Film, b: &Film) -> f32 {
         .flat_map(|(p, q)| (0..3).map(move |c| (p[c] - q[c]).abs()))
         .fold(0.0f32, f32::max)
 }
+
+/// A file of `tests/data` (small scenes and the Mitsuba references their scripts write).
+pub fn test_data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
+}
+
+/// Renders `tests/data/{scene}` with `defines` on `choice` and compares it with the Mitsuba reference
+/// `tests/data/{reference}` (rendered at `reference_spp`); prints `label` with the figures and returns
+/// (fraction of pixels passing the z-test, mean-luminance z-score).
+#[allow(clippy::too_many_arguments)]
+pub fn against_mitsuba_reference(
+    scene: &str,
+    defines_: &[(&str, &str)],
+    reference: &str,
+    reference_spp: f64,
+    choice: BackendChoice,
+    spp: u32,
+    seed: u32,
+    label: &str,
+) -> (f64, f64) {
+    let loaded = caustic::load_scene(&test_data(scene), &defines(defines_)).expect("loads");
+    let film = render_scene(&loaded, choice, spp, seed);
+    let reference = Film::load_exr(&test_data(reference)).expect("reference loads");
+    let c = caustic::compare::compare(&film, &reference, spp as f64 / reference_spp).expect("same size");
+    let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());
+    println!(
+        "{label}, {choice:?} {spp} spp: RMSE {:.5}, luminance ratio {:.4}, z {z:+.2}, pass {pass:.4}",
+        c.rmse, c.luminance_ratio
+    );
+    (pass, z)
+}

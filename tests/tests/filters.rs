@@ -5,29 +5,24 @@
 //! filter's image against the Lanczos reference). The sampling itself is checked in
 //! `caustic::filter_table`'s unit tests; light tracing's signed splats in `ptracer.rs`.
 use caustic::backend::BackendChoice;
-use caustic::compare::compare;
-use caustic::film::Film;
 use caustic_tests::*;
-use std::path::PathBuf;
 
 const REFERENCE_SPP: f64 = 16384.0;
 
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
-}
-
 /// caustic's render with `filter` against Mitsuba's with `reference`: (pass fraction, luminance z).
 fn check(choice: BackendChoice, spp: u32, filter: &str, reference_name: &str) -> (f64, f64) {
-    let scene = caustic::load_scene(&data("filters.xml"), &defines(&[("filter", filter)])).expect("loads");
-    let film = render_scene(&scene, choice, spp, 3);
-    let reference = Film::load_exr(&data(&format!("filters_{reference_name}.exr"))).expect("reference loads");
-    let c = compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
-    let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());
-    println!(
-        "{filter} against Mitsuba's {reference_name}, {choice:?} {spp} spp: RMSE {:.5}, luminance ratio {:.4}, z {z:+.2}, pass {pass:.4}",
-        c.rmse, c.luminance_ratio
-    );
-    (pass, z)
+    let label = format!("{filter} against Mitsuba's {reference_name}");
+    let reference = format!("filters_{reference_name}.exr");
+    against_mitsuba_reference(
+        "filters.xml",
+        &[("filter", filter)],
+        &reference,
+        REFERENCE_SPP,
+        choice,
+        spp,
+        3,
+        &label,
+    )
 }
 
 fn assert_agrees(choice: BackendChoice, spp: u32, filter: &str) {

@@ -4,29 +4,23 @@
 //! backend; per-pixel z-test and mean-luminance z-score, with a negative control (opacity 0.25 for
 //! 0.3). Integrators other than `path` refuse masks for now.
 use caustic::backend::BackendChoice;
-use caustic::compare::compare;
-use caustic::film::Film;
 use caustic_tests::*;
-use std::path::PathBuf;
 
 const REFERENCE_SPP: f64 = 16384.0;
 
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
-}
-
 fn check(choice: BackendChoice, spp: u32, opacity: &str) -> (f64, f64) {
-    let scene =
-        caustic::load_scene(&data("mask_cards.xml"), &defines(&[("opacity", opacity)])).expect("loads");
-    let film = render_scene(&scene, choice, spp, 5);
-    let reference = Film::load_exr(&data("mask_cards.exr")).expect("reference loads");
-    let c = compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
-    let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());
-    println!(
-        "mask cards {choice:?} {spp} spp, opacity {opacity}: RMSE {:.5}, luminance ratio {:.4}, z {z:+.2}, pass {pass:.4}",
-        c.rmse, c.luminance_ratio
-    );
-    (pass, z)
+    let label = format!("mask cards, opacity {opacity}");
+    let defines = [("opacity", opacity)];
+    against_mitsuba_reference(
+        "mask_cards.xml",
+        &defines,
+        "mask_cards.exr",
+        REFERENCE_SPP,
+        choice,
+        spp,
+        5,
+        &label,
+    )
 }
 
 #[test]
@@ -48,7 +42,7 @@ fn mask_gpu_matches_mitsuba_volpath() {
 
 #[test]
 fn integrators_other_than_path_refuse_masks() {
-    let mut scene = caustic::load_scene(&data("mask_cards.xml"), &[]).expect("loads");
+    let mut scene = caustic::load_scene(&test_data("mask_cards.xml"), &[]).expect("loads");
     for choice in [
         caustic::scene::IntegratorChoice::Direct,
         caustic::scene::IntegratorChoice::Ptracer,

@@ -6,29 +6,14 @@
 //! `rough_textures.py`), per-pixel z-test and mean-luminance z-score on the CPU and the GPU backend,
 //! with a negative control (the floor's rough checks at 0.3 for 0.4).
 use caustic::backend::BackendChoice;
-use caustic::compare::compare;
-use caustic::film::Film;
 use caustic_tests::*;
-use std::path::PathBuf;
 
 const REFERENCE_SPP: f64 = 16384.0;
 
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
-}
-
 fn check(choice: BackendChoice, spp: u32, alpha1: &str) -> (f64, f64) {
-    let scene =
-        caustic::load_scene(&data("rough_textures.xml"), &defines(&[("alpha1", alpha1)])).expect("loads");
-    let film = render_scene(&scene, choice, spp, 7);
-    let reference = Film::load_exr(&data("rough_textures.exr")).expect("reference loads");
-    let c = compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
-    let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());
-    println!(
-        "rough textures {choice:?} {spp} spp, alpha1 {alpha1}: RMSE {:.5}, luminance ratio {:.4}, z {z:+.2}, pass {pass:.4}",
-        c.rmse, c.luminance_ratio
-    );
-    (pass, z)
+    let label = format!("rough textures, alpha1 {alpha1}");
+    let (scene, reference) = ("rough_textures.xml", "rough_textures.exr");
+    against_mitsuba_reference(scene, &[("alpha1", alpha1)], reference, REFERENCE_SPP, choice, spp, 7, &label)
 }
 
 #[test]
