@@ -2,6 +2,7 @@
 //! backends, render sessions, progressive rendering, image output, comparison and error-against-time
 //! curves. No shading code lives here: all of it is in `caustic-kernel`.
 pub mod backend;
+pub mod batch;
 pub mod buffers;
 pub mod checkpoint;
 pub mod compare;
@@ -16,11 +17,13 @@ pub mod mitsuba;
 #[cfg(feature = "mpi")]
 pub mod mpi;
 pub mod obj_scene;
+pub mod ranked;
 pub mod ranks;
 pub mod render;
 pub mod scene;
 pub mod schedule;
 pub mod session;
+pub mod shares;
 pub mod tev;
 
 use anyhow::Result;

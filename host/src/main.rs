@@ -22,11 +22,19 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render a scene (Mitsuba 3 XML or OBJ/MTL) to an image.
+    /// Render a scene (Mitsuba 3 XML or OBJ/MTL) to an image; or several scenes, or variants, one
+    /// image each (spread over the ranks under mpirun).
     Render {
+        /// The scenes: Mitsuba 3 XML or OBJ (with its MTL).
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
         #[command(flatten)]
         run: RunArgs,
+        /// One image per value (and per combination, repeated): `--vary res=256,512`.
+        #[arg(long, value_parser = caustic::batch::parse_vary)]
+        vary: Vec<(String, Vec<String>)>,
         /// Output image: .exr (linear float), .png or .ppm (sRGB). Default: SCENE's name with .exr.
+        /// With several images, a folder for them (named SCENE-name=value….exr).
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Also write the per-pixel variance of the estimate to OUTPUT.variance.exr.
@@ -62,6 +70,8 @@ enum Command {
     /// Error against render time: render progressively and compare with a reference at 1, 2, 4, …
     /// samples per pixel; prints a table, optionally writes CSV and an SVG plot (log–log).
     Convergence {
+        /// The scene: Mitsuba 3 XML or OBJ (with its MTL).
+        scene: PathBuf,
         #[command(flatten)]
         run: RunArgs,
         /// Reference image (EXR) of the same size.
@@ -99,8 +109,6 @@ enum Command {
 /// What `render` and `convergence` share: the scene and how to render it.
 #[derive(clap::Args)]
 struct RunArgs {
-    /// The scene: Mitsuba 3 XML or OBJ (with its MTL).
-    scene: PathBuf,
     #[arg(long, value_enum, default_value = "auto")]
     backend: BackendChoice,
     /// GPUs to render on: `all` hardware adapters, the first N, or adapter indices (`0,2`; an index
@@ -157,10 +165,7 @@ fn main() {
         }
     }
     let result = match cli.command {
-        Command::Render { run, output, variance, quiet, checkpoint, checkpoint_every, tev } => {
-            let output = output.unwrap_or_else(|| {
-                PathBuf::from(run.scene.file_stem().unwrap_or_default()).with_extension("exr")
-            });
+        Command::Render { scenes, run, vary, output, variance, quiet, checkpoint, checkpoint_every, tev } => {
             // An interval too long for a Duration (`inf`) means: never between passes.
             let every = Duration::try_from_secs_f64(checkpoint_every.max(0.0)).unwrap_or(Duration::MAX);
             // Under mpirun (an MPI build): this process renders its share, rank 0 writes the image.
@@ -176,31 +181,36 @@ fn main() {
             let ranks = world.as_ref().map(|w| w as &dyn caustic::ranks::Ranks);
             #[cfg(not(feature = "mpi"))]
             let ranks = None;
-            cmd_render(
-                ranks,
-                &RenderJob {
-                    scene: run.scene,
-                    defines: run.define,
-                    backend: run.backend,
-                    gpus: run.gpus,
-                    spp: run.spp,
-                    seed: run.seed,
-                    strict: run.strict,
-                    output,
-                    variance,
-                    progress_bar: !quiet,
-                    checkpoint: checkpoint.map(|path| (path, every)),
-                    tev,
-                    integrator: match run.integrator.as_slice() {
-                        [] => None,
-                        [one] => Some(*one),
-                        _ => {
-                            eprintln!("error: render takes one --integrator (convergence compares several)");
-                            std::process::exit(2);
-                        }
-                    },
+            let template = RenderJob {
+                scene: PathBuf::new(),
+                defines: run.define,
+                backend: run.backend,
+                gpus: run.gpus,
+                spp: run.spp,
+                seed: run.seed,
+                strict: run.strict,
+                output: PathBuf::new(),
+                variance,
+                progress_bar: !quiet,
+                checkpoint: checkpoint.map(|path| (path, every)),
+                tev,
+                integrator: match run.integrator.as_slice() {
+                    [] => None,
+                    [one] => Some(*one),
+                    _ => {
+                        eprintln!("error: render takes one --integrator (convergence compares several)");
+                        std::process::exit(2);
+                    }
                 },
-            )
+            };
+            match caustic::batch::jobs(&template, &scenes, &vary, output.as_deref()) {
+                Ok(jobs) if jobs.len() == 1 => cmd_render(ranks, &jobs[0]),
+                Ok(jobs) => cmd_batch(ranks, &jobs),
+                Err(e) => Err(e),
+            }
+        }
+        Command::Convergence { scene, run, reference, csv, plot } => {
+            cmd_convergence(&scene, &run, &reference, csv.as_deref(), plot.as_deref())
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
             cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref())
@@ -211,9 +221,6 @@ fn main() {
             } else {
                 cmd_bench(&scene, &define, &backend, &gpus, spp, LoadOptions { strict })
             }
-        }
-        Command::Convergence { run, reference, csv, plot } => {
-            cmd_convergence(&run, &reference, csv.as_deref(), plot.as_deref())
         }
     };
     if let Err(e) = result {
@@ -260,6 +267,51 @@ fn cmd_render(ranks: Option<&dyn caustic::ranks::Ranks>, job: &RenderJob) -> Res
     Ok(())
 }
 
+/// Several images: this process renders its share of them (every n-th under mpirun), one line each.
+/// A failed image is reported and the others still rendered; the ranks wait for each other before
+/// exiting, so that one rank's failure does not make mpirun end the others' renders.
+fn cmd_batch(ranks: Option<&dyn caustic::ranks::Ranks>, jobs: &[RenderJob]) -> Result<()> {
+    let (rank, size) = ranks.map_or((0, 1), |r| (r.rank(), r.size()));
+    let who = ranks.filter(|_| size > 1).map(|r| format!("{}: ", r.name(rank))).unwrap_or_default();
+    let mut failed = 0;
+    for i in caustic::batch::mine(jobs.len(), rank, size) {
+        let mut job = jobs[i].clone();
+        if size > 1 {
+            match session::rank_gpus(&job, rank) {
+                Ok(gpus) => job.gpus = gpus,
+                Err(e) => {
+                    eprintln!("error: {who}{}: {}", job.output.display(), error_chain(&e));
+                    failed += 1;
+                    continue;
+                }
+            }
+        }
+        match session::render_to_file(&job) {
+            Ok(r) => say!(
+                "{who}{} | {}x{} | {} spp | {:.2} s | {:.2} Msamples/s | {}",
+                r.backend,
+                r.width,
+                r.height,
+                r.spp,
+                r.seconds,
+                r.msamples_per_second(),
+                job.output.display()
+            ),
+            Err(e) => {
+                eprintln!("error: {who}{}: {}", job.output.display(), error_chain(&e));
+                failed += 1;
+            }
+        }
+    }
+    if let Some(ranks) = ranks {
+        ranks.barrier();
+    }
+    if failed > 0 {
+        anyhow::bail!("{who}{failed} of this process's images failed (above)");
+    }
+    Ok(())
+}
+
 fn cmd_compare(
     image: &Path,
     reference: &Path,
@@ -294,10 +346,15 @@ fn cmd_compare(
     Ok(())
 }
 
-fn cmd_convergence(run: &RunArgs, reference: &Path, csv: Option<&Path>, plot: Option<&Path>) -> Result<()> {
+fn cmd_convergence(
+    scene_path: &Path,
+    run: &RunArgs,
+    reference: &Path,
+    csv: Option<&Path>,
+    plot: Option<&Path>,
+) -> Result<()> {
     use caustic::convergence;
-    let RunArgs { scene: scene_path, backend: choice, gpus, spp, define: defines, seed, integrator, strict } =
-        run;
+    let RunArgs { backend: choice, gpus, spp, define: defines, seed, integrator, strict } = run;
     let (choice, seed) = (*choice, *seed);
     for path in [csv, plot].into_iter().flatten() {
         caustic::film::check_writable(path)?;

@@ -1,23 +1,54 @@
-//! One image rendered by several processes (MPI ranks, `--features mpi`: `mpi.rs`): each takes a
-//! contiguous share of the sample indices, and the accumulations are summed on rank 0, which writes
-//! the image. Random numbers are a function of (seed, pixel, sample, dimension), so the shares add
-//! up to exactly the one-process estimator, up to the order of the float sums.
+//! One image rendered by several processes (MPI ranks, `--features mpi`: `mpi.rs`): what the render
+//! needs from them, kept apart from MPI so that the session (`ranked.rs`) builds without it. Rank 0
+//! hands out chunks of the sample indices (`shares.rs`) and the accumulations are summed on rank
+//! 0, which writes the image. Random numbers are a function of (seed, pixel, sample, dimension), so
+//! the chunks add up to exactly the one-process estimator, up to the order of the float sums.
 use crate::film::Accumulation;
+use crate::shares::Work;
 use anyhow::Result;
+use std::sync::Arc;
+use std::time::Duration;
+
+/// Writes out what rank 0 has summed when the render cannot finish, given why (`Plan::lost`).
+pub type Lost = Arc<dyn Fn(&str) + Send + Sync>;
+
+/// What rank 0 hands out.
+pub struct Plan {
+    /// `[0, start)` is in rank 0's accumulation already (a resumed checkpoint).
+    pub start: u32,
+    pub spp: u32,
+    /// Interval between checkpoints (`None`: none).
+    pub every: Option<Duration>,
+    /// Follows the samples finished by all ranks.
+    pub progress: indicatif::ProgressBar,
+    /// Called (on rank 0) when a rank fails or stops responding, or a signal arrives: writes what
+    /// was summed and says why the render stopped; the job ends after it.
+    pub lost: Lost,
+}
 
 /// The processes of one render, as this one sees them.
 pub trait Ranks {
     fn rank(&self) -> usize;
     fn size(&self) -> usize;
+    /// `rank R on HOST`, for messages.
+    fn name(&self, rank: usize) -> String;
     /// Sums every rank's `accum` on rank 0: `Some(total)` there, `None` on the others. Every rank
     /// must call it (a collective operation).
     fn reduce(&self, accum: &Accumulation) -> Result<Option<Accumulation>>;
-}
-
-/// Rank `rank` of `size`'s samples: `[first, end)`, as equal as whole samples allow.
-pub fn share(spp: u32, rank: usize, size: usize) -> (u32, u32) {
-    let at = |r: usize| (spp as u64 * r as u64 / size as u64) as u32;
-    (at(rank), at(rank + 1))
+    /// Every rank says whether it is ready (`Some`: rank 0 gives the first sample to render, a
+    /// resumed checkpoint's), or could not start (`None`, having said why). Rank 0's start for
+    /// all, or an error naming every rank that could not start. Collective.
+    fn agree(&self, start: Option<u32>) -> Result<u32>;
+    /// Rank 0: starts handing out the samples (a thread of its own answers the other ranks).
+    fn dispatch(&self, plan: Plan) -> Result<()>;
+    /// What this rank does next, having finished what it had.
+    fn next_work(&self) -> Result<Work>;
+    /// Rank 0, after the final sum: samples per pixel each rank rendered.
+    fn shares(&self) -> Vec<u64>;
+    /// This rank's render failed: rank 0 names it, writes what it had summed and ends the job.
+    fn fail(&self, error: &anyhow::Error) -> !;
+    /// Waits until every rank gets here.
+    fn barrier(&self);
 }
 
 /// The hardware GPUs (indices among `candidates`) that rank `local_rank` of `local_size` ranks
@@ -38,19 +69,6 @@ pub fn local_rank() -> (usize, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn shares_cover_every_sample_once() {
-        for (spp, size) in [(64, 3), (5, 3), (2, 3), (1, 1), (65536, 64)] {
-            let shares: Vec<(u32, u32)> = (0..size).map(|r| share(spp, r, size)).collect();
-            assert_eq!(shares[0].0, 0);
-            assert_eq!(shares[size - 1].1, spp);
-            assert!(shares.windows(2).all(|w| w[0].1 == w[1].0), "{shares:?}");
-            let (min, max) =
-                shares.iter().fold((u32::MAX, 0), |(lo, hi), s| (lo.min(s.1 - s.0), hi.max(s.1 - s.0)));
-            assert!(max - min <= 1, "{spp} over {size}: {shares:?}");
-        }
-    }
 
     #[test]
     fn ranks_of_one_node_split_its_gpus() {

@@ -137,8 +137,33 @@ pub fn render_observed(
     spp: u32,
     seed: u32,
     checkpoints: &[u32],
+    observer: impl PassObserver,
+) -> Result<RenderStats> {
+    let span = Span { start, end: spp, spp };
+    render_span(backend, buffers, span, seed, checkpoints, &mut Vec::new(), observer)
+}
+
+/// The samples `[start, end)` of a render of `spp` samples per pixel (an MPI rank's chunk).
+#[derive(Clone, Copy, Debug)]
+pub struct Span {
+    pub start: u32,
+    pub end: u32,
+    pub spp: u32,
+}
+
+/// `render_observed` over a span of the samples. `per_pass` holds each device's pass size and is
+/// carried from one span to the next (empty at first), so that a rank rendering many chunks does
+/// not start every chunk again at one sample per pass.
+pub fn render_span(
+    backend: &mut dyn Backend,
+    buffers: &SceneBuffers,
+    span: Span,
+    seed: u32,
+    checkpoints: &[u32],
+    per_pass: &mut Vec<u32>,
     mut observer: impl PassObserver,
 ) -> Result<RenderStats> {
+    let Span { start, end, spp } = span;
     let mut one;
     // (Asked twice: a borrow returned from one arm of a match cannot be reused in the other.)
     let lanes: &mut dyn Lanes = if backend.lanes().is_some() {
@@ -154,14 +179,16 @@ pub fn render_observed(
         MAX_SAMPLES_PER_PASS
     };
     let mut samples = Samples::new(start);
-    let mut per_pass = vec![1u32; n];
+    if per_pass.len() != n {
+        *per_pass = vec![1u32; n];
+    }
     let mut running: Vec<Option<(u32, u32)>> = vec![None; n];
     let (clock, mut untimed) = (Instant::now(), Duration::ZERO);
     let mut passes = 0u32;
     let mut resting = false;
-    while samples.prefix() < spp {
+    while samples.prefix() < end {
         let stop =
-            checkpoints.iter().copied().filter(|&c| c > samples.prefix()).min().unwrap_or(spp).min(spp);
+            checkpoints.iter().copied().filter(|&c| c > samples.prefix()).min().unwrap_or(end).min(end);
         if !resting {
             for lane in 0..n {
                 if running[lane].is_some() || !lanes.is_alive(lane) {
@@ -178,7 +205,7 @@ pub fn render_observed(
             }
         }
         if running.iter().all(Option::is_none) {
-            bail!("no pass to run at {} of {spp} spp (internal error)", samples.prefix());
+            bail!("no pass to run at {} of {end} spp (internal error)", samples.prefix());
         }
         let (lane, result) = lanes.finish();
         let range = running[lane].take().expect("the lane was running");

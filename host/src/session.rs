@@ -81,61 +81,38 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
     Ok(render_share(job, None)?.expect("one process writes the image"))
 }
 
-/// `render_to_file` as one of several processes (`ranks`: MPI): this one renders its share of the
-/// samples and rank 0 sums the shares and writes the image (`Some` report there, `None` elsewhere).
+/// `render_to_file` as one of several processes (`ranks`: MPI, `ranked.rs`): this one renders the
+/// chunks of samples it is handed and rank 0 sums them and writes the image (`Some` report there,
+/// `None` elsewhere).
 pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option<RenderReport>> {
-    let (rank, size) = ranks.map_or((0, 1), |r| (r.rank(), r.size()));
+    if let Some(ranks) = ranks.filter(|r| r.size() > 1) {
+        return crate::ranked::render_ranked(job, ranks);
+    }
     let output = job.output.as_path();
     film::check_output_path(output)?;
     film::check_writable(output)?;
     if let Some((path, _)) = &job.checkpoint {
-        if size > 1 {
-            bail!("--checkpoint is not supported with several MPI ranks yet (each rank holds a share)");
-        }
         check_checkpoint_path(path, output)?;
     }
-    let options = crate::LoadOptions { strict: job.strict };
-    let mut scene = crate::load_scene_with(&job.scene, &job.defines, options)?;
-    if let Some(choice) = job.integrator {
-        scene.integrator = scene.integrator.overridden(choice);
-    }
-    let spp = job.spp.unwrap_or(scene.sensor.spp);
-    if spp == 0 {
-        bail!("--spp must be at least 1");
-    }
-    let buffers =
-        buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", job.scene.display()))?;
-    let gpus = if size > 1 { rank_gpus(job, rank)? } else { job.gpus.clone() };
-    let mut backend = backend::create_on(job.backend, &gpus, &buffers)?;
+    let (buffers, spp) = prepare_scene(job)?;
+    let mut backend = backend::create_on(job.backend, &job.gpus, &buffers)?;
     let seed = job.seed;
     // Hashing every scene buffer is only worth it when there is a checkpoint to match.
     let checkpoint = job
         .checkpoint
         .as_ref()
         .map(|(path, every)| (path, *every, checkpoint::fingerprint(&buffers, seed, spp)));
-    // This process's samples: [start, end) (all of them, less a checkpoint's, for one process).
+    // The samples to render: all of them, less a checkpoint's.
     let (start, end) = match checkpoint {
         Some((path, _, fingerprint)) => (resume(path, backend.as_mut(), fingerprint, spp)?, spp),
-        None => ranks::share(spp, rank, size),
+        None => (0, spp),
     };
-    // Rank 0's share starts at 0: its bar counts its own samples to its share's end.
-    let bar = if job.progress_bar && rank == 0 {
-        indicatif::ProgressBar::new(end as u64)
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} spp ({eta} left)")
-            .expect("a valid progress template")
-            .progress_chars("=> "),
-    );
-    bar.set_position(start as u64);
+    let bar = progress_bar(job.progress_bar, end, start);
     let (width, height) = (buffers.params.width, buffers.params.height);
     let name = output.file_name().unwrap_or_default().to_string_lossy().to_string();
     let viewer = match job
         .tev
         .as_deref()
-        .filter(|_| rank == 0)
         .map(|address| tev::TevStream::connect(address, &name, width, height))
         .transpose()
     {
@@ -158,7 +135,6 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         size: (width, height),
         done_at: &done_at,
     };
-    let clock = Instant::now();
     let mut seconds = 0.0;
     if start < end {
         let stop = if end < spp { vec![end] } else { vec![] };
@@ -166,17 +142,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
             render::render_observed(backend.as_mut(), &buffers, start, spp, seed, &stop, observer)?.seconds;
     }
     bar.finish_and_clear();
-    let accum = match ranks.filter(|_| size > 1) {
-        None => backend.read_accum()?,
-        Some(ranks) => match ranks.reduce(&backend.read_accum()?)? {
-            Some(total) => {
-                // Until the last share is summed: the ranks' render as a whole.
-                seconds = clock.elapsed().as_secs_f64();
-                total
-            }
-            None => return Ok(None),
-        },
-    };
+    let accum = backend.read_accum()?;
     // A signal stopped the render before its end (the image says so; the checkpoint is kept).
     let interrupted = crate::interrupt::requested().filter(|_| done_at.get() < end);
     let spp_done = if interrupted.is_some() { done_at.get() } else { spp };
@@ -193,13 +159,12 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         // The image is safe on disk: the checkpoint has served.
         std::fs::remove_file(path).ok();
     }
-    let described = backend.describe();
     Ok(Some(RenderReport {
-        backend: if size > 1 { format!("{size} MPI ranks, rank 0 on {described}") } else { described },
+        backend: backend.describe(),
         width,
         height,
         spp,
-        resumed_at: if size > 1 { 0 } else { start },
+        resumed_at: start,
         seconds,
         invalid_samples: film.invalid_samples,
         interrupted,
@@ -207,9 +172,37 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
     }))
 }
 
+/// Loads the scene with the job's overrides and builds its buffers; the samples per pixel to render.
+pub(crate) fn prepare_scene(job: &RenderJob) -> Result<(buffers::SceneBuffers, u32)> {
+    let options = crate::LoadOptions { strict: job.strict };
+    let mut scene = crate::load_scene_with(&job.scene, &job.defines, options)?;
+    if let Some(choice) = job.integrator {
+        scene.integrator = scene.integrator.overridden(choice);
+    }
+    let spp = job.spp.unwrap_or(scene.sensor.spp);
+    if spp == 0 {
+        bail!("--spp must be at least 1");
+    }
+    let buffers =
+        buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", job.scene.display()))?;
+    Ok((buffers, spp))
+}
+
+/// The progress bar (hidden unless `show`), counting samples per pixel to `len` from `position`.
+pub(crate) fn progress_bar(show: bool, len: u32, position: u32) -> indicatif::ProgressBar {
+    let bar = if show { indicatif::ProgressBar::new(len as u64) } else { indicatif::ProgressBar::hidden() };
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} spp ({eta} left)")
+            .expect("a valid progress template")
+            .progress_chars("=> "),
+    );
+    bar.set_position(position as u64);
+    bar
+}
+
 /// The GPUs a rank uses: with `--gpus all` and several ranks on a node, every n-th GPU of the node
 /// (one rank per GPU, or one rank per node with all of them); an explicit `--gpus` as given.
-fn rank_gpus(job: &RenderJob, rank: usize) -> Result<GpuSelection> {
+pub fn rank_gpus(job: &RenderJob, rank: usize) -> Result<GpuSelection> {
     let (local_rank, local_size) = ranks::local_rank();
     if job.gpus != GpuSelection::All || job.backend == BackendChoice::Cpu || local_size == 1 {
         return Ok(job.gpus.clone());
@@ -304,7 +297,7 @@ impl render::PassObserver for Observer<'_> {
 /// Refuses a checkpoint file that is also the image or its variance file: the finished render is
 /// saved there and then the checkpoint is deleted, which would delete the image just written. The
 /// variance file is refused even without `--variance`, since `compare` reads it beside the image.
-fn check_checkpoint_path(checkpoint: &Path, output: &Path) -> Result<()> {
+pub(crate) fn check_checkpoint_path(checkpoint: &Path, output: &Path) -> Result<()> {
     for (what, other) in
         [("output image", output.to_path_buf()), ("variance file", film::variance_path(output))]
     {
@@ -342,7 +335,7 @@ fn same_file(a: &Path, b: &Path) -> bool {
 
 /// Writes the finished image; if `output` cannot be written, keeps the render in the temporary
 /// directory and says where in the error.
-fn save_or_recover(film: &Film, output: &Path) -> Result<()> {
+pub(crate) fn save_or_recover(film: &Film, output: &Path) -> Result<()> {
     if let Err(e) = film.save(output) {
         let fallback = std::env::temp_dir().join(format!("caustic-recovered-{}.exr", std::process::id()));
         match film.save(&fallback) {
@@ -355,7 +348,7 @@ fn save_or_recover(film: &Film, output: &Path) -> Result<()> {
 
 /// Loads `path` into the backend if it exists and carries this render's `fingerprint` (scene, seed
 /// and sample count); returns the samples per pixel it holds (0 without a checkpoint).
-fn resume(path: &Path, backend: &mut dyn Backend, fingerprint: u64, spp: u32) -> Result<u32> {
+pub(crate) fn resume(path: &Path, backend: &mut dyn Backend, fingerprint: u64, spp: u32) -> Result<u32> {
     if !path.exists() {
         return Ok(0);
     }
@@ -372,7 +365,7 @@ fn resume(path: &Path, backend: &mut dyn Backend, fingerprint: u64, spp: u32) ->
 }
 
 /// Guarantees a finite image. The kernel already drops non-finite samples; report them.
-fn sanitize(film: &mut Film) {
+pub(crate) fn sanitize(film: &mut Film) {
     if film.invalid_samples > 0 {
         eprintln!("warning: {} samples were not finite and were counted as black", film.invalid_samples);
     }

@@ -1,11 +1,12 @@
 //! `mpirun -n N caustic render …` (built with `--features mpi`) writes the image one process
-//! writes with the same seed: the ranks' sample shares sum to the same estimator, so only the
-//! order of the float sums differs. Runs when the crate is built with the feature and `mpirun` is
+//! writes with the same seed: the ranks' chunks of samples sum to the same estimator, so only the
+//! order of the float sums differs; also with a slow rank, across checkpoints, when a rank dies,
+//! and for a batch of variants. Runs when the crate is built with the feature and `mpirun` is
 //! on the PATH (CI installs Open MPI and runs it: `.ci/run`).
 #![cfg(feature = "mpi")]
 use caustic::film::Film;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output};
 
 /// Relative tolerance per pixel value: a pixel's mean sums at most 48 samples (or 48 batches of
 /// resolved splats), each sum of positive f32 terms exact to (terms)·2⁻²⁴ ≈ 2.9e-6 in any order.
@@ -26,27 +27,81 @@ fn mpirun() -> Option<Vec<String>> {
     Some(cmd)
 }
 
-fn render(launcher: &[String], integrator: &str, out: &Path) {
-    let exe = env!("CARGO_BIN_EXE_caustic");
+/// The shared arguments: the Cornell box at 24×24, 48 spp, seed 3, on the CPU.
+fn args(integrator: &str, out: &Path) -> Vec<String> {
     let scene = scene();
     let args = ["render", scene.to_str().unwrap(), "-D", "res=24", "--backend", "cpu", "--spp", "48"];
-    let args: Vec<&str> =
-        args.iter().copied().chain(["--integrator", integrator, "--seed", "3", "-q", "-o"]).collect();
-    let (program, rest) = match launcher.split_first() {
-        Some((p, rest)) => (p.as_str(), rest.iter().map(String::as_str).chain([exe]).collect::<Vec<_>>()),
-        None => (exe, vec![]),
-    };
-    let output = Command::new(program)
-        .args(rest)
-        .args(&args)
-        .arg(out)
-        .env("XDG_RUNTIME_DIR", "/tmp")
-        .output()
-        .expect("the render starts");
-    let stdout = String::from_utf8_lossy(&output.stdout);
+    args.iter()
+        .copied()
+        .chain(["--integrator", integrator, "--seed", "3", "-q", "-o", out.to_str().unwrap()])
+        .map(String::from)
+        .collect()
+}
+
+/// Runs `caustic` under `launcher` (none: one process) with `args`, `env` set (and passed to
+/// every rank).
+fn run(launcher: &[String], args: &[String], env: &[(&str, &str)]) -> Output {
+    let exe = env!("CARGO_BIN_EXE_caustic");
+    let mut rest: Vec<String> = launcher.iter().skip(1).cloned().collect();
+    if !launcher.is_empty() {
+        for (name, _) in env {
+            rest.extend(["-x".to_string(), name.to_string()]);
+        }
+        rest.push(exe.to_string());
+    }
+    // Open MPI 4's mpirun races another one starting at the same moment for its session folder
+    // (`/tmp/ompi.HOST.UID`: "mkdir … File exists", seen once in 10 runs of these tests): one at a time.
+    static ONE_MPIRUN: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _turn = (!launcher.is_empty()).then(|| ONE_MPIRUN.lock().unwrap_or_else(|e| e.into_inner()));
+    let program = launcher.first().map_or(exe, String::as_str);
+    let mut command = Command::new(program);
+    command.args(rest).args(args).env("XDG_RUNTIME_DIR", "/tmp");
+    for (name, value) in env {
+        command.env(name, value);
+    }
+    command.output().expect("the render starts")
+}
+
+/// `run` that must succeed with one line on stdout (rank 0 alone reports); that line.
+fn render(launcher: &[String], args: &[String], env: &[(&str, &str)]) -> String {
+    let output = run(launcher, args, env);
+    let stdout = String::from_utf8_lossy(&output.stdout).to_string();
     assert!(output.status.success(), "{launcher:?}: {stdout}{}", String::from_utf8_lossy(&output.stderr));
-    // Rank 0 alone reports.
     assert_eq!(stdout.lines().count(), 1, "{launcher:?}: {stdout}");
+    stdout
+}
+
+fn ranks(mpirun: &[String], n: usize) -> Vec<String> {
+    mpirun.iter().cloned().chain(["-n".into(), n.to_string()]).collect()
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("caustic-mpi-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Every pixel within `TOLERANCE` of the reference's.
+fn assert_same(got: &Path, want: &Film, what: &str) {
+    let got = Film::load_exr(got).unwrap();
+    assert_eq!((got.width, got.height), (want.width, want.height), "{what}");
+    for (i, (p, q)) in got.rgb.iter().zip(&want.rgb).enumerate() {
+        for c in 0..3 {
+            assert!(
+                (p[c] - q[c]).abs() <= TOLERANCE * p[c].abs().max(q[c].abs()),
+                "{what}: pixel {i}: {p:?} vs one process {q:?}"
+            );
+        }
+    }
+}
+
+/// The one-process image of `args(integrator, …)`, rendered into `dir`.
+fn one_process(dir: &Path, integrator: &str) -> Film {
+    let single = dir.join(format!("{integrator}-1.exr"));
+    render(&[], &args(integrator, &single), &[]);
+    let want = Film::load_exr(&single).unwrap();
+    assert!(want.rgb.iter().flatten().any(|&c| c > 0.0), "{integrator}: a black image proves nothing");
+    want
 }
 
 #[test]
@@ -55,28 +110,157 @@ fn mpi_ranks_render_the_one_process_image() {
         eprintln!("no mpirun on the PATH: the MPI render is not tested here");
         return;
     };
-    let dir = std::env::temp_dir().join(format!("caustic-mpi-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = temp_dir("equal");
     for integrator in ["path", "ptracer"] {
-        let single = dir.join(format!("{integrator}-1.exr"));
-        render(&[], integrator, &single);
-        let want = Film::load_exr(&single).unwrap();
-        assert!(want.rgb.iter().flatten().any(|&c| c > 0.0), "{integrator}: a black image proves nothing");
-        for ranks in [2, 3] {
-            let out = dir.join(format!("{integrator}-{ranks}.exr"));
-            let launcher: Vec<String> =
-                mpirun.iter().cloned().chain(["-n".into(), ranks.to_string()]).collect();
-            render(&launcher, integrator, &out);
-            let got = Film::load_exr(&out).unwrap();
-            for (i, (p, q)) in got.rgb.iter().zip(&want.rgb).enumerate() {
-                for c in 0..3 {
-                    assert!(
-                        (p[c] - q[c]).abs() <= TOLERANCE * p[c].abs().max(q[c].abs()),
-                        "{integrator}, {ranks} ranks: pixel {i}: {p:?} vs one process {q:?}"
-                    );
-                }
-            }
+        let want = one_process(&dir, integrator);
+        for n in [2, 3] {
+            let out = dir.join(format!("{integrator}-{n}.exr"));
+            render(&ranks(&mpirun, n), &args(integrator, &out), &[]);
+            assert_same(&out, &want, &format!("{integrator}, {n} ranks"));
         }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The samples per pixel each rank rendered, from rank 0's line (`spp by rank: 40 + 8`).
+fn spp_by_rank(line: &str) -> Vec<u64> {
+    let at = line.find("spp by rank: ").unwrap_or_else(|| panic!("no shares in {line}")) + 13;
+    let end = at + line[at..].find(')').unwrap();
+    line[at..end].split(" + ").map(|n| n.parse().unwrap()).collect()
+}
+
+/// Rank 1 slowed down (`CAUSTIC_MPI_TEST_SLOW`: 30 ms per sample per pixel, a 24×24 CPU sample
+/// per pixel takes well under 1 ms) takes fewer chunks: the fast rank renders most samples, and the
+/// image is still the one-process image.
+#[test]
+fn a_slow_rank_takes_fewer_samples() {
+    let Some(mpirun) = mpirun() else { return };
+    let dir = temp_dir("slow");
+    let want = one_process(&dir, "path");
+    let out = dir.join("slow.exr");
+    let line = render(&ranks(&mpirun, 2), &args("path", &out), &[("CAUSTIC_MPI_TEST_SLOW", "1:30")]);
+    let shares = spp_by_rank(&line);
+    assert_eq!(shares.iter().sum::<u64>(), 48, "{line}");
+    assert!(shares[0] >= 3 * shares[1], "the fast rank did not take more: {line}");
+    assert_same(&out, &want, "one slow rank");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Checkpoints cross between one process and MPI ranks, both ways, and a rank that dies
+/// (`CAUSTIC_MPI_TEST_EXIT`: rank 1 exits after its second checkpoint without telling MPI) is
+/// named with its host; rank 0 writes the partial image of what it had summed, and the checkpoint
+/// left behind resumes in one process to the one-process image.
+#[test]
+fn checkpoints_cross_between_one_process_and_ranks() {
+    use caustic::checkpoint::{fingerprint, Checkpoint};
+    use std::ops::ControlFlow::{Break, Continue};
+    let Some(mpirun) = mpirun() else { return };
+    let dir = temp_dir("checkpoint");
+    let want = one_process(&dir, "path");
+    let ckpt = dir.join("render.ckpt");
+    let with_ckpt = |out: &Path| -> Vec<String> {
+        let mut a = args("path", out);
+        a.extend(["--checkpoint", ckpt.to_str().unwrap(), "--checkpoint-every", "0"].map(String::from));
+        a
+    };
+
+    // One process's checkpoint at 12 of 48 spp (written through the library), resumed by 2 ranks.
+    let defines = vec![("res".to_string(), "24".to_string())];
+    let mut scene = caustic::load_scene(&scene(), &defines).unwrap();
+    scene.integrator = scene.integrator.overridden(caustic::scene::IntegratorChoice::Path);
+    let buffers = caustic::buffers::build(&scene).unwrap();
+    let mut backend = caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers).unwrap();
+    caustic::render::render_with_checkpoints(backend.as_mut(), &buffers, 0, 48, 3, &[12], |done, _, _| {
+        Ok(if done == 12 { Break(()) } else { Continue(()) })
+    })
+    .unwrap();
+    let accum = backend.read_accum().unwrap();
+    Checkpoint { scene: fingerprint(&buffers, 3, 48), seed: 3, spp_total: 48, spp_done: 12, accum }
+        .save(&ckpt)
+        .unwrap();
+    let out = dir.join("resumed-by-ranks.exr");
+    let line = render(&ranks(&mpirun, 2), &with_ckpt(&out), &[]);
+    assert!(line.contains("resumed at 12"), "{line}");
+    assert_eq!(spp_by_rank(&line).iter().sum::<u64>(), 36, "{line}");
+    assert!(!ckpt.exists(), "the checkpoint outlived the finished render");
+    assert_same(&out, &want, "a one-process checkpoint resumed by 2 ranks");
+
+    // Two ranks checkpoint at every chance; rank 1 dies.
+    let partial = dir.join("partial.exr");
+    let output = run(&ranks(&mpirun, 2), &with_ckpt(&partial), &[("CAUSTIC_MPI_TEST_EXIT", "1")]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "the job survived its rank's death: {stderr}");
+    let host = mpi_host();
+    assert!(stderr.contains(&format!("rank 1 on {host}")), "the lost rank is not named: {stderr}");
+    assert!(stderr.contains("partial.exr holds the"), "{stderr}");
+    let saved = Checkpoint::load(&ckpt).expect("the checkpoint is kept");
+    assert!(saved.spp_done > 0 && saved.spp_done < 48, "{}", saved.spp_done);
+    let image = Film::load_exr(&partial).expect("the partial image is written");
+    assert!(image.rgb.iter().flatten().all(|c| c.is_finite()));
+
+    // Resumed in one process: the one-process image.
+    let out = dir.join("resumed-by-one.exr");
+    let line = render(&[], &with_ckpt(&out), &[]);
+    assert!(line.contains(&format!("resumed at {}", saved.spp_done)), "{line}");
+    assert_same(&out, &want, "a 2-rank checkpoint resumed by one process");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The host name MPI gives this machine (`MPI_Get_processor_name`: the host name on Open MPI).
+fn mpi_host() -> String {
+    let out = Command::new("hostname").output().expect("hostname runs");
+    String::from_utf8_lossy(&out.stdout).trim().to_string()
+}
+
+/// A batch of 3 `--vary` variants over 2 ranks: every image is written once, by the rank that
+/// took it, and equals the image one process renders of that variant.
+#[test]
+fn a_batch_of_variants_spreads_over_ranks() {
+    let Some(mpirun) = mpirun() else { return };
+    let dir = temp_dir("batch");
+    let exe = env!("CARGO_BIN_EXE_caustic");
+    let scene = scene();
+    let batch: Vec<String> = [
+        "render",
+        scene.to_str().unwrap(),
+        "--vary",
+        "res=16,20,24",
+        "--backend",
+        "cpu",
+        "--spp",
+        "16",
+        "--seed",
+        "5",
+        "-q",
+        "-o",
+        dir.join("batch").to_str().unwrap(),
+    ]
+    .map(String::from)
+    .to_vec();
+    let output = run(&ranks(&mpirun, 2), &batch, &[]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success(), "{stdout}{}", String::from_utf8_lossy(&output.stderr));
+    let host = mpi_host();
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 3, "{stdout}");
+    for res in [16, 20, 24] {
+        let name = format!("cornell-box-res={res}.exr");
+        let by: Vec<&&str> = lines.iter().filter(|l| l.ends_with(&name)).collect();
+        assert_eq!(by.len(), 1, "{name}: {stdout}");
+        // Rank 0 takes variants 0 and 2, rank 1 variant 1.
+        let rank = if res == 20 { 1 } else { 0 };
+        assert!(by[0].starts_with(&format!("rank {rank} on {host}: ")), "{stdout}");
+        let single = dir.join(format!("single-{res}.exr"));
+        let out = Command::new(exe)
+            .args(["render", scene.to_str().unwrap(), "-D", &format!("res={res}")])
+            .args(["--backend", "cpu", "--spp", "16", "--seed", "5", "-q", "-o", single.to_str().unwrap()])
+            .env("XDG_RUNTIME_DIR", "/tmp")
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        let want = Film::load_exr(&single).unwrap();
+        assert_eq!(want.width, res);
+        assert_same(&dir.join("batch").join(&name), &want, &name);
     }
     std::fs::remove_dir_all(&dir).ok();
 }

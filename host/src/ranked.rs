@@ -1,0 +1,240 @@
+//! A render session over several MPI ranks: every rank loads the scene and renders the chunks of
+//! samples rank 0 hands it (`shares.rs`), the accumulations are summed on rank 0 at each checkpoint
+//! (which rank 0 writes, in the one-process format) and at the end (the image). If the render
+//! cannot finish (a rank fails, stops responding, or mpirun ends the job), rank 0 writes the image
+//! of what it last summed, marked partial, and names the rank.
+//!
+//! For tests only: `CAUSTIC_MPI_TEST_SLOW=R:MS` makes rank R sleep MS milliseconds per sample per
+//! pixel it renders (a slow rank); `CAUSTIC_MPI_TEST_EXIT=R` makes rank R exit at once, without
+//! telling MPI, when it receives its first chunk after its second checkpoint (a rank that dies;
+//! after the second, so that rank 0 has written the first).
+use crate::backend::{self, Backend};
+use crate::checkpoint::{self, Checkpoint};
+use crate::film::{self, Accumulation, Film};
+use crate::ranks::{Plan, Ranks};
+use crate::render::{self, PassObserver, Span};
+use crate::session::{self, RenderJob, RenderReport};
+use crate::shares::Work;
+use anyhow::Result;
+use std::ops::ControlFlow::{self, Continue};
+use std::sync::{Arc, Mutex, PoisonError};
+use std::time::{Duration, Instant};
+
+/// What rank 0 has summed: `[0, done)` of all ranks (at the last checkpoint).
+struct Summed {
+    accum: Option<Accumulation>,
+    done: u32,
+}
+
+/// One rank's render, ready to go.
+struct Prepared {
+    buffers: crate::buffers::SceneBuffers,
+    spp: u32,
+    backend: Box<dyn Backend>,
+    fingerprint: Option<u64>,
+    /// Rank 0: the samples a resumed checkpoint holds (then in its backend), and those sums.
+    start: u32,
+    resumed: Option<Accumulation>,
+}
+
+fn prepare(job: &RenderJob, rank: usize) -> Result<Prepared> {
+    if rank == 0 {
+        film::check_output_path(&job.output)?;
+        film::check_writable(&job.output)?;
+        if let Some((path, _)) = &job.checkpoint {
+            session::check_checkpoint_path(path, &job.output)?;
+        }
+    }
+    let (buffers, spp) = session::prepare_scene(job)?;
+    let gpus = session::rank_gpus(job, rank)?;
+    let mut backend = backend::create_on(job.backend, &gpus, &buffers)?;
+    let fingerprint = job.checkpoint.as_ref().map(|_| checkpoint::fingerprint(&buffers, job.seed, spp));
+    let (mut start, mut resumed) = (0, None);
+    if let (Some((path, _)), Some(fingerprint), 0) = (&job.checkpoint, fingerprint, rank) {
+        start = session::resume(path, backend.as_mut(), fingerprint, spp)?;
+        if start > 0 {
+            resumed = Some(backend.read_accum()?);
+        }
+    }
+    Ok(Prepared { buffers, spp, backend, fingerprint, start, resumed })
+}
+
+/// Renders `job` as one of `ranks` (more than one); rank 0 writes the image and returns `Some`.
+pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<RenderReport>> {
+    let (rank, size) = (ranks.rank(), ranks.size());
+    let prepared = prepare(job, rank);
+    if let Err(e) = &prepared {
+        eprintln!("error: {}: {e:#}", ranks.name(rank));
+    }
+    let start = ranks.agree(prepared.as_ref().ok().map(|p| p.start))?;
+    let Prepared { buffers, spp, mut backend, fingerprint, resumed, .. } =
+        prepared.expect("agree refuses a rank that could not start");
+    let (width, height) = (buffers.params.width, buffers.params.height);
+    let bar = session::progress_bar(job.progress_bar && rank == 0, spp, start);
+    let summed = Arc::new(Mutex::new(Summed { accum: resumed, done: start }));
+    if rank == 0 {
+        let out = Out { job: job.clone(), spp, size: (width, height) };
+        let summed = summed.clone();
+        ranks.dispatch(Plan {
+            start,
+            spp,
+            every: job.checkpoint.as_ref().map(|(_, every)| *every),
+            progress: bar.clone(),
+            lost: Arc::new(move |why: &str| out.write_lost(why, &summed)),
+        })?;
+    }
+    let clock = Instant::now();
+    let hooks = TestHooks::from_env(rank);
+    let chunk = |backend: &mut dyn Backend| -> Result<()> {
+        let mut per_pass = Vec::new();
+        let mut checkpoints = 0;
+        loop {
+            match ranks.next_work()? {
+                Work::Chunk { first, count } => {
+                    if checkpoints >= 2 && hooks.exit {
+                        // Test only: a rank that dies without a word (`CAUSTIC_MPI_TEST_EXIT`).
+                        std::process::exit(9);
+                    }
+                    let span = Span { start: first, end: first + count, spp };
+                    let observer = Chunk { rank };
+                    render::render_span(backend, &buffers, span, job.seed, &[], &mut per_pass, observer)?;
+                    std::thread::sleep(hooks.slow * count);
+                }
+                Work::Checkpoint { done } => {
+                    let total = ranks.reduce(&backend.read_accum()?)?;
+                    checkpoints += 1;
+                    if let Some(total) = total {
+                        let mut s = summed.lock().unwrap_or_else(PoisonError::into_inner);
+                        *s = Summed { accum: Some(total), done };
+                        if let (Some((path, _)), Some(scene)) = (&job.checkpoint, fingerprint) {
+                            let accum = s.accum.clone().expect("just summed");
+                            let c =
+                                Checkpoint { scene, seed: job.seed, spp_total: spp, spp_done: done, accum };
+                            if let Err(e) = c.save(path) {
+                                eprintln!("warning: {e:#}; the render goes on");
+                            }
+                        }
+                    }
+                }
+                Work::Finish { .. } => return Ok(()),
+            }
+        }
+    };
+    if let Err(e) = chunk(backend.as_mut()) {
+        ranks.fail(&e);
+    }
+    bar.finish_and_clear();
+    let mine = match backend.read_accum() {
+        Ok(a) => a,
+        Err(e) => ranks.fail(&e),
+    };
+    let Some(accum) = ranks.reduce(&mine)? else { return Ok(None) };
+    let seconds = clock.elapsed().as_secs_f64();
+    let mut film = Film::from_accum(width, height, &accum);
+    session::sanitize(&mut film);
+    session::save_or_recover(&film, &job.output)?;
+    if job.variance {
+        film.save_variance(&film::variance_path(&job.output))?;
+    }
+    if let Some((path, _)) = &job.checkpoint {
+        // The image is safe on disk: the checkpoint has served.
+        std::fs::remove_file(path).ok();
+    }
+    let shares: Vec<String> = ranks.shares().iter().map(u64::to_string).collect();
+    Ok(Some(RenderReport {
+        backend: format!(
+            "{size} MPI ranks (spp by rank: {}), rank 0 on {}",
+            shares.join(" + "),
+            backend.describe()
+        ),
+        width,
+        height,
+        spp,
+        resumed_at: start,
+        seconds,
+        invalid_samples: film.invalid_samples,
+        interrupted: None,
+        spp_done: spp,
+    }))
+}
+
+/// A chunk's pass loop: nothing to show between passes. A signal ends a rank other than 0 at
+/// once (rank 0's dispatcher writes what was summed; mpirun ends the ranks a second later anyway).
+struct Chunk {
+    rank: usize,
+}
+
+impl PassObserver for Chunk {
+    fn wants_rest(&mut self, _: f64) -> bool {
+        self.rank != 0 && crate::interrupt::requested().is_some()
+    }
+    fn at_rest(&mut self, _: u32, _: f64, _: &mut dyn Backend) -> Result<ControlFlow<()>> {
+        if let Some(signal) = crate::interrupt::requested().filter(|_| self.rank != 0) {
+            std::process::exit(crate::interrupt::exit_code(signal));
+        }
+        Ok(Continue(()))
+    }
+}
+
+/// Where rank 0 writes what it has when the render cannot finish.
+struct Out {
+    job: RenderJob,
+    spp: u32,
+    size: (u32, u32),
+}
+
+impl Out {
+    fn write_lost(&self, why: &str, summed: &Mutex<Summed>) {
+        let s = summed.lock().unwrap_or_else(PoisonError::into_inner);
+        let output = &self.job.output;
+        let Some(accum) = &s.accum else {
+            eprintln!(
+                "error: {why}; nothing had been summed on rank 0 yet (the ranks' sums meet at \
+                 checkpoints and at the end: use --checkpoint for long renders), so no image was written"
+            );
+            return;
+        };
+        let mut film = Film::from_accum(self.size.0, self.size.1, accum);
+        film.comment =
+            Some(format!("caustic: partial render, {} of {} spp (a rank was lost)", s.done, self.spp));
+        session::sanitize(&mut film);
+        let mut saved = session::save_or_recover(&film, output).map(|()| output.clone());
+        if let (Ok(_), true) = (&saved, self.job.variance) {
+            saved = film.save_variance(&film::variance_path(output)).map(|()| output.clone());
+        }
+        let resume = match &self.job.checkpoint {
+            Some((path, _)) => format!("; the same command with --checkpoint {} resumes", path.display()),
+            None => String::new(),
+        };
+        match saved {
+            Ok(path) => eprintln!(
+                "error: {why}; {} holds the {} of {} spp summed at the last checkpoint{resume}",
+                path.display(),
+                s.done,
+                self.spp
+            ),
+            Err(e) => {
+                eprintln!("error: {why}; the {} spp summed could not be written: {e:#}{resume}", s.done)
+            }
+        }
+    }
+}
+
+/// The test-only behaviours (module doc).
+struct TestHooks {
+    /// Sleep per sample per pixel rendered.
+    slow: Duration,
+    exit: bool,
+}
+
+impl TestHooks {
+    fn from_env(rank: usize) -> TestHooks {
+        let slow = std::env::var("CAUSTIC_MPI_TEST_SLOW").ok().and_then(|v| {
+            let (r, ms) = v.split_once(':')?;
+            (r.parse::<usize>().ok()? == rank).then_some(Duration::from_millis(ms.parse().ok()?))
+        });
+        let exit =
+            std::env::var("CAUSTIC_MPI_TEST_EXIT").ok().and_then(|v| v.parse::<usize>().ok()) == Some(rank);
+        TestHooks { slow: slow.unwrap_or(Duration::ZERO), exit }
+    }
+}
