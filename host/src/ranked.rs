@@ -7,7 +7,8 @@
 //! For tests only: `CAUSTIC_MPI_TEST_SLOW=R:MS` makes rank R sleep MS milliseconds per sample per
 //! pixel it renders (a slow rank); `CAUSTIC_MPI_TEST_EXIT=R` makes rank R exit at once, without
 //! telling MPI, when it receives its first chunk after its second checkpoint (a rank that dies;
-//! after the second, so that rank 0 has written the first).
+//! after the second, so that rank 0 has written the first); `CAUSTIC_MPI_TEST_FAIL=R` makes that
+//! chunk's render fail with an error instead (a rank whose device fails).
 use crate::backend::{self, Backend};
 use crate::checkpoint::{self, Checkpoint};
 use crate::film::{self, Accumulation, Film};
@@ -15,6 +16,7 @@ use crate::ranks::{Plan, Ranks};
 use crate::render::{self, PassObserver, Span};
 use crate::session::{self, RenderJob, RenderReport};
 use crate::shares::Work;
+use crate::tev;
 use anyhow::Result;
 use std::ops::ControlFlow::{self, Continue};
 use std::sync::{Arc, Mutex, PoisonError};
@@ -83,6 +85,21 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
             lost: Arc::new(move |why: &str| out.write_lost(why, &summed)),
         })?;
     }
+    // The viewer shows what rank 0 holds of all ranks: the sums at each checkpoint and the end.
+    let name = job.output.file_name().unwrap_or_default().to_string_lossy().to_string();
+    let viewer = std::cell::RefCell::new(match job.tev.as_deref().filter(|_| rank == 0) {
+        Some(address) => tev::TevStream::connect(address, &name, width, height)
+            .map_err(|e| eprintln!("warning: {e:#}; rendering without the viewer"))
+            .ok(),
+        None => None,
+    });
+    let show = |accum: &Accumulation| {
+        let mut viewer = viewer.borrow_mut();
+        if let Some(Err(e)) = viewer.as_mut().map(|v| v.update(&Film::from_accum(width, height, accum))) {
+            eprintln!("warning: {e:#}; no more updates to the viewer");
+            *viewer = None;
+        }
+    };
     let clock = Instant::now();
     let hooks = TestHooks::from_env(rank);
     let chunk = |backend: &mut dyn Backend| -> Result<()> {
@@ -95,6 +112,9 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
                         // Test only: a rank that dies without a word (`CAUSTIC_MPI_TEST_EXIT`).
                         std::process::exit(9);
                     }
+                    if checkpoints >= 2 && hooks.fail {
+                        anyhow::bail!("the device failed (CAUSTIC_MPI_TEST_FAIL)");
+                    }
                     let span = Span { start: first, end: first + count, spp };
                     let observer = Chunk { rank };
                     render::render_span(backend, &buffers, span, job.seed, &[], &mut per_pass, observer)?;
@@ -104,6 +124,7 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
                     let total = ranks.reduce(&backend.read_accum()?)?;
                     checkpoints += 1;
                     if let Some(total) = total {
+                        show(&total);
                         let mut s = summed.lock().unwrap_or_else(PoisonError::into_inner);
                         *s = Summed { accum: Some(total), done };
                         if let (Some((path, _)), Some(scene)) = (&job.checkpoint, fingerprint) {
@@ -130,6 +151,7 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
     };
     let Some(accum) = ranks.reduce(&mine)? else { return Ok(None) };
     let seconds = clock.elapsed().as_secs_f64();
+    show(&accum);
     let mut film = Film::from_accum(width, height, &accum);
     session::sanitize(&mut film);
     session::save_or_recover(&film, &job.output)?;
@@ -225,6 +247,7 @@ struct TestHooks {
     /// Sleep per sample per pixel rendered.
     slow: Duration,
     exit: bool,
+    fail: bool,
 }
 
 impl TestHooks {
@@ -233,8 +256,12 @@ impl TestHooks {
             let (r, ms) = v.split_once(':')?;
             (r.parse::<usize>().ok()? == rank).then_some(Duration::from_millis(ms.parse().ok()?))
         });
-        let exit =
-            std::env::var("CAUSTIC_MPI_TEST_EXIT").ok().and_then(|v| v.parse::<usize>().ok()) == Some(rank);
-        TestHooks { slow: slow.unwrap_or(Duration::ZERO), exit }
+        let this_rank =
+            |name: &str| std::env::var(name).ok().and_then(|v| v.parse::<usize>().ok()) == Some(rank);
+        TestHooks {
+            slow: slow.unwrap_or(Duration::ZERO),
+            exit: this_rank("CAUSTIC_MPI_TEST_EXIT"),
+            fail: this_rank("CAUSTIC_MPI_TEST_FAIL"),
+        }
     }
 }

@@ -147,9 +147,9 @@ fn a_slow_rank_takes_fewer_samples() {
 }
 
 /// Checkpoints cross between one process and MPI ranks, both ways, and a rank that dies
-/// (`CAUSTIC_MPI_TEST_EXIT`: rank 1 exits after its second checkpoint without telling MPI) is
-/// named with its host; rank 0 writes the partial image of what it had summed, and the checkpoint
-/// left behind resumes in one process to the one-process image.
+/// (`CAUSTIC_MPI_TEST_EXIT`: rank 1 exits after its second checkpoint without telling MPI) or
+/// fails (`CAUSTIC_MPI_TEST_FAIL`) is named with its host; rank 0 writes the partial image of what
+/// it had summed, and the checkpoint left behind resumes in one process to the one-process image.
 #[test]
 fn checkpoints_cross_between_one_process_and_ranks() {
     use caustic::checkpoint::{fingerprint, Checkpoint};
@@ -197,6 +197,23 @@ fn checkpoints_cross_between_one_process_and_ranks() {
     assert!(saved.spp_done > 0 && saved.spp_done < 48, "{}", saved.spp_done);
     let image = Film::load_exr(&partial).expect("the partial image is written");
     assert!(image.rgb.iter().flatten().all(|c| c.is_finite()));
+
+    // Rank 1's render fails instead: it is named with its error, rank 0 writes what it summed.
+    let failed = dir.join("failed.exr");
+    let ckpt_failed = dir.join("failed.ckpt");
+    let mut failing = args("path", &failed);
+    failing
+        .extend(["--checkpoint", ckpt_failed.to_str().unwrap(), "--checkpoint-every", "0"].map(String::from));
+    let output = run(&ranks(&mpirun, 2), &failing, &[("CAUSTIC_MPI_TEST_FAIL", "1")]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "the job survived its rank's failure: {stderr}");
+    assert!(
+        stderr.contains(&format!("rank 1 on {host} failed: the device failed"))
+            && stderr.contains("failed.exr holds the"),
+        "{stderr}"
+    );
+    assert!(Checkpoint::load(&ckpt_failed).is_ok_and(|c| c.spp_done > 0));
+    assert!(Film::load_exr(&failed).is_ok());
 
     // Resumed in one process: the one-process image.
     let out = dir.join("resumed-by-one.exr");
