@@ -3,9 +3,17 @@
 //! 128 + the signal's number; a second exits at once. Without this an interrupt lost every sample
 //! since the last checkpoint.
 use std::sync::atomic::{AtomicI32, Ordering};
+use std::sync::OnceLock;
 
 /// The first signal received (0: none).
 static RECEIVED: AtomicI32 = AtomicI32::new(0);
+/// What the first signal does, when not the default (an MPI rank's: `ranked.rs`); empty: say nothing.
+static NOTE: OnceLock<String> = OnceLock::new();
+
+/// Replaces what the first signal is said to do (call once, before rendering).
+pub fn set_note(note: &str) {
+    NOTE.set(note.to_string()).ok();
+}
 
 /// Catches SIGINT and SIGTERM from now on (a thread waits for them). Without it, or on platforms
 /// without these signals, they end the process as by default.
@@ -19,10 +27,11 @@ pub fn install() -> anyhow::Result<()> {
                 // The second: the user means it.
                 signal_hook::low_level::exit(128 + signal);
             }
-            eprintln!(
-                "\n{}: saving the image after this pass (again to quit at once)",
-                if signal == SIGINT { "interrupted" } else { "terminated" }
-            );
+            let note =
+                NOTE.get().map_or("saving the image after this pass (again to quit at once)", String::as_str);
+            if !note.is_empty() {
+                eprintln!("\n{}: {note}", if signal == SIGINT { "interrupted" } else { "terminated" });
+            }
         }
     })?;
     Ok(())

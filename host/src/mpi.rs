@@ -37,6 +37,9 @@ struct Shared {
     dispatcher: Dispatcher,
     progress: indicatif::ProgressBar,
     start: u32,
+    /// Set once rank 0 has the final sum: the thread, which until then watches for signals and
+    /// silent ranks (a rank may die in the final sum), ends.
+    closed: bool,
 }
 
 impl Shared {
@@ -107,12 +110,22 @@ impl World {
     }
 }
 
+impl World {
+    /// Ends rank 0's dispatcher thread (after the final sum, or on the way out).
+    fn close(&self) {
+        if let Some(shared) = self.shared.borrow().as_ref() {
+            shared.lock().unwrap_or_else(PoisonError::into_inner).closed = true;
+        }
+        if let Some(thread) = self.thread.borrow_mut().take() {
+            thread.join().ok();
+        }
+    }
+}
+
 impl Drop for World {
     fn drop(&mut self) {
         // The dispatcher's thread uses MPI: it ends before MPI_Finalize.
-        if let Some(thread) = self.thread.get_mut().take() {
-            thread.join().ok();
-        }
+        self.close();
     }
 }
 
@@ -152,7 +165,7 @@ fn serve(comm: ThreadComm, shared: Arc<Mutex<Shared>>, hosts: Vec<String>, lost:
     let name = |rank: usize| format!("rank {rank} on {}", hosts.get(rank).map_or("?", String::as_str));
     let stall = stall_limit();
     loop {
-        if lock().dispatcher.finished() {
+        if lock().closed {
             return;
         }
         if let Some((message, status)) = comm.any_process().immediate_matched_probe() {
@@ -181,10 +194,14 @@ fn serve(comm: ThreadComm, shared: Arc<Mutex<Shared>>, hosts: Vec<String>, lost:
                 .filter(|&(rank, _)| rank != 0)
                 .map(|(rank, h)| format!("{} (samples {}..{})", name(rank), h.first, h.first + h.count))
                 .collect();
-            let still = if held.is_empty() { "no other rank".to_string() } else { held.join(", ") };
+            let when = match (held.is_empty(), lock().dispatcher.finished()) {
+                (false, _) => format!("while {} rendered", held.join(", ")),
+                (true, true) => "in the final sum".to_string(),
+                (true, false) => "while no other rank held samples".to_string(),
+            };
             lost(&format!(
-                "signal {signal} while {still} was rendering: mpirun sends it to every rank when one \
-                 dies (its own message names that rank) or on an interrupt"
+                "signal {signal} {when}: mpirun sends it to every rank when one dies (its own message \
+                 names that rank) or on an interrupt"
             ));
             std::process::exit(crate::interrupt::exit_code(signal));
         }
@@ -258,6 +275,7 @@ impl Ranks for World {
             dispatcher: Dispatcher::new(plan.start, plan.spp, self.size(), plan.every, now),
             progress: plan.progress,
             start: plan.start,
+            closed: false,
         }));
         let comm = self.work.borrow_mut().take().ok_or_else(|| anyhow!("the render was dispatched twice"))?;
         let (hosts, theirs, lost) = (self.hosts.clone(), shared.clone(), plan.lost.clone());
@@ -283,9 +301,7 @@ impl Ranks for World {
     }
 
     fn shares(&self) -> Vec<u64> {
-        if let Some(thread) = self.thread.borrow_mut().take() {
-            thread.join().ok();
-        }
+        self.close();
         self.shared.borrow().as_ref().map_or_else(Vec::new, |s| {
             s.lock().unwrap_or_else(PoisonError::into_inner).dispatcher.samples().to_vec()
         })

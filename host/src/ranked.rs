@@ -64,6 +64,8 @@ fn prepare(job: &RenderJob, rank: usize) -> Result<Prepared> {
 /// Renders `job` as one of `ranks` (more than one); rank 0 writes the image and returns `Some`.
 pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<RenderReport>> {
     let (rank, size) = (ranks.rank(), ranks.size());
+    // Rank 0 alone speaks of a signal (every rank gets one when mpirun ends the job).
+    crate::interrupt::set_note(if rank == 0 { "rank 0 writes what the ranks last summed" } else { "" });
     let prepared = prepare(job, rank);
     if let Err(e) = &prepared {
         eprintln!("error: {}: {e:#}", ranks.name(rank));
@@ -151,6 +153,7 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
     };
     let Some(accum) = ranks.reduce(&mine)? else { return Ok(None) };
     let seconds = clock.elapsed().as_secs_f64();
+    let shares: Vec<String> = ranks.shares().iter().map(u64::to_string).collect();
     show(&accum);
     let mut film = Film::from_accum(width, height, &accum);
     session::sanitize(&mut film);
@@ -162,7 +165,6 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
         // The image is safe on disk: the checkpoint has served.
         std::fs::remove_file(path).ok();
     }
-    let shares: Vec<String> = ranks.shares().iter().map(u64::to_string).collect();
     Ok(Some(RenderReport {
         backend: format!(
             "{size} MPI ranks (spp by rank: {}), rank 0 on {}",

@@ -43,7 +43,8 @@ pub trait Ranks {
     fn dispatch(&self, plan: Plan) -> Result<()>;
     /// What this rank does next, having finished what it had.
     fn next_work(&self) -> Result<Work>;
-    /// Rank 0, after the final sum: samples per pixel each rank rendered.
+    /// Rank 0, right after the final sum (it ends the watch for lost ranks, so that nothing
+    /// overwrites the image about to be written): samples per pixel each rank rendered.
     fn shares(&self) -> Vec<u64>;
     /// This rank's render failed: rank 0 names it, writes what it had summed and ends the job.
     fn fail(&self, error: &anyhow::Error) -> !;

@@ -118,6 +118,21 @@ fn mpi_ranks_render_the_one_process_image() {
             render(&ranks(&mpirun, n), &args(integrator, &out), &[]);
             assert_same(&out, &want, &format!("{integrator}, {n} ranks"));
         }
+        if integrator == "path" {
+            // On lavapipe against one process on lavapipe: the one software adapter shared by both
+            // ranks (`--gpus 0,`: as given).
+            let on_gpu = |out: &Path| {
+                let mut a = args(integrator, out);
+                let at = a.iter().position(|a| a == "cpu").unwrap();
+                a[at] = "gpu".into();
+                a.extend(["--gpus", "0,"].map(String::from));
+                a
+            };
+            let (one, two) = (dir.join("lavapipe-1.exr"), dir.join("lavapipe-2.exr"));
+            render(&[], &on_gpu(&one), &[]);
+            render(&ranks(&mpirun, 2), &on_gpu(&two), &[]);
+            assert_same(&two, &Film::load_exr(&one).unwrap(), "path, 2 ranks on lavapipe");
+        }
     }
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -280,4 +295,18 @@ fn a_batch_of_variants_spreads_over_ranks() {
         assert_same(&dir.join("batch").join(&name), &want, &name);
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A rank that cannot start (here rank 0: it cannot write the image's format) says why with its
+/// name, and every rank ends instead of waiting for it.
+#[test]
+fn a_rank_that_cannot_start_is_named() {
+    let Some(mpirun) = mpirun() else { return };
+    let out = std::env::temp_dir().join(format!("caustic-mpi-{}.tiff", std::process::id()));
+    let output = run(&ranks(&mpirun, 2), &args("path", &out), &[]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "{stderr}");
+    let named = format!("rank 0 on {}", mpi_host());
+    assert!(stderr.contains(&format!("error: {named}:")) && stderr.contains(".tiff"), "{stderr}");
+    assert!(stderr.contains(&format!("{named} could not start")), "{stderr}");
 }
