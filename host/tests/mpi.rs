@@ -310,3 +310,20 @@ fn a_rank_that_cannot_start_is_named() {
     assert!(stderr.contains(&format!("error: {named}:")) && stderr.contains(".tiff"), "{stderr}");
     assert!(stderr.contains(&format!("{named} could not start")), "{stderr}");
 }
+
+/// A rank silent past `CAUSTIC_MPI_STALL` (here 1 s; rank 1 sleeps 20 s on its first chunk) is
+/// named with its host and the samples it holds, and the job ends without waiting for it.
+#[test]
+fn a_silent_rank_is_named_and_not_waited_for() {
+    let Some(mpirun) = mpirun() else { return };
+    let dir = temp_dir("stall");
+    let clock = std::time::Instant::now();
+    let env = [("CAUSTIC_MPI_TEST_SLOW", "1:20000"), ("CAUSTIC_MPI_STALL", "1")];
+    let output = run(&ranks(&mpirun, 2), &args("path", &dir.join("stall.exr")), &env);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "{stderr}");
+    assert!(clock.elapsed().as_secs() < 15, "the job waited for the silent rank: {stderr}");
+    let named = format!("rank 1 on {} stopped responding (rendering samples ", mpi_host());
+    assert!(stderr.contains(&named) && stderr.contains("CAUSTIC_MPI_STALL"), "{stderr}");
+    std::fs::remove_dir_all(&dir).ok();
+}
