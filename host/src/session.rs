@@ -103,11 +103,11 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         .as_ref()
         .map(|(path, every)| (path, *every, checkpoint::fingerprint(&buffers, seed, spp)));
     // The samples to render: all of them, less a checkpoint's.
-    let (start, end) = match checkpoint {
-        Some((path, _, fingerprint)) => (resume(path, backend.as_mut(), fingerprint, spp)?, spp),
-        None => (0, spp),
+    let start = match checkpoint {
+        Some((path, _, fingerprint)) => resume(path, backend.as_mut(), fingerprint, spp)?,
+        None => 0,
     };
-    let bar = progress_bar(job.progress_bar, end, start);
+    let bar = progress_bar(job.progress_bar, spp, start);
     let (width, height) = (buffers.params.width, buffers.params.height);
     let name = output.file_name().unwrap_or_default().to_string_lossy().to_string();
     let viewer = match job
@@ -131,20 +131,18 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         last_view: Instant::now(),
         seed,
         spp,
-        stop_at: end,
         size: (width, height),
         done_at: &done_at,
     };
     let mut seconds = 0.0;
-    if start < end {
-        let stop = if end < spp { vec![end] } else { vec![] };
+    if start < spp {
         seconds =
-            render::render_observed(backend.as_mut(), &buffers, start, spp, seed, &stop, observer)?.seconds;
+            render::render_observed(backend.as_mut(), &buffers, start, spp, seed, &[], observer)?.seconds;
     }
     bar.finish_and_clear();
     let accum = backend.read_accum()?;
     // A signal stopped the render before its end (the image says so; the checkpoint is kept).
-    let interrupted = crate::interrupt::requested().filter(|_| done_at.get() < end);
+    let interrupted = crate::interrupt::requested().filter(|_| done_at.get() < spp);
     let spp_done = if interrupted.is_some() { done_at.get() } else { spp };
     let mut film = Film::from_accum(width, height, &accum);
     if interrupted.is_some() {
@@ -234,8 +232,6 @@ struct Observer<'a> {
     last_view: Instant,
     seed: u32,
     spp: u32,
-    /// The end of this process's share of the samples (`spp` for one process).
-    stop_at: u32,
     size: (u32, u32),
     /// The samples per pixel done at the last rest (what an interrupted render's image holds).
     done_at: &'a Cell<u32>,
@@ -264,7 +260,7 @@ impl render::PassObserver for Observer<'_> {
         self.bar.set_position(done as u64);
         self.done_at.set(done);
         // SIGINT or SIGTERM: stop here, saving the checkpoint now (`interrupt`).
-        let interrupted = crate::interrupt::requested().is_some() && done < self.stop_at;
+        let interrupted = crate::interrupt::requested().is_some() && done < self.spp;
         if self.view_due() || (self.viewer.is_some() && done == self.spp) {
             let film = Film::from_accum(width, height, &backend.read_accum()?);
             if let Some(Err(e)) = self.viewer.as_mut().map(|stream| stream.update(&film)) {
@@ -289,8 +285,8 @@ impl render::PassObserver for Observer<'_> {
             }
             self.last_save = Instant::now();
         }
-        // The end of this process's share (a rank's); the loop ends by itself at `spp`.
-        Ok(if done >= self.stop_at || interrupted { Break(()) } else { Continue(()) })
+        // The loop ends by itself at `spp`.
+        Ok(if interrupted { Break(()) } else { Continue(()) })
     }
 }
 
