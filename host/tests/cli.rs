@@ -586,3 +586,36 @@ fn unwritable_outputs_are_named_before_rendering() {
         assert!(!err.contains("panicked"), "{err}");
     }
 }
+
+/// A batch in one process: two scenes × two `--vary` values give four images in the `-o` folder,
+/// one summary line each, each the size its variant asks for; a failed one (a scene that does not
+/// exist) is reported by name while the others are still written, and the exit status says so.
+#[test]
+fn a_batch_renders_every_scene_and_variant() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-batch-{}", std::process::id()));
+    let cbox = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let copy = dir.join("box2.xml");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(cbox, &copy).unwrap();
+    let out_dir = dir.join("out");
+    let common =
+        ["--vary", "res=8,12", "--backend", "cpu", "--spp", "2", "-q", "-o", out_dir.to_str().unwrap()];
+    let out = caustic(&[&["render", cbox, copy.to_str().unwrap()][..], &common].concat());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(stdout.lines().count(), 4, "{stdout}");
+    for (stem, res) in [("cornell-box", 8), ("cornell-box", 12), ("box2", 8), ("box2", 12)] {
+        let film = caustic::film::Film::load_exr(&out_dir.join(format!("{stem}-res={res}.exr"))).unwrap();
+        assert_eq!((film.width, film.height), (res, res), "{stem} at res={res}");
+    }
+    let missing = dir.join("missing.xml");
+    let out = caustic(&[&["render", missing.to_str().unwrap(), cbox][..], &common].concat());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("missing-res=8.exr") && stderr.contains("2 of this process's images failed"),
+        "{stderr}"
+    );
+    assert_eq!(String::from_utf8_lossy(&out.stdout).lines().count(), 2);
+    std::fs::remove_dir_all(&dir).ok();
+}
