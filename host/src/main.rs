@@ -170,7 +170,7 @@ fn main() {
             let every = Duration::try_from_secs_f64(checkpoint_every.max(0.0)).unwrap_or(Duration::MAX);
             // Under mpirun (an MPI build): this process renders its share, rank 0 writes the image.
             #[cfg(feature = "mpi")]
-            let world = match caustic::mpi::launched().then(caustic::mpi::World::init).transpose() {
+            let world = match caustic::ranks::launched().then(caustic::mpi::World::init).transpose() {
                 Ok(w) => w,
                 Err(e) => {
                     eprintln!("error: {e:#}");
@@ -181,6 +181,13 @@ fn main() {
             let ranks = world.as_ref().map(|w| w as &dyn caustic::ranks::Ranks);
             #[cfg(not(feature = "mpi"))]
             let ranks = None;
+            #[cfg(not(feature = "mpi"))]
+            if caustic::ranks::launched() {
+                eprintln!(
+                    "warning: started by an MPI launcher, but this caustic was built without \
+                     --features mpi: every process renders the whole image"
+                );
+            }
             let template = RenderJob {
                 scene: PathBuf::new(),
                 defines: run.define,

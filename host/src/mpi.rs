@@ -64,15 +64,6 @@ pub struct World {
     _universe: mpi::environment::Universe,
 }
 
-/// Whether this process was started by an MPI launcher (Open MPI's mpirun, a PMI launcher such as
-/// Slurm's srun, MPICH's hydra): only then is MPI initialised, so a plain `caustic render` of an
-/// MPI build behaves as any other.
-pub fn launched() -> bool {
-    ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"]
-        .iter()
-        .any(|v| std::env::var_os(v).is_some())
-}
-
 impl World {
     pub fn init() -> Result<World> {
         use mpi::Threading;

@@ -52,6 +52,15 @@ pub trait Ranks {
     fn barrier(&self);
 }
 
+/// Whether this process was started by an MPI launcher (Open MPI's mpirun, a PMI launcher such as
+/// Slurm's srun, MPICH's hydra): only then is MPI initialised, so a plain `caustic render` of an
+/// MPI build behaves as any other.
+pub fn launched() -> bool {
+    ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS"]
+        .iter()
+        .any(|v| std::env::var_os(v).is_some())
+}
+
 /// The hardware GPUs (indices among `candidates`) that rank `local_rank` of `local_size` ranks
 /// on one node takes: every `local_size`-th, so that one rank per GPU, or one rank per node with all
 /// of them, both work. Empty when there are more ranks than GPUs on the node.
