@@ -202,7 +202,11 @@ fn checkpoints_cross_between_one_process_and_ranks() {
 
     // Two ranks checkpoint at every chance; rank 1 dies.
     let partial = dir.join("partial.exr");
-    let output = run(&ranks(&mpirun, 2), &with_ckpt(&partial), &[("CAUSTIC_MPI_TEST_EXIT", "1")]);
+    // Rank 0 slowed a little (5 ms per sample per pixel), so that after a checkpoint rank 1 asks
+    // before rank 0 has finished its next chunk, and gets one: rank 0's request after a finished
+    // chunk would start the next checkpoint instead.
+    let slow_0 = ("CAUSTIC_MPI_TEST_SLOW", "0:5");
+    let output = run(&ranks(&mpirun, 2), &with_ckpt(&partial), &[("CAUSTIC_MPI_TEST_EXIT", "1"), slow_0]);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success(), "the job survived its rank's death: {stderr}");
     let host = mpi_host();
@@ -219,7 +223,7 @@ fn checkpoints_cross_between_one_process_and_ranks() {
     let mut failing = args("path", &failed);
     failing
         .extend(["--checkpoint", ckpt_failed.to_str().unwrap(), "--checkpoint-every", "0"].map(String::from));
-    let output = run(&ranks(&mpirun, 2), &failing, &[("CAUSTIC_MPI_TEST_FAIL", "1")]);
+    let output = run(&ranks(&mpirun, 2), &failing, &[("CAUSTIC_MPI_TEST_FAIL", "1"), slow_0]);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success(), "the job survived its rank's failure: {stderr}");
     assert!(
