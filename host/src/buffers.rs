@@ -300,30 +300,49 @@ fn rows_of(m: Mat3) -> [[f32; 4]; 3] {
 }
 
 /// An envmap's sampling tables (marginal CDF over the `height - 1` cell rows, then one conditional
-/// CDF of `width` cells per row; see `light::infinite`) and its power per unit scale and area.
-fn envmap_distribution(t: &Texture, texels: &[f32]) -> (Vec<f32>, f32) {
+/// CDF of `width` cells per row; see `light::infinite`) and its power per unit scale and area. With
+/// `compensate`, the tables follow the luminance above the texels' mean (`mis_compensation`).
+fn envmap_distribution(t: &Texture, texels: &[f32], compensate: bool) -> (Vec<f32>, f32) {
     let (w, h) = (t.width as usize, t.height as usize);
-    let lum = |x: usize, y: usize| luminance(Vec3::from_slice(&texels[3 * (y * w + x)..])).max(0.0) as f64;
+    let luminances: Vec<f64> =
+        texels.chunks_exact(3).map(|c| luminance(Vec3::from_slice(c)).max(0.0) as f64).collect();
+    let offset = if compensate { compensation_offset(&luminances) } else { 0.0 };
+    let lum = |x: usize, y: usize| luminances[y * w + x];
     let sin_theta = |y: usize| (PI as f64 * y as f64 / (h - 1) as f64).sin();
+    // Each cell's mean over its four corners, weighted by sin θ (dω = sin θ dθ dφ), less `offset`.
+    let cell = |c: usize, r: usize, offset: f64| {
+        let c1 = (c + 1) % w;
+        let at = |x: usize, y: usize| (lum(x, y) - offset).max(0.0) * sin_theta(y);
+        0.25 * (at(c, r) + at(c1, r) + at(c, r + 1) + at(c1, r + 1))
+    };
     let mut marginal = Vec::with_capacity(h - 1);
     let mut conditional = Vec::with_capacity((h - 1) * w);
+    let mut power = 0.0f64;
     for r in 0..h - 1 {
-        let cells: Vec<f64> = (0..w)
-            .map(|c| {
-                let c1 = (c + 1) % w;
-                0.25 * ((lum(c, r) + lum(c1, r)) * sin_theta(r)
-                    + (lum(c, r + 1) + lum(c1, r + 1)) * sin_theta(r + 1))
-            })
-            .collect();
+        let cells: Vec<f64> = (0..w).map(|c| cell(c, r, offset)).collect();
+        power += (0..w).map(|c| cell(c, r, 0.0)).sum::<f64>();
         marginal.push(cells.iter().sum::<f64>());
         conditional.extend(cdf_of(&cells));
     }
-    // ∫ luminance dω over the sphere, by the cells' mean values (dω = sin θ dθ dφ).
+    // ∫ luminance dω over the sphere, by the cells' mean values: the power light selection uses,
+    // compensated or not.
     let cell_solid_angle = (2.0 * PI as f64 / w as f64) * (PI as f64 / (h - 1) as f64);
-    let integral = marginal.iter().sum::<f64>() * cell_solid_angle;
     let mut table = cdf_of(&marginal);
     table.extend(conditional);
-    (table, integral as f32)
+    (table, (power * cell_solid_angle) as f32)
+}
+
+/// What MIS compensation subtracts from each texel's luminance: the mean over the texels, or
+/// nothing when the map is nearly constant (mean − minimum within 1% of the mean), where it would
+/// leave almost no direction to sample. Mitsuba's rule (`src/emitters/envmap.cpp`).
+fn compensation_offset(luminances: &[f64]) -> f64 {
+    let mean = luminances.iter().sum::<f64>() / luminances.len().max(1) as f64;
+    let min = luminances.iter().copied().fold(f64::INFINITY, f64::min);
+    if mean - min <= 0.01 * mean {
+        0.0
+    } else {
+        mean
+    }
 }
 
 /// Light records of the emitters that are not shapes; returns the environment light's index.
@@ -369,10 +388,14 @@ fn emitter_lights(
                 light.radiance = rgba(*radiance);
                 disk_area * 4.0 * PI * luminance(Vec3::from(*radiance))
             }
-            Emitter::Envmap { texture, to_world, scale } => {
+            Emitter::Envmap { texture, to_world, scale, mis_compensation } => {
                 let t = &textures[*texture as usize];
                 let texels = &tables[t.offset as usize..(t.offset + 3 * t.width * t.height) as usize];
-                let (table, integral) = envmap_distribution(t, texels);
+                // Light tracing draws emission from these tables alone, with nothing to cover the
+                // directions compensation leaves out: compensation is for NEE beside BSDF sampling.
+                let compensate = *mis_compensation
+                    && matches!(scene.integrator.kind, IntegratorKind::Path | IntegratorKind::Direct { .. });
+                let (table, integral) = envmap_distribution(t, texels, compensate);
                 light.kind = LIGHT_ENVMAP;
                 light.prim = *texture;
                 light.radiance = [*scale; 4];

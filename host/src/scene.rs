@@ -256,6 +256,9 @@ pub enum Emitter {
         texture: u32,
         to_world: Mat3,
         scale: f32,
+        /// Mitsuba's `mis_compensation`: sample in proportion to the luminance above the map's mean
+        /// (Karlík et al. 2019), leaving the dim directions to BSDF sampling.
+        mis_compensation: bool,
     },
 }
 

@@ -104,10 +104,10 @@ impl Loader {
                 props.loc
             ));
         }
-        props.boolean("mis_compensation", false)?;
+        let mis_compensation = props.boolean("mis_compensation", false)?;
         let record =
             Texture { kind: TEXTURE_BITMAP, width: image.width, height: image.height, ..Default::default() };
         self.textures.push(SceneTexture { record, texels: image.rgb });
-        Ok(Emitter::Envmap { texture: self.textures.len() as u32 - 1, to_world, scale })
+        Ok(Emitter::Envmap { texture: self.textures.len() as u32 - 1, to_world, scale, mis_compensation })
     }
 }
