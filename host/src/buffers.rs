@@ -536,6 +536,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         emitter_samples,
         bsdf_samples,
         wavelength_table,
+        square_scale_log2: square_scale_log2(&lights, &textures, &tables),
         camera: camera(scene),
         ..Default::default()
     };
@@ -554,6 +555,32 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         textures.push(Texture::default());
     }
     Ok(SceneBuffers { nodes, prims, attributes, materials, lights, textures, tables, params, features })
+}
+
+/// `FrameParams::square_scale_log2`: the power of two that brings the scene's brightest emission
+/// (radiance, intensity or irradiance; an envmap's scale times its largest texel) to about 1, so
+/// that samples up to ~1e19 times it square within f32's range (and samples down to 1e-19 of it
+/// do not underflow). Radiance 1e30 squared in f32 was +Inf; 0 where nothing emits.
+fn square_scale_log2(lights: &[Light], textures: &[Texture], tables: &[f32]) -> i32 {
+    let brightest = lights
+        .iter()
+        .map(|l| {
+            let mut m = l.radiance[..3].iter().fold(0.0f64, |m, &c| m.max(c.abs() as f64));
+            if l.kind == LIGHT_ENVMAP {
+                if let Some(t) = textures.get(l.prim as usize) {
+                    let texels = tables.get(t.offset as usize..(t.offset + 3 * t.width * t.height) as usize);
+                    m *= texels.unwrap_or(&[]).iter().fold(0.0f64, |m, &c| m.max(c.abs() as f64));
+                }
+            }
+            m
+        })
+        .filter(|m| m.is_finite() && *m > 0.0)
+        .fold(0.0f64, f64::max);
+    if brightest > 0.0 {
+        (-brightest.log2().round()).clamp(-100.0, 100.0) as i32
+    } else {
+        0
+    }
 }
 
 /// The kernel paths a scene can reach: its BSDF models, emitter kinds, textures and integrator.

@@ -84,9 +84,9 @@ fn z_scores(a: &Film, b: &Film) -> (f64, f64) {
     for i in 0..a.rgb.len() {
         for c in 0..3 {
             let d = a.rgb[i][c] as f64 - b.rgb[i][c] as f64;
-            let v = va[i][c] as f64 + vb[i][c] as f64;
+            let v = va[i][c] + vb[i][c];
             diff += d;
-            var += a.variance.as_ref().unwrap()[i][c] as f64 + b.variance.as_ref().unwrap()[i][c] as f64;
+            var += a.variance.as_ref().unwrap()[i][c] + b.variance.as_ref().unwrap()[i][c];
             worst = worst.max(d.abs() / (v.sqrt() + 1e-7 * b.rgb[i][c].abs() as f64 + 1e-30));
         }
     }
@@ -181,7 +181,7 @@ fn tiny_distant_sphere_light() {
         let film = render_scene(&scene, choice, 64, 3);
         let mean = image_mean(&film);
         let n = (3 * film.rgb.len()) as f64;
-        let se = film.variance.as_ref().unwrap().iter().flatten().map(|&v| v as f64).sum::<f64>().sqrt() / n;
+        let se = film.variance.as_ref().unwrap().iter().flatten().copied().sum::<f64>().sqrt() / n;
         println!(
             "{choice:?}: tiny light: mean {mean:.6} ± {se:.2e}, expected {expected:.6}, invalid {}",
             film.invalid_samples
@@ -195,31 +195,39 @@ fn tiny_distant_sphere_light() {
 }
 
 /// Radiance 1e30: each sample's square (1e60) overflows f32, and the variance of the image must stay
-/// finite. Same seed as a lamp of radiance 15: the same paths, so the image scales by 1e30/15 exactly
-/// up to rounding. Measured: the image does (2.9e-7 relative), but every variance is infinite (the
-/// kernel sums squares in f32, which overflow above 1.8e19 per sample): ignored until it sums them
-/// scaled (BENCHMARKS.md, "Stiff and extreme cases").
+/// finite and right. Same seed as a lamp of radiance 15: the same paths, so the image scales by
+/// 1e30/15 and its variance by (1e30/15)², both exactly up to rounding. Before the kernel scaled its
+/// squares (`FrameParams::square_scale_log2`) and the film kept its variance in f64, every variance
+/// was +Inf (the image itself was right, 2.9e-7 relative).
 #[test]
-#[ignore = "known: the kernel's f32 sum of squares overflows (every variance infinite); fix described in BENCHMARKS.md"]
 fn radiance_1e30_keeps_a_finite_variance() {
     let unit = render_scene(&load_xml(&cornell(16, "15", 5), "lamp-15"), BackendChoice::Cpu, 64, 4);
+    let ratio = 1e30 / 15.0;
+    let worst_of = |a: &[[f64; 3]], b: &[[f64; 3]], scale: f64, floor: f64| {
+        a.iter()
+            .flatten()
+            .zip(b.iter().flatten())
+            .map(|(&a, &b)| (a / scale - b).abs() / b.max(floor))
+            .fold(0.0, f64::max)
+    };
+    let wide = |f: &Film| -> Vec<[f64; 3]> { f.rgb.iter().map(|p| p.map(f64::from)).collect() };
     for choice in BACKENDS {
         let film = render_scene(&load_xml(&cornell(16, "1e30", 5), "lamp-1e30"), choice, 64, 4);
-        let worst = film
-            .rgb
-            .iter()
-            .flatten()
-            .zip(unit.rgb.iter().flatten())
-            .map(|(&a, &b)| ((a as f64 * 15.0 / 1e30) - b as f64).abs() / (b as f64).max(1e-3))
-            .fold(0.0, f64::max);
-        let infinite = film.variance.as_ref().unwrap().iter().flatten().filter(|v| !v.is_finite()).count();
+        let worst = worst_of(&wide(&film), &wide(&unit), ratio, 1e-3);
+        let (v, unit_v) = (film.variance.as_ref().unwrap(), unit.variance.as_ref().unwrap());
+        let worst_variance = worst_of(v, unit_v, ratio * ratio, 1e-8);
         println!(
-            "{choice:?}: radiance 1e30: mean {:e}, worst relative difference from 1e30/15 × the radiance-15 image {worst:.2e}, {infinite} non-finite variances, invalid {}",
+            "{choice:?}: radiance 1e30: mean {:e}, largest variance {:e}, worst relative difference from the scaled radiance-15 image {worst:.2e}, variance {worst_variance:.2e}, invalid {}",
             image_mean(&film),
+            v.iter().flatten().fold(0.0f64, |m, &x| m.max(x)),
             film.invalid_samples
         );
-        assert!(worst < 1e-3, "{choice:?}: the 1e30 image is not the scaled radiance-15 image ({worst:e})");
         assert_clean(&film, &format!("{choice:?} radiance 1e30"));
+        assert!(worst < 1e-3, "{choice:?}: the 1e30 image is not the scaled radiance-15 image ({worst:e})");
+        assert!(
+            worst_variance < 1e-3,
+            "{choice:?}: the 1e30 variance is not the scaled radiance-15 variance ({worst_variance:e})"
+        );
     }
 }
 
@@ -255,7 +263,7 @@ fn facing_mirrors_with_russian_roulette() {
             .rgb
             .iter()
             .zip(var)
-            .map(|(p, v)| (0..3).map(|c| p[c] as f64 - 5.0 * (v[c] as f64).sqrt()).fold(f64::MIN, f64::max))
+            .map(|(p, v)| (0..3).map(|c| p[c] as f64 - 5.0 * v[c].sqrt()).fold(f64::MIN, f64::max))
             .fold(f64::MIN, f64::max);
         println!(
             "{choice:?}: mirrors: mean {:.4}, brightest pixel less 5σ {brightest:.4} (lamp {lamp}), invalid {}",
@@ -288,7 +296,7 @@ fn furnace_mean(bsdf: &str, res: u32, spp: u32, choice: BackendChoice, tag: &str
     let film = render_scene(&load_xml(&xml, tag), choice, spp, 6);
     let n = film.rgb.len() as f64;
     let mean = film.rgb.iter().map(|p| p[1] as f64).sum::<f64>() / n;
-    let se = film.variance.as_ref().unwrap().iter().map(|v| v[1] as f64).sum::<f64>().sqrt() / n;
+    let se = film.variance.as_ref().unwrap().iter().map(|v| v[1]).sum::<f64>().sqrt() / n;
     (mean, se, film)
 }
 
@@ -362,10 +370,10 @@ fn million_sample_furnace(choice: BackendChoice) {
 
 /// A million samples per pixel that are all 0.1 (the camera sees a constant environment of radiance
 /// 0.1 and nothing else): no statistics at all, so the mean must be 0.1 to the accumulator's own
-/// rounding, here required to be 1e-5 relative. Measured: 0.10000376 on the CPU, 0.10000375 on
-/// lavapipe (3.8e-5 relative: each pass of 256 samples adds 25.6 to an f32 sum near 1e5, whose ulp is
-/// 0.0078, and the rounding has the same sign pass after pass). Ignored until the sums are kept in
-/// f64 on the host (BENCHMARKS.md, "Stiff and extreme cases").
+/// rounding, here required to be 1e-5 relative. With f32 sums alone: 0.10000376 on the CPU,
+/// 0.10000375 on lavapipe (3.8e-5 relative: each pass of 256 samples added 25.6 to an f32 sum near
+/// 1e5, whose ulp is 0.0078, and the rounding had the same sign pass after pass); the host now folds
+/// the sums into f64 every `film::FOLD_SAMPLES` samples.
 fn million_constant_samples(choice: BackendChoice) {
     let xml = r#"<scene version="3.0.0">
     <sensor type="perspective"><float name="fov" value="20"/>
@@ -388,13 +396,11 @@ fn million_constant_samples(choice: BackendChoice) {
 }
 
 #[test]
-#[ignore = "known: f32 pixel sums drift 3.8e-5 over a million samples (BENCHMARKS.md)"]
 fn million_constant_samples_cpu() {
     million_constant_samples(BackendChoice::Cpu);
 }
 
 #[test]
-#[ignore = "known: f32 pixel sums drift 3.8e-5 over a million samples (BENCHMARKS.md); 22 s on lavapipe"]
 fn million_constant_samples_gpu() {
     million_constant_samples(BackendChoice::Gpu);
 }
