@@ -92,20 +92,34 @@ pub fn surface_point(
     SurfacePoint { p, ng, ns, error_scale, uv }
 }
 
-/// Mitsuba's `math::RayEpsilon<float>`: 1500 · 2⁻²⁴.
+/// Ray origins leave surfaces by `RAY_EPSILON · max(|p|∞, the primitive's own coordinates)`
+/// (`offset_scale`): relative to the magnitudes whose rounding the hit point carries (a point
+/// interpolated from a triangle's vertices, or reprojected onto a sphere, is off its surface by a few
+/// roundings of the largest of them), with no absolute term. Mitsuba's `(1 + |p|∞) · 1500 · 2⁻²⁴`
+/// is 8.9e-5 even in a box scaled by 1e-4, larger than every feature there (measured: single pixels
+/// off by |z| 29, scaled 1e-3 by 5.5; now both render the unit box's image). The factor stays
+/// Mitsuba's 1500 · 2⁻²⁴, far above the rounding bound (pbrt's is about 7 · 2⁻²⁴ for a triangle's
+/// point): measured with 64 · 2⁻²⁴ the box moved by 1e4 renders right (now it does not: the offset
+/// 0.9 exceeds the lamp's 0.02 gap under the ceiling), but rays leaving near-tangentially (a
+/// shading normal tilted from the facet) re-hit neighbouring facets and the smooth-shaded diamond
+/// furnace came out 0.9971 (Mitsuba 1.0000); offsetting by 1500 · 2⁻²⁴ of the triangle's own size
+/// plus 64 · 2⁻²⁴ of |p| gave 0.9970. Where a scene's smallest feature comes near this offset at its
+/// extent, the host warns at load time (`host/src/precision.rs`).
 pub const RAY_EPSILON: f32 = 1500.0 / 16_777_216.0;
 
+/// The size whose rounding errors a point `p` on a primitive of coordinates up to `error_scale`
+/// carries; the ray offset is `RAY_EPSILON` times it.
+#[inline]
+pub fn offset_scale(p: Vec3, error_scale: f32) -> f32 {
+    p.abs().max_element().max(error_scale)
+}
+
 /// Moves a ray origin off a surface along its geometric normal, towards the side `dir` leaves by, so
-/// that the new ray does not re-hit the surface it starts on. The offset is Mitsuba's,
-/// `(1 + |p|∞) · 1500 · 2⁻²⁴`, so that rays leaving near-tangentially (a shading normal tilted away
-/// from the facet) skip the same self-intersections in both renderers: with a ten times smaller
-/// offset such rays re-hit neighbouring facets, and the smooth-shaded diamond came out 0.2% dark.
-/// `|p|` is raised to the primitive's own scale (a point near the origin on a sphere of radius 1000
-/// carries the error of the sphere's size, which its own small coordinates do not show).
+/// that the new ray does not re-hit the surface it starts on (by `RAY_EPSILON · offset_scale`).
 #[inline]
 pub fn offset_origin(sp: &SurfacePoint, ng: Vec3, dir: Vec3) -> Vec3 {
     let p = sp.p;
-    let eps = (1.0 + p.abs().max_element().max(sp.error_scale)) * RAY_EPSILON;
+    let eps = offset_scale(p, sp.error_scale) * RAY_EPSILON;
     if ng.dot(dir) >= 0.0 {
         p + ng * eps
     } else {
