@@ -160,7 +160,8 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                         p2: arr(t[2]),
                         light: NONE,
                         flags,
-                        _pad: [0; 3],
+                        offset_floor: 0.0,
+                        _pad: [0; 2],
                     };
                     push(prim, attr, area, LIGHT_AREA);
                 }
@@ -174,7 +175,8 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                     p2: [0.0; 3],
                     light: NONE,
                     flags: flags_base,
-                    _pad: [0; 3],
+                    offset_floor: 0.0,
+                    _pad: [0; 2],
                 };
                 push(prim, TriangleAttributes::default(), 4.0 * PI * radius * radius, LIGHT_SPHERE);
             }
@@ -187,7 +189,8 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                     p2: arr(*v),
                     light: NONE,
                     flags: flags_base,
-                    _pad: [0; 3],
+                    offset_floor: 0.0,
+                    _pad: [0; 2],
                 };
                 push(prim, TriangleAttributes::default(), PI * u.cross(*v).length(), LIGHT_AREA);
             }
@@ -462,6 +465,16 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         // box is [-1, 1]³ to it, and traversal read children that do not exist (CPU panic, GPU garbage).
         vec![BvhNode { min: [0.0; 3], prim_count: 1, max: [0.0; 3], first: 0 }]
     };
+    // The ray offset's absolute part (`caustic_kernel::shape::offset_origin`): Mitsuba's 1, or the
+    // scene's half-diagonal where smaller, so that a scene scaled down keeps its image.
+    let offset_floor = if has_prims {
+        (0.5 * (Vec3::from(nodes[0].max) - Vec3::from(nodes[0].min)).length()).min(1.0)
+    } else {
+        1.0
+    };
+    for p in &mut prims {
+        p.offset_floor = offset_floor;
+    }
     let (mut tables, filter_signed) = crate::filter_table::filter_tables(&scene.sensor.filter, FILTER_BINS)?;
     let filter_cdf_offset = 0;
     let mut textures = place_textures(scene, &mut tables);

@@ -43,7 +43,10 @@ pub struct Primitive {
     /// Index into the light list when the primitive emits, else `NONE`.
     pub light: u32,
     pub flags: u32,
-    pub _pad: [u32; 3],
+    /// The absolute part of the ray offset from this primitive (`shape::offset_origin`): the scene's
+    /// size up to 1, the same for every primitive of a scene (kept here, where every offset finds it).
+    pub offset_floor: f32,
+    pub _pad: [u32; 2],
 }
 
 /// Per-triangle vertex attributes, indexed like `Primitive`: shading normals (used when the primitive

@@ -213,6 +213,47 @@ fn tiny_distant_sphere_light() {
     }
 }
 
+/// A sun: a sphere light of the sun's radius (7e8) at its distance (1.5e11) straight above a diffuse
+/// floor of albedo ρ. A sphere of radiance L whose centre is D along the normal gives the irradiance
+/// π L (r/D)² exactly, so the floor has the radiance ρ L (r/D)² (to 1e-11 over the visible patch).
+/// The sphere's cone is 0.27° across: 1 − cos α = 1.1e-5, where an f32 cosine keeps three digits.
+#[test]
+fn sun_sized_sphere_light() {
+    let (rho, radius, distance, radiance) = (0.5f64, 7e8f64, 1.5e11f64, 4e4f64);
+    let expected = rho * radiance * (radius / distance).powi(2);
+    let xml = format!(
+        r#"<scene version="3.0.0">
+    <integrator type="path"><integer name="max_depth" value="-1"/></integrator>
+    <sensor type="perspective"><float name="fov" value="40"/>
+        <transform name="to_world"><lookat origin="0, 0, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/><rfilter type="box"/></film>
+    </sensor>
+    <shape type="rectangle"><transform name="to_world"><scale value="10"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="{rho}"/></bsdf></shape>
+    <shape type="sphere"><float name="radius" value="{radius:e}"/><point name="center" x="0" y="0" z="{distance:e}"/>
+        <emitter type="area"><rgb name="radiance" value="{radiance:e}"/></emitter></shape>
+</scene>"#
+    );
+    let scene = load_xml(&xml, "sun");
+    assert_eq!(caustic::precision::warning(&scene), None, "the sun is well resolved at its own distance");
+    for choice in BACKENDS {
+        let film = render_scene(&scene, choice, 64, 3);
+        let mean = image_mean(&film);
+        let n = (3 * film.rgb.len()) as f64;
+        let se = film.variance.as_ref().unwrap().iter().flatten().copied().sum::<f64>().sqrt() / n;
+        println!(
+            "{choice:?}: sun: mean {mean:.6} ± {se:.2e}, expected {expected:.6} (relative {:+.2e}), invalid {}",
+            mean / expected - 1.0,
+            film.invalid_samples
+        );
+        assert_clean(&film, &format!("{choice:?} sun"));
+        assert!(
+            (mean - expected).abs() < 4.0 * se + 1e-3 * expected,
+            "{choice:?}: sun: mean {mean} ± {se}, expected {expected}"
+        );
+    }
+}
+
 /// Radiance 1e30: each sample's square (1e60) overflows f32, and the variance of the image must stay
 /// finite and right. Same seed as a lamp of radiance 15: the same paths, so the image scales by
 /// 1e30/15 and its variance by (1e30/15)², both exactly up to rounding. Before the kernel scaled its
@@ -604,6 +645,73 @@ fn sliver_and_needle_triangles() {
             "{choice:?}: the needle floor differs (z {z:+.2}, worst {worst:.2})"
         );
     }
+}
+
+/// The box with its floor as one mesh of `triangles` (a grid of 2 triangles per cell over the
+/// floor's square), built in memory.
+fn box_with_meshed_floor(triangles: usize) -> Scene {
+    let mut scene = load_xml(&cornell(16, "15", 5), "mesh-floor");
+    let cells = ((triangles / 2) as f64).sqrt().round() as usize;
+    let at = |i: usize| -1.0 + 2.0 * i as f32 / cells as f32;
+    let mut grid = Vec::with_capacity(2 * cells * cells);
+    for j in 0..cells {
+        for i in 0..cells {
+            let (a, b) = (Vec3::new(at(i), at(j), 0.0), Vec3::new(at(i + 1), at(j), 0.0));
+            let (c, d) = (Vec3::new(at(i + 1), at(j + 1), 0.0), Vec3::new(at(i), at(j + 1), 0.0));
+            grid.push([a, b, c]);
+            grid.push([a, c, d]);
+        }
+    }
+    let floor = &mut scene.shapes[0];
+    assert!(!matches!(floor.geometry, Geometry::Sphere { .. }), "the first shape is the floor");
+    floor.geometry = Geometry::Triangles { triangles: grid, normals: None, uvs: None };
+    scene
+}
+
+/// A floor of `triangles` triangles renders the plain box's image on the CPU; on the GPU it renders
+/// the same or is refused naming the device limit it exceeds.
+fn large_mesh(triangles: usize) {
+    let start = std::time::Instant::now();
+    let scene = box_with_meshed_floor(triangles);
+    let buffers = caustic::buffers::build(&scene).expect("the mesh builds");
+    println!("{} triangles: built in {:.1} s", buffers.prims.len(), start.elapsed().as_secs_f64());
+    let reference =
+        render_scene(&load_xml(&cornell(16, "15", 5), "mesh-floor-ref"), BackendChoice::Cpu, 64, 12);
+    for choice in BACKENDS {
+        let backend = caustic::backend::create(choice, &buffers);
+        if let Err(e) = &backend {
+            let message = format!("{e:#}");
+            println!("{choice:?}: {triangles} triangles refused: {message}");
+            assert!(
+                choice == BackendChoice::Gpu && message.contains("max_") && message.contains("bytes"),
+                "{choice:?}: {triangles} triangles: {message}"
+            );
+            continue;
+        }
+        let start = std::time::Instant::now();
+        let film = caustic_tests::render_buffers(&buffers, choice, 64, 13);
+        let (z, worst) = z_scores(&film, &reference);
+        println!(
+            "{choice:?}: {triangles}-triangle floor vs rectangle: image z {z:+.2}, worst |z| {worst:.2}, {:.1} s",
+            start.elapsed().as_secs_f64()
+        );
+        assert_clean(&film, &format!("{choice:?} {triangles} triangles"));
+        assert!(
+            z.abs() < 4.5 && worst < 5.0,
+            "{choice:?}: the meshed floor differs (z {z:+.2}, worst {worst:.2})"
+        );
+    }
+}
+
+#[test]
+fn a_million_triangle_mesh() {
+    large_mesh(1_000_000);
+}
+
+#[test]
+#[ignore = "too slow and large for CI on 2 cores (see BENCHMARKS.md, Stiff and extreme cases); a_million_triangle_mesh runs"]
+fn ten_million_triangle_mesh() {
+    large_mesh(10_000_000);
 }
 
 /// Two coplanar, overlapping floors of different albedo (z-fighting): every value finite, and the

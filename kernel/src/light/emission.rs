@@ -146,7 +146,7 @@ pub fn sample(
             return EmissionSample::none();
         }
         s.p = p;
-        s.origin = p + n * (offset_scale(p, scale) * RAY_EPSILON);
+        s.origin = p + n * (offset_scale(p, scale, prim.offset_floor) * RAY_EPSILON);
         s.n = n;
         s.dir = Frame::from_normal(n).to_world(local);
         s.position_weight = area / light.pmf;
