@@ -1,4 +1,4 @@
-//! Where f32 precision ends for a scene: rays leave a surface `RAY_EPSILON · max(|p|∞, the
+//! Where f32 precision ends for a scene: rays leave a surface at least `RAY_EPSILON · max(|p|∞, the
 //! primitive's coordinates)` off it (`caustic_kernel::shape::offset_origin`), so a primitive small
 //! against its own distance from the origin sits among features the offset jumps: light leaks
 //! through gaps and shadows go wrong. The loader warns once, naming the ratio.
