@@ -160,7 +160,8 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                         p2: arr(t[2]),
                         light: NONE,
                         flags,
-                        _pad: [0; 3],
+                        offset_floor: 0.0,
+                        _pad: [0; 2],
                     };
                     push(prim, attr, area, LIGHT_AREA);
                 }
@@ -174,7 +175,8 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                     p2: [0.0; 3],
                     light: NONE,
                     flags: flags_base,
-                    _pad: [0; 3],
+                    offset_floor: 0.0,
+                    _pad: [0; 2],
                 };
                 push(prim, TriangleAttributes::default(), 4.0 * PI * radius * radius, LIGHT_SPHERE);
             }
@@ -187,7 +189,8 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                     p2: arr(*v),
                     light: NONE,
                     flags: flags_base,
-                    _pad: [0; 3],
+                    offset_floor: 0.0,
+                    _pad: [0; 2],
                 };
                 push(prim, TriangleAttributes::default(), PI * u.cross(*v).length(), LIGHT_AREA);
             }
@@ -485,6 +488,16 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         // box is [-1, 1]³ to it, and traversal read children that do not exist (CPU panic, GPU garbage).
         vec![BvhNode { min: [0.0; 3], prim_count: 1, max: [0.0; 3], first: 0 }]
     };
+    // The ray offset's absolute part (`caustic_kernel::shape::offset_origin`): Mitsuba's 1, or the
+    // scene's half-diagonal where smaller, so that a scene scaled down keeps its image.
+    let offset_floor = if has_prims {
+        (0.5 * (Vec3::from(nodes[0].max) - Vec3::from(nodes[0].min)).length()).min(1.0)
+    } else {
+        1.0
+    };
+    for p in &mut prims {
+        p.offset_floor = offset_floor;
+    }
     let (mut tables, filter_signed) = crate::filter_table::filter_tables(&scene.sensor.filter, FILTER_BINS)?;
     let filter_cdf_offset = 0;
     let mut textures = place_textures(scene, &mut tables);
@@ -559,6 +572,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         emitter_samples,
         bsdf_samples,
         wavelength_table,
+        square_scale_log2: square_scale_log2(&lights, &textures, &tables),
         camera: camera(scene),
         ..Default::default()
     };
@@ -577,6 +591,32 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         textures.push(Texture::default());
     }
     Ok(SceneBuffers { nodes, prims, attributes, materials, lights, textures, tables, params, features })
+}
+
+/// `FrameParams::square_scale_log2`: the power of two that brings the scene's brightest emission
+/// (radiance, intensity or irradiance; an envmap's scale times its largest texel) to about 1, so
+/// that samples up to ~1e19 times it square within f32's range (and samples down to 1e-19 of it
+/// do not underflow). Radiance 1e30 squared in f32 was +Inf; 0 where nothing emits.
+fn square_scale_log2(lights: &[Light], textures: &[Texture], tables: &[f32]) -> i32 {
+    let brightest = lights
+        .iter()
+        .map(|l| {
+            let mut m = l.radiance[..3].iter().fold(0.0f64, |m, &c| m.max(c.abs() as f64));
+            if l.kind == LIGHT_ENVMAP {
+                if let Some(t) = textures.get(l.prim as usize) {
+                    let texels = tables.get(t.offset as usize..(t.offset + 3 * t.width * t.height) as usize);
+                    m *= texels.unwrap_or(&[]).iter().fold(0.0f64, |m, &c| m.max(c.abs() as f64));
+                }
+            }
+            m
+        })
+        .filter(|m| m.is_finite() && *m > 0.0)
+        .fold(0.0f64, f64::max);
+    if brightest > 0.0 {
+        (-brightest.log2().round()).clamp(-100.0, 100.0) as i32
+    } else {
+        0
+    }
 }
 
 /// The kernel paths a scene can reach: its BSDF models, emitter kinds, textures and integrator.

@@ -6,14 +6,15 @@
 //! the file, so that a damaged checkpoint is refused instead of resumed into a wrong image.
 use crate::buffers::SceneBuffers;
 use crate::film::Accumulation;
+use crate::film::PixelTotal;
 use anyhow::{bail, Context, Result};
-use caustic_kernel::layout::PixelAccum;
 use std::hash::{Hash, Hasher};
 use std::path::Path;
 
-/// Version 3: a CRC-32 of everything before it ends the file. (Version 2 added the batch count of
-/// splatted, light-traced, sums to the header.)
-const MAGIC: &[u8; 8] = b"CAUSTCK3";
+/// Version 4: the sums are the host's f64 totals (`film::PixelTotal`). (Version 3 ended the file with
+/// a CRC-32 of everything before it; version 2 added the batch count of splatted, light-traced, sums
+/// to the header.)
+const MAGIC: &[u8; 8] = b"CAUSTCK4";
 const HEADER: usize = 36;
 /// The checksum after the sums.
 const TRAILER: usize = 4;
@@ -53,8 +54,8 @@ impl Checkpoint {
     /// Writes the checkpoint next to `path` and renames it into place, so that an interruption
     /// while writing leaves the previous checkpoint intact.
     pub fn save(&self, path: &Path) -> Result<()> {
-        let floats: &[f32] = bytemuck::cast_slice(&self.accum.pixels);
-        let mut bytes = Vec::with_capacity(HEADER + floats.len() * 4 + TRAILER);
+        let floats: &[f64] = bytemuck::cast_slice(&self.accum.pixels);
+        let mut bytes = Vec::with_capacity(HEADER + floats.len() * 8 + TRAILER);
         bytes.extend_from_slice(MAGIC);
         bytes.extend_from_slice(&self.scene.to_le_bytes());
         let batches = self.accum.batches.unwrap_or(u32::MAX);
@@ -88,8 +89,8 @@ impl Checkpoint {
         let (seed, spp_total, spp_done, count) =
             (word(16).unwrap(), word(20).unwrap(), word(24).unwrap(), word(28).unwrap() as usize);
         let batches = word(32).unwrap();
-        let per_pixel = std::mem::size_of::<PixelAccum>() / 4;
-        let expected = count.checked_mul(4).and_then(|b| b.checked_add(HEADER + TRAILER));
+        let per_pixel = std::mem::size_of::<PixelTotal>() / 8;
+        let expected = count.checked_mul(8).and_then(|b| b.checked_add(HEADER + TRAILER));
         if expected != Some(bytes.len()) || count % per_pixel != 0 {
             bail!(
                 "{}: truncated or damaged checkpoint ({} bytes; its header says {count} values)",
@@ -101,8 +102,8 @@ impl Checkpoint {
         if crc32fast::hash(content) != u32::from_le_bytes(trailer.try_into().unwrap()) {
             bail!("{}: damaged checkpoint (checksum mismatch); remove it to start afresh", path.display());
         }
-        let floats: Vec<f32> =
-            content[HEADER..].chunks_exact(4).map(|c| f32::from_le_bytes(c.try_into().unwrap())).collect();
+        let floats: Vec<f64> =
+            content[HEADER..].chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect();
         let accum = Accumulation {
             pixels: bytemuck::pod_collect_to_vec(&floats),
             batches: (batches != u32::MAX).then_some(batches),
@@ -114,14 +115,13 @@ impl Checkpoint {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use caustic_kernel::layout::PixelAccum;
 
     fn sample() -> Checkpoint {
         let pixels = (0..6)
-            .map(|i| PixelAccum {
-                sum: [i as f32, 0.5, 2.0],
+            .map(|i| PixelTotal {
+                sum: [i as f64, 0.5, 2.0],
                 count: 4.0,
-                sum_sq: [1.0, 0.25, i as f32],
+                sum_sq: [1.0, 0.25, i as f64],
                 invalid: 0.0,
             })
             .collect();

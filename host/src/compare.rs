@@ -69,7 +69,7 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
             rel += d * d / ((b[c] as f64).powi(2) + 1e-2);
             match &variance {
                 Some(v) => {
-                    let var = v[i][c] as f64 * (1.0 + samples_ratio)
+                    let var = v[i][c] * (1.0 + samples_ratio)
                         + (REFERENCE_RELATIVE_PRECISION * b[c].abs() as f64).powi(2)
                         + ABSOLUTE_FLOOR * ABSOLUTE_FLOOR;
                     let z = d.abs() / var.sqrt();
@@ -83,7 +83,7 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
         if let Some(v) = &variance {
             // Channels of one pixel are strongly correlated: bound the luminance's standard error by
             // the sum of the weighted channel errors (exact for perfect correlation, conservative otherwise).
-            let sd = luminance(v[i].map(f32::sqrt));
+            let sd = luminance(v[i].map(|x| x.sqrt() as f32));
             lum_var += sd * sd * (1.0 + samples_ratio);
         }
         error_map.push(worst as f32);
@@ -105,21 +105,22 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
 /// the first such pixel: a single one would make every statistic NaN, and a NaN compares as neither
 /// pass nor fail.
 pub fn check_finite(film: &Film, path: &Path) -> Result<()> {
-    let first_bad = |values: &[[f32; 3]]| values.iter().position(|p| p.iter().any(|c| !c.is_finite()));
-    let bad = |i: usize, what: &str, file: &Path, values: &[[f32; 3]]| {
+    let first_bad = |values: &mut dyn Iterator<Item = [f64; 3]>| {
+        values.enumerate().find(|(_, p)| p.iter().any(|c| !c.is_finite()))
+    };
+    let bad = |(i, value): (usize, [f64; 3]), what: &str, file: &Path| {
         let (x, y) = (i as u32 % film.width, i as u32 / film.width);
         anyhow::anyhow!(
-            "{}: pixel ({x}, {y}) {what} is not finite ({:?}); compare needs finite images",
+            "{}: pixel ({x}, {y}) {what} is not finite ({value:?}); compare needs finite images",
             file.display(),
-            values[i]
         )
     };
-    if let Some(i) = first_bad(&film.rgb) {
-        return Err(bad(i, "of the image", path, &film.rgb));
+    if let Some(found) = first_bad(&mut film.rgb.iter().map(|p| p.map(f64::from))) {
+        return Err(bad(found, "of the image", path));
     }
     if let Some(v) = &film.variance {
-        if let Some(i) = first_bad(v) {
-            return Err(bad(i, "of the variance", &variance_path(path), v));
+        if let Some(found) = first_bad(&mut v.iter().copied()) {
+            return Err(bad(found, "of the variance", &variance_path(path)));
         }
     }
     Ok(())
@@ -129,7 +130,7 @@ pub fn check_finite(film: &Film, path: &Path) -> Result<()> {
 /// over its 3×3 neighbourhood. With few samples a pixel's variance estimate is itself very noisy (and
 /// heavy-tailed path contributions make it too small more often than too large); pooling with the
 /// neighbours steadies it while a genuine bias still stands out by many standard errors.
-pub fn pooled_variance(v: &[[f32; 3]], width: u32, height: u32) -> Vec<[f32; 3]> {
+pub fn pooled_variance(v: &[[f64; 3]], width: u32, height: u32) -> Vec<[f64; 3]> {
     let (w, h) = (width as i64, height as i64);
     let mut out = Vec::with_capacity(v.len());
     for y in 0..h {
@@ -142,14 +143,14 @@ pub fn pooled_variance(v: &[[f32; 3]], width: u32, height: u32) -> Vec<[f32; 3]>
                     if nx >= 0 && ny >= 0 && nx < w && ny < h {
                         let p = v[(ny * w + nx) as usize];
                         for c in 0..3 {
-                            sum[c] += p[c] as f64;
+                            sum[c] += p[c];
                         }
                         count += 1.0;
                     }
                 }
             }
             let own = v[(y * w + x) as usize];
-            out.push(std::array::from_fn(|c| own[c].max((sum[c] / count) as f32)));
+            out.push(std::array::from_fn(|c| own[c].max(sum[c] / count)));
         }
     }
     out

@@ -11,18 +11,39 @@ pub struct Film {
     pub height: u32,
     /// Row-major RGB means.
     pub rgb: Vec<[f32; 3]>,
-    /// Variance of each mean (sample variance / n), when known.
-    pub variance: Option<Vec<[f32; 3]>>,
+    /// Variance of each mean (sample variance / n), when known. f64: a lamp of radiance 1e30 gives
+    /// variances near 1e55, past f32's range (3.4e38), and the estimate is computed in f64 anyway.
+    pub variance: Option<Vec<[f64; 3]>>,
     /// Samples dropped because they were not finite.
     pub invalid_samples: u64,
     /// A note written into EXR files' `comments` attribute (a partial render says so there).
     pub comment: Option<String>,
 }
 
-/// A backend's accumulated sums: one `PixelAccum` per pixel, and how their squares were summed.
+/// One pixel's totals on the host: the device's f32 sums (`PixelAccum`) folded in every
+/// `FOLD_SAMPLES` samples per pixel and at every read-back. A million samples of 0.1 summed in f32
+/// came out 3.8e-5 high (each pass added 25.6 to a sum near 1e5, whose ulp is 0.0078, rounding the
+/// same way every pass); f64 totals keep the device's sums small.
+#[repr(C)]
+#[derive(Clone, Copy, Default, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PixelTotal {
+    pub sum: [f64; 3],
+    pub count: f64,
+    /// Sum of the squared estimates (unscaled: `fold` divides the kernel's square scale out).
+    pub sum_sq: [f64; 3],
+    pub invalid: f64,
+}
+
+/// Samples per pixel after which a backend folds its device's f32 sums into the host's f64 totals
+/// and clears them. The sums then stay below 4096 × the pixel's mean, where the ulp of a pass's add
+/// is 2⁻¹² of the sum's ulp at a million samples; the GPU reads its sums back once per 4096 spp
+/// (once per 16 passes at the largest pass).
+pub const FOLD_SAMPLES: u32 = 4096;
+
+/// A backend's accumulated sums: one `PixelTotal` per pixel, and how their squares were summed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Accumulation {
-    pub pixels: Vec<PixelAccum>,
+    pub pixels: Vec<PixelTotal>,
     /// `None`: `sum_sq` sums each sample's square (camera paths). `Some(b)`: the sums came in `b`
     /// batches (passes) whose pixel sums `S` were resolved from splats, `sum_sq` summing `S²/k` for a
     /// pass of `k` samples, and the film estimates the variance from batch means: a light path adds
@@ -32,17 +53,22 @@ pub struct Accumulation {
 
 impl Accumulation {
     pub fn new(pixels: usize, splatted: bool) -> Self {
-        Accumulation { pixels: vec![PixelAccum::default(); pixels], batches: splatted.then_some(0) }
+        Accumulation { pixels: vec![PixelTotal::default(); pixels], batches: splatted.then_some(0) }
     }
 
-    /// Adds one pass of `sample_count` samples per pixel from the splat words (`caustic_kernel::splat`
-    /// layout), with the kernel's own `resolved` (the GPU runs the same in its `resolve` entry point).
-    pub fn add_splats(&mut self, words: &[u32], sample_count: u32) {
-        use caustic_kernel::splat::{resolved, SPLAT_STRIDE};
-        for (px, w) in self.pixels.iter_mut().zip(words.chunks_exact(SPLAT_STRIDE as usize)) {
-            *px = resolved(*px, w.try_into().expect("a pixel's words"), sample_count);
+    /// Adds a device's f32 sums (one `PixelAccum` per pixel) whose squares were scaled by
+    /// `2^square_scale_log2` before squaring (`FrameParams::square_scale_log2`).
+    pub fn fold(&mut self, device: &[PixelAccum], square_scale_log2: i32) {
+        assert_eq!(self.pixels.len(), device.len(), "accumulations of different sizes");
+        let unscale = 2f64.powi(-2 * square_scale_log2);
+        for (a, b) in self.pixels.iter_mut().zip(device) {
+            for c in 0..3 {
+                a.sum[c] += b.sum[c] as f64;
+                a.sum_sq[c] += b.sum_sq[c] as f64 * unscale;
+            }
+            a.count += b.count as f64;
+            a.invalid += b.invalid as f64;
         }
-        self.batches = Some(self.batches.unwrap_or(0) + 1);
     }
 
     /// Adds another device's sums over disjoint samples (several devices, MPI ranks): the sums, counts
@@ -70,23 +96,70 @@ impl Accumulation {
     }
 }
 
+/// A device's f32 sums and the host's f64 totals they fold into: what both backends keep, so that
+/// both fold on the same schedule (every `FOLD_SAMPLES` samples per pixel, and at every read).
+#[derive(Clone, Debug)]
+pub struct Folding {
+    /// Everything folded so far (and the batch count of splatted sums).
+    pub total: Accumulation,
+    /// Samples per pixel in the device's sums since they were last folded.
+    pub unfolded: u32,
+    pub square_scale_log2: i32,
+}
+
+impl Folding {
+    pub fn new(pixels: usize, splatted: bool, square_scale_log2: i32) -> Self {
+        Folding { total: Accumulation::new(pixels, splatted), unfolded: 0, square_scale_log2 }
+    }
+
+    /// Counts a pass of `samples` per pixel (and a batch, for splatted sums); whether the device's
+    /// sums are due to be folded (`fold` them, then clear them).
+    pub fn passed(&mut self, samples: u32) -> bool {
+        self.unfolded += samples;
+        if let Some(b) = &mut self.total.batches {
+            *b += 1;
+        }
+        self.unfolded >= FOLD_SAMPLES
+    }
+
+    /// Folds the device's sums in (the caller clears them).
+    pub fn fold(&mut self, device: &[PixelAccum]) {
+        self.total.fold(device, self.square_scale_log2);
+        self.unfolded = 0;
+    }
+
+    /// Replaces the totals (resuming from a checkpoint; the caller clears the device's sums).
+    pub fn replace(&mut self, accum: &Accumulation) -> anyhow::Result<()> {
+        anyhow::ensure!(
+            accum.pixels.len() == self.total.pixels.len()
+                && accum.batches.is_some() == self.total.batches.is_some(),
+            "accumulation buffer of {} pixels ({}), expected {}",
+            accum.pixels.len(),
+            if accum.batches.is_some() { "splatted" } else { "per sample" },
+            self.total.pixels.len()
+        );
+        self.total = accum.clone();
+        self.unfolded = 0;
+        Ok(())
+    }
+}
+
 impl Film {
     pub fn from_accum(width: u32, height: u32, accum: &Accumulation) -> Film {
         let mut rgb = Vec::with_capacity((width * height) as usize);
         let mut variance = Vec::with_capacity(rgb.capacity());
         let mut invalid = 0u64;
         for px in &accum.pixels {
-            let n = px.count.max(1.0) as f64;
-            let mean: [f64; 3] = std::array::from_fn(|c| px.sum[c] as f64 / n);
+            let n = px.count.max(1.0);
+            let mean: [f64; 3] = std::array::from_fn(|c| px.sum[c] / n);
             // Variance of the mean: per sample, (Σx² − n·x̄²) / (n(n−1)); from b batch means weighted
             // by their sizes, (Σ S²/k − n·x̄²) / (n(b−1)).
             let dof = match accum.batches {
                 None => (n - 1.0).max(1.0),
                 Some(b) => (b as f64 - 1.0).max(1.0),
             };
-            let var: [f32; 3] = std::array::from_fn(|c| {
-                ((px.sum_sq[c] as f64 - n * mean[c] * mean[c]).max(0.0) / (n * dof)) as f32
-            });
+            let var: [f64; 3] =
+                std::array::from_fn(|c| (px.sum_sq[c] - n * mean[c] * mean[c]).max(0.0) / (n * dof));
             rgb.push(mean.map(|m| m as f32));
             variance.push(var);
             invalid += px.invalid as u64;
@@ -98,17 +171,12 @@ impl Film {
     pub fn crop(&self, x: u32, y: u32, width: u32, height: u32) -> Film {
         let (x, y) = (x.min(self.width), y.min(self.height));
         let (w, h) = (width.min(self.width - x), height.min(self.height - y));
-        let window = |v: &Vec<[f32; 3]>| -> Vec<[f32; 3]> {
-            (y..y + h)
-                .flat_map(|row| (x..x + w).map(move |col| (row * self.width + col) as usize))
-                .map(|i| v[i])
-                .collect()
-        };
+        let rows = (y..y + h).flat_map(|row| (x..x + w).map(move |col| (row * self.width + col) as usize));
         Film {
             width: w,
             height: h,
-            rgb: window(&self.rgb),
-            variance: self.variance.as_ref().map(window),
+            rgb: rows.clone().map(|i| self.rgb[i]).collect(),
+            variance: self.variance.as_ref().map(|v| rows.map(|i| v[i]).collect()),
             invalid_samples: self.invalid_samples,
             comment: self.comment.clone(),
         }
@@ -140,12 +208,20 @@ impl Film {
         }
     }
 
-    /// Writes the variance estimate (of each pixel's mean) as an EXR.
+    /// Writes the variance estimate (of each pixel's mean) as an EXR. EXR holds f32: a variance past
+    /// f32's range (a lamp of radiance above ~1e19) is written as the largest f32, with a warning.
     pub fn save_variance(&self, path: &Path) -> Result<()> {
-        match &self.variance {
-            Some(v) => write_exr(path, self.width, self.height, v, self.comment.as_deref()),
-            None => bail!("this image has no variance estimate"),
+        let Some(v) = &self.variance else { bail!("this image has no variance estimate") };
+        let saturated = v.iter().flatten().filter(|&&x| x > f32::MAX as f64).count();
+        if saturated > 0 {
+            eprintln!(
+                "warning: {}: {saturated} variance value(s) exceed f32's range ({:e}) and are written as it",
+                path.display(),
+                f32::MAX
+            );
         }
+        let narrow: Vec<[f32; 3]> = v.iter().map(|p| p.map(|x| x.min(f32::MAX as f64) as f32)).collect();
+        write_exr(path, self.width, self.height, &narrow, self.comment.as_deref())
     }
 
     fn srgb8(&self, x: u32, y: u32) -> [u8; 3] {
@@ -181,7 +257,7 @@ impl Film {
             if v.width != film.width || v.height != film.height {
                 bail!("{}: size differs from {}", var_path.display(), path.display());
             }
-            film.variance = Some(v.rgb);
+            film.variance = Some(v.rgb.iter().map(|p| p.map(f64::from)).collect());
         }
         Ok(film)
     }

@@ -17,6 +17,7 @@ pub mod mitsuba;
 #[cfg(feature = "mpi")]
 pub mod mpi;
 pub mod obj_scene;
+pub mod precision;
 pub mod ranked;
 pub mod ranks;
 pub mod render;
@@ -45,6 +46,19 @@ pub fn load_scene(path: &Path, defines: &[(String, String)]) -> Result<scene::Sc
 
 /// As `load_scene`, with options (`--strict`).
 pub fn load_scene_with(
+    path: &Path,
+    defines: &[(String, String)],
+    options: LoadOptions,
+) -> Result<scene::Scene> {
+    let mut scene = load_scene_unchecked(path, defines, options)?;
+    if let Some(message) = precision::warning(&scene) {
+        scene::warn(&mut scene.warnings, format!("{}: {message}", path.display()));
+    }
+    Ok(scene)
+}
+
+/// `load_scene_with` without the precision check (`precision`).
+fn load_scene_unchecked(
     path: &Path,
     defines: &[(String, String)],
     options: LoadOptions,

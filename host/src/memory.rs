@@ -1,19 +1,20 @@
 //! Host memory: what a render will allocate, checked against what the machine has before anything
-//! is allocated. A 32768×32768 film needs about 120 GiB here; allocating it aborted the process
+//! is allocated. A 32768×32768 film needs about 290 GiB here; allocating it aborted the process
 //! ("memory allocation failed") instead of refusing with a message.
 use crate::buffers::SceneBuffers;
 use anyhow::{bail, Result};
 use caustic_kernel::layout::PixelAccum;
 use caustic_kernel::splat::SPLAT_STRIDE;
 
-/// Host bytes a render of `buffers` needs at its peak: the scene, and per pixel three copies of the
-/// accumulator (the backend's own, or the GPU's read-back staging; the copy read back; the one the
-/// GPU's mapping is collected into), the finished image's means and variances, and a pass's splat
-/// words for light tracing.
+/// Host bytes a render of `buffers` needs at its peak: the scene, and per pixel the device's f32
+/// sums (the CPU's own, or the GPU's read-back staging and the copy collected from it), three f64
+/// totals (the backend's, the copy read back and one summing several devices), the finished image's
+/// means and variances, and a pass's splat words for light tracing.
 pub fn render_need(buffers: &SceneBuffers) -> u64 {
     let pixels = buffers.params.width as u64 * buffers.params.height as u64;
     let accum = std::mem::size_of::<PixelAccum>() as u64;
-    let image = 2 * 3 * 4;
+    let total = std::mem::size_of::<crate::film::PixelTotal>() as u64;
+    let image = 3 * 4 + 3 * 8;
     let splat = if caustic_kernel::integrator::splats(buffers.params.integrator) {
         SPLAT_STRIDE as u64 * 4
     } else {
@@ -24,7 +25,7 @@ pub fn render_need(buffers: &SceneBuffers) -> u64 {
         .filter(|(what, _)| !matches!(*what, "film accumulator" | "light-tracing splats"))
         .map(|(_, size)| size)
         .sum();
-    scene + pixels * (3 * accum + image + splat)
+    scene + pixels * (2 * accum + 3 * total + image + splat)
 }
 
 /// The memory the kernel says can be allocated without swapping (`MemAvailable` of /proc/meminfo);

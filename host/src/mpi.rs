@@ -231,14 +231,14 @@ impl Ranks for World {
     fn reduce(&self, accum: &Accumulation) -> Result<Option<Accumulation>> {
         use mpi::collective::SystemOperation;
         let root = self.world.process_at_rank(0);
-        let sums: &[f32] = bytemuck::cast_slice(&accum.pixels);
+        let sums: &[f64] = bytemuck::cast_slice(&accum.pixels);
         let batches = [accum.batches.unwrap_or(0)];
         if self.world.rank() != 0 {
             root.reduce_into(sums, SystemOperation::sum());
             root.reduce_into(&batches[..], SystemOperation::sum());
             return Ok(None);
         }
-        let mut total = vec![0f32; sums.len()];
+        let mut total = vec![0f64; sums.len()];
         let mut total_batches = [0u32];
         root.reduce_into_root(sums, &mut total[..], SystemOperation::sum());
         root.reduce_into_root(&batches[..], &mut total_batches[..], SystemOperation::sum());

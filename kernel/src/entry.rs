@@ -5,7 +5,7 @@ use crate::integrator::{
     accumulated, render_pixel, splat_camera_paths, splats_camera_paths, trace_light_paths, SceneView,
 };
 use crate::layout::{
-    BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
+    square_scale, BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
 };
 use crate::splat::{resolved, GpuWords, SPLAT_STRIDE};
 use spirv_std::glam::UVec3;
@@ -90,5 +90,5 @@ pub fn resolve(
         splat[base + i] = 0;
         i += 1;
     }
-    accum[pixel] = resolved(accum[pixel], words, params.sample_count);
+    accum[pixel] = resolved(accum[pixel], words, params.sample_count, square_scale(params));
 }

@@ -43,7 +43,10 @@ pub struct Primitive {
     /// Index into the light list when the primitive emits, else `NONE`.
     pub light: u32,
     pub flags: u32,
-    pub _pad: [u32; 3],
+    /// The absolute part of the ray offset from this primitive (`shape::offset_origin`): the scene's
+    /// size up to 1, the same for every primitive of a scene (kept here, where every offset finds it).
+    pub offset_floor: f32,
+    pub _pad: [u32; 2],
 }
 
 /// Per-triangle vertex attributes, indexed like `Primitive`: shading normals (used when the primitive
@@ -225,8 +228,8 @@ pub struct Texture {
 }
 
 /// One pixel's running sums in the accumulation buffer (32 bytes): what every pass adds to
-/// (`integrator::accumulated`), what the host develops into the image and its variance
-/// (`host/src/film.rs`) and what checkpoints save.
+/// (`integrator::accumulated`) and what the host folds into its f64 totals every few thousand
+/// samples (`host/src/film.rs`, `Accumulation::fold`), then clears.
 #[repr(C)]
 #[derive(Clone, Copy, Default)]
 #[cfg_attr(not(target_arch = "spirv"), derive(bytemuck::Pod, bytemuck::Zeroable, Debug, PartialEq))]
@@ -235,10 +238,17 @@ pub struct PixelAccum {
     pub sum: [f32; 3],
     /// Samples taken (a float, summed like the rest).
     pub count: f32,
-    /// Sum of the squared estimates, per channel.
+    /// Sum of the squared estimates, per channel, each scaled by `square_scale` before squaring
+    /// (the host divides that back out when it folds these into its f64 totals).
     pub sum_sq: [f32; 3],
     /// Samples whose estimate was NaN or infinite: counted as black and reported.
     pub invalid: f32,
+}
+
+/// `2^params.square_scale_log2` (exact: built from the exponent bits; `e` within ±126).
+#[inline]
+pub fn square_scale(params: &FrameParams) -> f32 {
+    f32::from_bits(((127 + params.square_scale_log2) as u32) << 23)
 }
 
 /// The GPU entry point's workgroup edge (`threads(8, 8, 1)` in `entry.rs`, which needs a literal):
@@ -322,7 +332,12 @@ pub struct FrameParams {
     /// 1 when the filter has negative lobes (`mitchell`, `lanczos`): its signed running sum follows
     /// its CDF in the table buffer and camera samples carry signed weights (`film`); 0 otherwise.
     pub filter_signed: u32,
-    pub _pad: [u32; 3],
+    /// The sums of squares add `(2^e · l)²` for a sample `l` (`square_scale`; `e` here, chosen by the
+    /// host from the scene's brightest emitter): a lamp of radiance 1e30 gave squares of 1e60, +Inf
+    /// in f32, and every variance infinite. A power of two, so the scaling itself is exact; 0 (the
+    /// default) is no scaling.
+    pub square_scale_log2: i32,
+    pub _pad: [u32; 2],
 
     pub camera: crate::camera::Camera,
 }

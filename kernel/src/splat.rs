@@ -125,17 +125,22 @@ fn fixed_to_f32(low: u32, high: u32) -> f32 {
 }
 
 /// A pixel's accumulator with one pass of `sample_count` samples per pixel added from its splat
-/// words: the pass's sum `S` to `sum`, `S²/k` to `sum_sq` (the host estimates the variance from these
-/// batch means), `k` to `count`, and the invalid count. Both backends resolve with this, the GPU in
-/// its `resolve` entry point without reading the words back.
+/// words: the pass's sum `S` to `sum`, `(qS)²/k` to `sum_sq` (`q`: `layout::square_scale`; the host
+/// estimates the variance from these batch means), `k` to `count`, and the invalid count. Both
+/// backends resolve with this, the GPU in its `resolve` entry point without reading the words back.
 #[inline]
-pub fn resolved(a: PixelAccum, w: [u32; SPLAT_STRIDE as usize], sample_count: u32) -> PixelAccum {
+pub fn resolved(a: PixelAccum, w: [u32; SPLAT_STRIDE as usize], sample_count: u32, q: f32) -> PixelAccum {
     let k = sample_count as f32;
     let s = [fixed_to_f32(w[0], w[1]), fixed_to_f32(w[2], w[3]), fixed_to_f32(w[4], w[5])];
+    let sq = [s[0] * q, s[1] * q, s[2] * q];
     PixelAccum {
         sum: [a.sum[0] + s[0], a.sum[1] + s[1], a.sum[2] + s[2]],
         count: a.count + k,
-        sum_sq: [a.sum_sq[0] + s[0] * s[0] / k, a.sum_sq[1] + s[1] * s[1] / k, a.sum_sq[2] + s[2] * s[2] / k],
+        sum_sq: [
+            a.sum_sq[0] + sq[0] * sq[0] / k,
+            a.sum_sq[1] + sq[1] * sq[1] / k,
+            a.sum_sq[2] + sq[2] * sq[2] / k,
+        ],
         invalid: a.invalid + w[SPLAT_INVALID as usize] as f32,
     }
 }

@@ -21,7 +21,7 @@ fn words() -> Words {
 
 fn sum_of(w: &Words) -> PixelAccum {
     let zero = PixelAccum { sum: [0.0; 3], count: 0.0, sum_sq: [0.0; 3], invalid: 0.0 };
-    resolved(zero, w.0.clone().try_into().unwrap(), 1)
+    resolved(zero, w.0.clone().try_into().unwrap(), 1, 1.0)
 }
 
 #[test]

@@ -39,8 +39,8 @@ pub fn render_replicated(scene: &Scene, spp: u32, seed: u32) -> Replicated {
         for c in 0..3 {
             film.rgb[i][c] = films.iter().map(|f| f.rgb[i][c]).sum::<f32>() / REPLICAS as f32;
             film.variance.as_mut().unwrap()[i][c] =
-                films.iter().map(|f| f.variance.as_ref().unwrap()[i][c]).sum::<f32>()
-                    / (REPLICAS * REPLICAS) as f32;
+                films.iter().map(|f| f.variance.as_ref().unwrap()[i][c]).sum::<f64>()
+                    / (REPLICAS * REPLICAS) as f64;
         }
     }
     film.invalid_samples = films.iter().map(|f| f.invalid_samples).sum();
@@ -58,8 +58,8 @@ pub fn agreement(a: &Replicated, b: &Film) -> (f64, f64) {
     for i in 0..a.film.rgb.len() {
         for c in 0..3 {
             let d = a.film.rgb[i][c] as f64 - b.rgb[i][c] as f64;
-            let v = va[i][c] as f64 + vb[i][c] as f64;
-            var_b += b.variance.as_ref().unwrap()[i][c] as f64;
+            let v = va[i][c] + vb[i][c];
+            var_b += b.variance.as_ref().unwrap()[i][c];
             worst = worst.max(d.abs() / (v.sqrt() + 1e-6));
         }
     }

@@ -99,7 +99,7 @@ fn dispersive_glass_keeps_the_furnace_white() {
         let n = film.rgb.len() as f64;
         for c in 0..3 {
             let mean = film.rgb.iter().map(|p| p[c] as f64).sum::<f64>() / n;
-            let se = var.iter().map(|v| v[c] as f64).sum::<f64>().sqrt() / n;
+            let se = var.iter().map(|v| v[c]).sum::<f64>().sqrt() / n;
             println!("{choice:?} channel {c}: mean {mean:.5} ± {se:.5}");
             assert!(
                 (mean - 1.0).abs() < 4.0 * se + 1e-4,
@@ -260,7 +260,7 @@ fn negligible_dispersion_renders_the_rgb_image() {
     for c in 0..3 {
         let n = a.rgb.len() as f64;
         let (ma, mb) = [&a, &b].map(|f| f.rgb.iter().map(|p| p[c] as f64).sum::<f64>() / n).into();
-        let se = (va.iter().chain(vb).map(|v| v[c] as f64).sum::<f64>()).sqrt() / n;
+        let se = (va.iter().chain(vb).map(|v| v[c]).sum::<f64>()).sqrt() / n;
         println!("channel {c}: spectral {ma:.5}, RGB {mb:.5} ± {se:.5}");
         assert!((ma - mb).abs() < 4.5 * se, "channel {c}: {ma} vs {mb} (se {se})");
     }

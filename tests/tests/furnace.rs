@@ -56,7 +56,7 @@ fn check(scene: &Scene, choice: BackendChoice) {
     let var = film.variance.as_ref().unwrap();
     let n = film.rgb.len() as f64;
     let mean = film.rgb.iter().map(|p| p[1] as f64).sum::<f64>() / n;
-    let se = (var.iter().map(|v| v[1] as f64).sum::<f64>()).sqrt() / n;
+    let se = (var.iter().map(|v| v[1]).sum::<f64>()).sqrt() / n;
     println!("{choice:?}: mean radiance {mean:.5} ± {se:.5}");
     assert!(
         (mean - 1.0).abs() < 4.0 * se + 1e-4,
@@ -66,7 +66,7 @@ fn check(scene: &Scene, choice: BackendChoice) {
     for (p, v) in film.rgb.iter().zip(var) {
         for c in 0..3 {
             assert!(
-                (p[c] as f64 - 1.0).abs() <= 6.0 * (v[c] as f64).sqrt() + 1e-4,
+                (p[c] as f64 - 1.0).abs() <= 6.0 * v[c].sqrt() + 1e-4,
                 "pixel {p:?} (variance {v:?}) is not 1"
             );
         }
@@ -142,7 +142,7 @@ fn smooth_shaded_diamond_in_a_unit_environment() {
     let film = render_scene(&scene, BackendChoice::Cpu, 32, 6);
     let n = film.rgb.len() as f64;
     let mean = film.rgb.iter().map(|p| p[1] as f64).sum::<f64>() / n;
-    let se = film.variance.as_ref().unwrap().iter().map(|v| v[1] as f64).sum::<f64>().sqrt() / n;
+    let se = film.variance.as_ref().unwrap().iter().map(|v| v[1]).sum::<f64>().sqrt() / n;
     println!("diamond furnace mean {mean:.5} ± {se:.5}");
     assert!((mean - 1.0).abs() < 4.0 * se + 5e-4, "diamond furnace mean {mean:.5} ± {se:.5}, Mitsuba 1.0000");
 }

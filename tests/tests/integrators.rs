@@ -115,7 +115,7 @@ fn light_and_bsdf_sampling_agree_on_every_emitter_shape() {
         let (mut diff, mut var, mut worst) = (0.0f64, 0.0f64, 0.0f64);
         for i in 0..light_only.rgb.len() {
             let d = light_only.rgb[i][1] as f64 - bsdf_only.rgb[i][1] as f64;
-            let v = va[i][1] as f64 + vb[i][1] as f64;
+            let v = va[i][1] + vb[i][1];
             diff += d;
             var += v;
             worst = worst.max(d.abs() / (v.sqrt() + 1e-6));

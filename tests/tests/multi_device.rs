@@ -18,7 +18,7 @@ use std::sync::Arc;
 /// (samples, or a splatting pass's resolved sums), so regrouping them changes it by at most
 /// (terms)·2⁻²⁴ relative: ≤ 64 terms here, 3.8e-6; 1e-5 leaves a margin and still catches one lost
 /// or doubled sample in 64 (1.6e-2).
-const SUM_TOLERANCE: f32 = 1e-5;
+const SUM_TOLERANCE: f64 = 1e-5;
 
 fn cornell_box(integrator: IntegratorChoice) -> SceneBuffers {
     let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml"));
@@ -44,7 +44,7 @@ fn render(backend: &mut dyn Backend, buffers: &SceneBuffers, spp: u32, checkpoin
 /// (splatting integrators' squares are over batches, whose boundaries depend on timing).
 fn assert_same_sums(what: &str, a: &Accumulation, b: &Accumulation) {
     assert_eq!(a.pixels.len(), b.pixels.len());
-    let close = |x: f32, y: f32| (x - y).abs() <= SUM_TOLERANCE * x.abs().max(y.abs()) + 1e-30;
+    let close = |x: f64, y: f64| (x - y).abs() <= SUM_TOLERANCE * x.abs().max(y.abs()) + 1e-30;
     for (i, (p, q)) in a.pixels.iter().zip(&b.pixels).enumerate() {
         assert_eq!((p.count, p.invalid), (q.count, q.invalid), "{what}: pixel {i}");
         for c in 0..3 {

@@ -144,7 +144,7 @@ fn ibpt_renders_a_caustic_like_path_tracing() {
     let path = render_scene(&scene("path"), BackendChoice::Cpu, 2048, 5);
     let ibpt = render_replicated(&scene("ibpt"), 256, 6);
     let (z, worst) = agreement(&ibpt, &path);
-    let noise = |f: &Film| f.variance.as_ref().unwrap().iter().flatten().map(|&v| v as f64).sum::<f64>();
+    let noise = |f: &Film| f.variance.as_ref().unwrap().iter().flatten().copied().sum::<f64>();
     println!("caustic: ibpt vs path: image z {z:+.2}, worst pixel |z| {worst:.2}; summed variance path {:.3e} (2048 spp), ibpt {:.3e} (256 spp)", noise(&path), noise(&ibpt.film));
     assert!(z.abs() < 4.5 && worst < 5.0, "caustic: ibpt and path disagree (z {z:+.2}, worst {worst:.2})");
     assert!(

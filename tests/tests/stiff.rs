@@ -84,9 +84,9 @@ fn z_scores(a: &Film, b: &Film) -> (f64, f64) {
     for i in 0..a.rgb.len() {
         for c in 0..3 {
             let d = a.rgb[i][c] as f64 - b.rgb[i][c] as f64;
-            let v = va[i][c] as f64 + vb[i][c] as f64;
+            let v = va[i][c] + vb[i][c];
             diff += d;
-            var += a.variance.as_ref().unwrap()[i][c] as f64 + b.variance.as_ref().unwrap()[i][c] as f64;
+            var += a.variance.as_ref().unwrap()[i][c] + b.variance.as_ref().unwrap()[i][c];
             worst = worst.max(d.abs() / (v.sqrt() + 1e-7 * b.rgb[i][c].abs() as f64 + 1e-30));
         }
     }
@@ -136,24 +136,43 @@ fn assert_invariant(cases: &[(f32, f32)]) {
     assert!(failures.is_empty(), "the image changed: {failures:?}");
 }
 
-/// Scale and position invariance where it holds: the 2-unit box scaled by 1e-2 … 1e4 and moved by up to
-/// 1e2 renders the image of the unit box, on both backends.
+/// Scale and position invariance where it holds: the 2-unit box scaled by 1e-4 … 1e4 and moved by up
+/// to 1e3 renders the image of the unit box, on both backends. Before the ray offset lost its
+/// absolute term (`kernel/src/shape/mod.rs`), the box scaled by 1e-3 or 1e-4 had single pixels off
+/// by |z| 5.5 and 29 (and before NEE's shadow rays ended at the light point, means 17–22% dark).
 #[test]
 fn scale_and_position_invariance() {
-    assert_invariant(&[(1e-2, 0.0), (1e2, 0.0), (1e4, 0.0), (1.0, 1e2), (1e4, 1e5)]);
+    assert_invariant(&[
+        (1e-4, 0.0),
+        (1e-3, 0.0),
+        (1e-2, 0.0),
+        (1e2, 0.0),
+        (1e4, 0.0),
+        (1.0, 1e2),
+        (1.0, 1e3),
+        (1e4, 1e5),
+    ]);
+    for (scale, offset) in [(1e-4, 0.0), (1.0, 1e3), (1e4, 1e5)] {
+        let scene =
+            transformed(&load_xml(&cornell(24, "15", 5), "cornell-quiet"), scale, Vec3::splat(offset));
+        assert_eq!(caustic::precision::warning(&scene), None, "scale {scale:e} offset {offset:e}");
+    }
 }
 
-/// Where invariance ends (measured, see BENCHMARKS.md): the box scaled to 2e-4 or moved 1e3 from the
-/// origin renders 17–22% dark on both backends, long before f32 runs out (an ulp at 1e3 is 6e-5, 3e-5
-/// of the box), while Mitsuba 3.9.1 renders the same scene unchanged there. The cause is the ray offset
-/// `(1 + |p|∞) · 1500 · 2⁻²⁴` (`kernel/src/shape/mod.rs`) against the scene's smallest feature, the
-/// lamp's gap under the ceiling: 0.089 at 1e3 against a gap of 0.02 (with the lamp 0.2 under the
-/// ceiling the box moved by 1e3 renders right: z +0.19), and at scale 1e-4 the absolute 8.9e-5 is
-/// larger than every feature of the box. Ignored until fixed (or warned of).
+/// Where invariance ends: the box moved by 1e4 or 1e5, or scaled by 1e-2 and moved by 1e3, puts the
+/// ray offset (`RAY_EPSILON · |p|`: 0.89 at 1e4) past the lamp's 0.02 gap under the ceiling and near
+/// the sphere's radius (measured on the CPU: worst |z| 30, 16 and 14). f32 itself ends there too for
+/// the gap at 1e5 (an ulp is 0.0078). The loader warns, naming the ratio of the smallest shape to the
+/// scene's extent; this checks that it does for each of them.
 #[test]
-#[ignore = "known limit: the ray offset (1 + |p|)·8.9e-5 against the smallest feature: means right at scale 1e-4 since NEE shadow rays end at the light, single pixels and offsets of 1e5 still off (BENCHMARKS.md)"]
-fn scale_and_position_invariance_beyond_the_ray_offset() {
-    assert_invariant(&[(1e-3, 0.0), (1e-4, 0.0), (1.0, 1e3), (1.0, 1e5), (1e-2, 1e3)]);
+fn loading_warns_where_float_precision_ends() {
+    for (scale, offset) in [(1.0f32, 1e4f32), (1.0, 1e5), (1e-2, 1e3)] {
+        let scene = transformed(&load_xml(&cornell(24, "15", 5), "cornell-far"), scale, Vec3::splat(offset));
+        let warning = caustic::precision::warning(&scene);
+        println!("scale {scale:e} offset {offset:e}: {warning:?}");
+        let warning = warning.unwrap_or_else(|| panic!("no warning at scale {scale:e} offset {offset:e}"));
+        assert!(warning.contains("ratio"), "{warning}");
+    }
 }
 
 /// A sphere light of radius 1e-5 a thousand units above a diffuse floor of albedo ρ: a sphere of
@@ -181,7 +200,7 @@ fn tiny_distant_sphere_light() {
         let film = render_scene(&scene, choice, 64, 3);
         let mean = image_mean(&film);
         let n = (3 * film.rgb.len()) as f64;
-        let se = film.variance.as_ref().unwrap().iter().flatten().map(|&v| v as f64).sum::<f64>().sqrt() / n;
+        let se = film.variance.as_ref().unwrap().iter().flatten().copied().sum::<f64>().sqrt() / n;
         println!(
             "{choice:?}: tiny light: mean {mean:.6} ± {se:.2e}, expected {expected:.6}, invalid {}",
             film.invalid_samples
@@ -194,32 +213,81 @@ fn tiny_distant_sphere_light() {
     }
 }
 
-/// Radiance 1e30: each sample's square (1e60) overflows f32, and the variance of the image must stay
-/// finite. Same seed as a lamp of radiance 15: the same paths, so the image scales by 1e30/15 exactly
-/// up to rounding. Measured: the image does (2.9e-7 relative), but every variance is infinite (the
-/// kernel sums squares in f32, which overflow above 1.8e19 per sample): ignored until it sums them
-/// scaled (BENCHMARKS.md, "Stiff and extreme cases").
+/// A sun: a sphere light of the sun's radius (7e8) at its distance (1.5e11) straight above a diffuse
+/// floor of albedo ρ. A sphere of radiance L whose centre is D along the normal gives the irradiance
+/// π L (r/D)² exactly, so the floor has the radiance ρ L (r/D)² (to 1e-11 over the visible patch).
+/// The sphere's cone is 0.27° across: 1 − cos α = 1.1e-5, where an f32 cosine keeps three digits.
 #[test]
-#[ignore = "known: the kernel's f32 sum of squares overflows (every variance infinite); fix described in BENCHMARKS.md"]
-fn radiance_1e30_keeps_a_finite_variance() {
-    let unit = render_scene(&load_xml(&cornell(16, "15", 5), "lamp-15"), BackendChoice::Cpu, 64, 4);
+fn sun_sized_sphere_light() {
+    let (rho, radius, distance, radiance) = (0.5f64, 7e8f64, 1.5e11f64, 4e4f64);
+    let expected = rho * radiance * (radius / distance).powi(2);
+    let xml = format!(
+        r#"<scene version="3.0.0">
+    <integrator type="path"><integer name="max_depth" value="-1"/></integrator>
+    <sensor type="perspective"><float name="fov" value="40"/>
+        <transform name="to_world"><lookat origin="0, 0, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/><rfilter type="box"/></film>
+    </sensor>
+    <shape type="rectangle"><transform name="to_world"><scale value="10"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="{rho}"/></bsdf></shape>
+    <shape type="sphere"><float name="radius" value="{radius:e}"/><point name="center" x="0" y="0" z="{distance:e}"/>
+        <emitter type="area"><rgb name="radiance" value="{radiance:e}"/></emitter></shape>
+</scene>"#
+    );
+    let scene = load_xml(&xml, "sun");
+    assert_eq!(caustic::precision::warning(&scene), None, "the sun is well resolved at its own distance");
     for choice in BACKENDS {
-        let film = render_scene(&load_xml(&cornell(16, "1e30", 5), "lamp-1e30"), choice, 64, 4);
-        let worst = film
-            .rgb
-            .iter()
-            .flatten()
-            .zip(unit.rgb.iter().flatten())
-            .map(|(&a, &b)| ((a as f64 * 15.0 / 1e30) - b as f64).abs() / (b as f64).max(1e-3))
-            .fold(0.0, f64::max);
-        let infinite = film.variance.as_ref().unwrap().iter().flatten().filter(|v| !v.is_finite()).count();
+        let film = render_scene(&scene, choice, 64, 3);
+        let mean = image_mean(&film);
+        let n = (3 * film.rgb.len()) as f64;
+        let se = film.variance.as_ref().unwrap().iter().flatten().copied().sum::<f64>().sqrt() / n;
         println!(
-            "{choice:?}: radiance 1e30: mean {:e}, worst relative difference from 1e30/15 × the radiance-15 image {worst:.2e}, {infinite} non-finite variances, invalid {}",
-            image_mean(&film),
+            "{choice:?}: sun: mean {mean:.6} ± {se:.2e}, expected {expected:.6} (relative {:+.2e}), invalid {}",
+            mean / expected - 1.0,
             film.invalid_samples
         );
-        assert!(worst < 1e-3, "{choice:?}: the 1e30 image is not the scaled radiance-15 image ({worst:e})");
+        assert_clean(&film, &format!("{choice:?} sun"));
+        assert!(
+            (mean - expected).abs() < 4.0 * se + 1e-3 * expected,
+            "{choice:?}: sun: mean {mean} ± {se}, expected {expected}"
+        );
+    }
+}
+
+/// Radiance 1e30: each sample's square (1e60) overflows f32, and the variance of the image must stay
+/// finite and right. Same seed as a lamp of radiance 15: the same paths, so the image scales by
+/// 1e30/15 and its variance by (1e30/15)², both exactly up to rounding. Before the kernel scaled its
+/// squares (`FrameParams::square_scale_log2`) and the film kept its variance in f64, every variance
+/// was +Inf (the image itself was right, 2.9e-7 relative).
+#[test]
+fn radiance_1e30_keeps_a_finite_variance() {
+    let unit = render_scene(&load_xml(&cornell(16, "15", 5), "lamp-15"), BackendChoice::Cpu, 64, 4);
+    let ratio = 1e30 / 15.0;
+    let worst_of = |a: &[[f64; 3]], b: &[[f64; 3]], scale: f64, floor: f64| {
+        a.iter()
+            .flatten()
+            .zip(b.iter().flatten())
+            .map(|(&a, &b)| (a / scale - b).abs() / b.max(floor))
+            .fold(0.0, f64::max)
+    };
+    let wide = |f: &Film| -> Vec<[f64; 3]> { f.rgb.iter().map(|p| p.map(f64::from)).collect() };
+    for choice in BACKENDS {
+        let film = render_scene(&load_xml(&cornell(16, "1e30", 5), "lamp-1e30"), choice, 64, 4);
+        let worst = worst_of(&wide(&film), &wide(&unit), ratio, 1e-3);
+        let (v, unit_v) = (film.variance.as_ref().unwrap(), unit.variance.as_ref().unwrap());
+        let worst_variance = worst_of(v, unit_v, ratio * ratio, 1e-8);
+        println!(
+            "{choice:?}: radiance 1e30: mean {:e}, largest variance {:e}, worst relative difference from the scaled radiance-15 image {worst:.2e}, variance {worst_variance:.2e}, invalid {}",
+            image_mean(&film),
+            v.iter().flatten().fold(0.0f64, |m, &x| m.max(x)),
+            film.invalid_samples
+        );
         assert_clean(&film, &format!("{choice:?} radiance 1e30"));
+        assert!(worst < 1e-3, "{choice:?}: the 1e30 image is not the scaled radiance-15 image ({worst:e})");
+        assert!(
+            worst_variance < 1e-3,
+            "{choice:?}: the 1e30 variance is not the scaled radiance-15 variance ({worst_variance:e})"
+        );
     }
 }
 
@@ -255,7 +323,7 @@ fn facing_mirrors_with_russian_roulette() {
             .rgb
             .iter()
             .zip(var)
-            .map(|(p, v)| (0..3).map(|c| p[c] as f64 - 5.0 * (v[c] as f64).sqrt()).fold(f64::MIN, f64::max))
+            .map(|(p, v)| (0..3).map(|c| p[c] as f64 - 5.0 * v[c].sqrt()).fold(f64::MIN, f64::max))
             .fold(f64::MIN, f64::max);
         println!(
             "{choice:?}: mirrors: mean {:.4}, brightest pixel less 5σ {brightest:.4} (lamp {lamp}), invalid {}",
@@ -288,7 +356,7 @@ fn furnace_mean(bsdf: &str, res: u32, spp: u32, choice: BackendChoice, tag: &str
     let film = render_scene(&load_xml(&xml, tag), choice, spp, 6);
     let n = film.rgb.len() as f64;
     let mean = film.rgb.iter().map(|p| p[1] as f64).sum::<f64>() / n;
-    let se = film.variance.as_ref().unwrap().iter().map(|v| v[1] as f64).sum::<f64>().sqrt() / n;
+    let se = film.variance.as_ref().unwrap().iter().map(|v| v[1]).sum::<f64>().sqrt() / n;
     (mean, se, film)
 }
 
@@ -362,10 +430,10 @@ fn million_sample_furnace(choice: BackendChoice) {
 
 /// A million samples per pixel that are all 0.1 (the camera sees a constant environment of radiance
 /// 0.1 and nothing else): no statistics at all, so the mean must be 0.1 to the accumulator's own
-/// rounding, here required to be 1e-5 relative. Measured: 0.10000376 on the CPU, 0.10000375 on
-/// lavapipe (3.8e-5 relative: each pass of 256 samples adds 25.6 to an f32 sum near 1e5, whose ulp is
-/// 0.0078, and the rounding has the same sign pass after pass). Ignored until the sums are kept in
-/// f64 on the host (BENCHMARKS.md, "Stiff and extreme cases").
+/// rounding, here required to be 1e-5 relative. With f32 sums alone: 0.10000376 on the CPU,
+/// 0.10000375 on lavapipe (3.8e-5 relative: each pass of 256 samples added 25.6 to an f32 sum near
+/// 1e5, whose ulp is 0.0078, and the rounding had the same sign pass after pass); the host now folds
+/// the sums into f64 every `film::FOLD_SAMPLES` samples.
 fn million_constant_samples(choice: BackendChoice) {
     let xml = r#"<scene version="3.0.0">
     <sensor type="perspective"><float name="fov" value="20"/>
@@ -388,13 +456,11 @@ fn million_constant_samples(choice: BackendChoice) {
 }
 
 #[test]
-#[ignore = "known: f32 pixel sums drift 3.8e-5 over a million samples (BENCHMARKS.md)"]
 fn million_constant_samples_cpu() {
     million_constant_samples(BackendChoice::Cpu);
 }
 
 #[test]
-#[ignore = "known: f32 pixel sums drift 3.8e-5 over a million samples (BENCHMARKS.md); 22 s on lavapipe"]
 fn million_constant_samples_gpu() {
     million_constant_samples(BackendChoice::Gpu);
 }
@@ -579,6 +645,75 @@ fn sliver_and_needle_triangles() {
             "{choice:?}: the needle floor differs (z {z:+.2}, worst {worst:.2})"
         );
     }
+}
+
+/// The box with its floor as one mesh of `triangles` (a grid of 2 triangles per cell over the
+/// floor's square), built in memory.
+fn box_with_meshed_floor(triangles: usize) -> Scene {
+    let mut scene = load_xml(&cornell(16, "15", 5), "mesh-floor");
+    let cells = ((triangles / 2) as f64).sqrt().round() as usize;
+    let at = |i: usize| -1.0 + 2.0 * i as f32 / cells as f32;
+    let mut grid = Vec::with_capacity(2 * cells * cells);
+    for j in 0..cells {
+        for i in 0..cells {
+            let (a, b) = (Vec3::new(at(i), at(j), 0.0), Vec3::new(at(i + 1), at(j), 0.0));
+            let (c, d) = (Vec3::new(at(i + 1), at(j + 1), 0.0), Vec3::new(at(i), at(j + 1), 0.0));
+            grid.push([a, b, c]);
+            grid.push([a, c, d]);
+        }
+    }
+    let floor = &mut scene.shapes[0];
+    assert!(!matches!(floor.geometry, Geometry::Sphere { .. }), "the first shape is the floor");
+    floor.geometry = Geometry::Triangles { triangles: grid, normals: None, uvs: None };
+    scene
+}
+
+/// A floor of `triangles` triangles renders the plain box's image on the CPU; on the GPU it renders
+/// the same or is refused naming the device limit it exceeds.
+fn large_mesh(triangles: usize) {
+    let start = std::time::Instant::now();
+    let scene = box_with_meshed_floor(triangles);
+    let buffers = caustic::buffers::build(&scene).expect("the mesh builds");
+    println!("{} triangles: built in {:.1} s", buffers.prims.len(), start.elapsed().as_secs_f64());
+    let reference =
+        render_scene(&load_xml(&cornell(16, "15", 5), "mesh-floor-ref"), BackendChoice::Cpu, 64, 12);
+    for choice in BACKENDS {
+        let backend = caustic::backend::create(choice, &buffers);
+        if let Err(e) = &backend {
+            let message = format!("{e:#}");
+            println!("{choice:?}: {triangles} triangles refused: {message}");
+            assert!(
+                choice == BackendChoice::Gpu && message.contains("max_") && message.contains("bytes"),
+                "{choice:?}: {triangles} triangles: {message}"
+            );
+            continue;
+        }
+        let start = std::time::Instant::now();
+        let film = caustic_tests::render_buffers(&buffers, choice, 64, 13);
+        let (z, worst) = z_scores(&film, &reference);
+        println!(
+            "{choice:?}: {triangles}-triangle floor vs rectangle: image z {z:+.2}, worst |z| {worst:.2}, {:.1} s",
+            start.elapsed().as_secs_f64()
+        );
+        assert_clean(&film, &format!("{choice:?} {triangles} triangles"));
+        assert!(
+            z.abs() < 4.5 && worst < 5.0,
+            "{choice:?}: the meshed floor differs (z {z:+.2}, worst {worst:.2})"
+        );
+    }
+}
+
+#[test]
+fn a_million_triangle_mesh() {
+    large_mesh(1_000_000);
+}
+
+/// Measured on the 2-core machine: BVH built in 21 s, rendered on the CPU in 6 s (z +0.59), refused by
+/// lavapipe (its BVH nodes need 305 MiB against a 128 MiB binding limit), 7.3 GB resident at the peak.
+#[test]
+#[ignore = "7.3 GB resident at its peak: too much beside CI's parallel tests; a_million_triangle_mesh runs"]
+fn ten_million_triangle_mesh() {
+    large_mesh(10_000_000);
 }
 
 /// Two coplanar, overlapping floors of different albedo (z-fighting): every value finite, and the

@@ -1,20 +1,29 @@
-//! The CPU backend: the kernel linked natively, over all cores.
+//! The CPU backend: the kernel linked natively, over all cores, into f32 sums that fold into the
+//! host's f64 totals on the GPU's schedule (`film::Folding`).
 use super::Backend;
 use crate::buffers::SceneBuffers;
-use crate::film::Accumulation;
+use crate::film::{Accumulation, Folding};
 use anyhow::Result;
-use caustic_kernel::layout::FrameParams;
+use caustic_kernel::layout::{FrameParams, PixelAccum};
 
 pub struct CpuBackend {
     buffers: SceneBuffers,
-    accum: Accumulation,
+    /// The f32 sums the kernel adds to, as the GPU's accumulation buffer.
+    device: Vec<PixelAccum>,
+    folding: Folding,
 }
 
 impl CpuBackend {
     pub fn new(buffers: SceneBuffers) -> Self {
         let pixels = (buffers.params.width * buffers.params.height) as usize;
         let splatted = caustic_kernel::integrator::splats(buffers.params.integrator);
-        CpuBackend { buffers, accum: Accumulation::new(pixels, splatted) }
+        let folding = Folding::new(pixels, splatted, buffers.params.square_scale_log2);
+        CpuBackend { buffers, device: vec![PixelAccum::default(); pixels], folding }
+    }
+
+    fn fold(&mut self) {
+        self.folding.fold(&self.device);
+        self.device.fill(PixelAccum::default());
     }
 }
 
@@ -24,29 +33,30 @@ impl Backend for CpuBackend {
     }
 
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
-        if self.accum.batches.is_some() {
+        if self.folding.total.batches.is_some() {
+            use caustic_kernel::splat::{resolved, SPLAT_STRIDE};
             let words = caustic_cpu::light_pass(&self.buffers.view(), params);
-            self.accum.add_splats(&words, params.sample_count);
+            let q = caustic_kernel::layout::square_scale(params);
+            for (px, w) in self.device.iter_mut().zip(words.chunks_exact(SPLAT_STRIDE as usize)) {
+                *px = resolved(*px, w.try_into().expect("a pixel's words"), params.sample_count, q);
+            }
         } else {
-            caustic_cpu::render_pass(&self.buffers.view(), params, &mut self.accum.pixels);
+            caustic_cpu::render_pass(&self.buffers.view(), params, &mut self.device);
+        }
+        if self.folding.passed(params.sample_count) {
+            self.fold();
         }
         Ok(())
     }
 
     fn read_accum(&mut self) -> Result<Accumulation> {
-        Ok(self.accum.clone())
+        self.fold();
+        Ok(self.folding.total.clone())
     }
 
     fn write_accum(&mut self, accum: &Accumulation) -> Result<()> {
-        anyhow::ensure!(
-            accum.pixels.len() == self.accum.pixels.len()
-                && accum.batches.is_some() == self.accum.batches.is_some(),
-            "accumulation buffer of {} pixels ({}), expected {}",
-            accum.pixels.len(),
-            if accum.batches.is_some() { "splatted" } else { "per sample" },
-            self.accum.pixels.len()
-        );
-        self.accum = accum.clone();
+        self.folding.replace(accum)?;
+        self.device.fill(PixelAccum::default());
         Ok(())
     }
 }

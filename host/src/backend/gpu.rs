@@ -5,7 +5,7 @@
 //! BENCHMARKS.md), and safe because the kernel's own indexing is bounds-checked Rust.
 use super::Backend;
 use crate::buffers::SceneBuffers;
-use crate::film::Accumulation;
+use crate::film::{Accumulation, Folding};
 use anyhow::{anyhow, bail, Context, Result};
 use caustic_kernel::integrator::{splats, traces_camera_paths};
 use caustic_kernel::layout::{binding, FrameParams, PixelAccum, TILE};
@@ -30,9 +30,11 @@ pub struct GpuBackend {
     params_buffer: wgpu::Buffer,
     accum_buffer: wgpu::Buffer,
     accum_size: u64,
-    /// Splatting integrators: the passes resolved into `accum_buffer` so far (its batches), and the
-    /// pipeline that resolves each pass's splat words there and clears them. `None` otherwise.
-    batches: Option<u32>,
+    /// The host's f64 totals that `accum_buffer`'s f32 sums are read back into and cleared, every
+    /// `film::FOLD_SAMPLES` samples per pixel and at every read (with the batch count of splatted sums).
+    folding: Folding,
+    /// Splatting integrators: the pipeline that resolves each pass's splat words into `accum_buffer`
+    /// and clears them. `None` otherwise.
     resolve_pipeline: Option<wgpu::ComputePipeline>,
     adapter_name: String,
     width: u32,
@@ -227,7 +229,7 @@ impl GpuBackend {
             params_buffer,
             accum_buffer,
             accum_size,
-            batches: splatted.then_some(0),
+            folding: Folding::new(pixels as usize, splatted, buffers.params.square_scale_log2),
             resolve_pipeline,
             adapter_name,
             width: buffers.params.width,
@@ -295,28 +297,38 @@ impl Backend for GpuBackend {
             }
         }
         self.queue.submit([encoder.finish()]);
-        if let Some(b) = &mut self.batches {
-            *b += 1;
+        if self.folding.passed(params.sample_count) {
+            self.fold()
+        } else {
+            self.wait()
         }
-        self.wait()
     }
 
     fn write_accum(&mut self, accum: &Accumulation) -> Result<()> {
-        let pixels = self.accum_size / std::mem::size_of::<PixelAccum>() as u64;
-        anyhow::ensure!(
-            accum.pixels.len() as u64 == pixels && accum.batches.is_some() == self.batches.is_some(),
-            "accumulation buffer of {} pixels ({}), expected {pixels}",
-            accum.pixels.len(),
-            if accum.batches.is_some() { "splatted" } else { "per sample" },
-        );
-        self.batches = accum.batches;
-        self.queue.write_buffer(&self.accum_buffer, 0, bytemuck::cast_slice(&accum.pixels));
-        self.queue.submit([]);
-        self.wait()
+        self.folding.replace(accum)?;
+        self.clear_accum()
     }
 
     fn read_accum(&mut self) -> Result<Accumulation> {
+        self.fold()?;
+        Ok(self.folding.total.clone())
+    }
+}
+
+impl GpuBackend {
+    /// Reads the device's f32 sums back into the host's f64 totals and clears them.
+    fn fold(&mut self) -> Result<()> {
         let bytes = self.read_buffer(&self.accum_buffer, self.accum_size)?;
-        Ok(Accumulation { pixels: bytemuck::pod_collect_to_vec(&bytes), batches: self.batches })
+        let device: Vec<PixelAccum> = bytemuck::pod_collect_to_vec(&bytes);
+        self.folding.fold(&device);
+        self.clear_accum()
+    }
+
+    fn clear_accum(&mut self) -> Result<()> {
+        let mut encoder =
+            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("clear") });
+        encoder.clear_buffer(&self.accum_buffer, 0, None);
+        self.queue.submit([encoder.finish()]);
+        self.wait()
     }
 }

@@ -25,6 +25,7 @@ use crate::wavelength;
 #[derive(Clone, Copy)]
 pub struct PixelSums {
     pub sum: Rgb,
+    /// Sum of the squares of the samples scaled by `layout::square_scale`.
     pub sum_sq: Rgb,
     /// Samples whose estimate was NaN or infinite; they are counted as black so that the image stays
     /// finite and unbiased estimates elsewhere are unaffected.
@@ -50,6 +51,7 @@ fn camera_sample(
 /// Renders `params.sample_count` samples of one pixel (row-major index).
 pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> PixelSums {
     let mut sums = PixelSums { sum: Rgb::ZERO, sum_sq: Rgb::ZERO, invalid: 0 };
+    let k = crate::layout::square_scale(params);
     let mut s = 0;
     while s < params.sample_count {
         let (mut sampler, film_sample, ray) =
@@ -66,7 +68,8 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
         }
         if is_finite3(l) {
             sums.sum += l;
-            sums.sum_sq += l * l;
+            let scaled = l * k;
+            sums.sum_sq += scaled * scaled;
         } else {
             sums.invalid += 1;
         }

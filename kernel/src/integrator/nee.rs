@@ -94,7 +94,7 @@ pub fn next_event(
         return Rgb::ZERO;
     }
     // From the offset origin to the light point itself, as Mitsuba's `spawn_ray_to` does: keeping the
-    // direction and distance from the surface point would end the ray the offset (8.9e-5·(1 + |p|))
+    // direction and distance from the surface point would end the ray the offset (then 8.9e-5·(1 + |p|))
     // past the light, behind whatever lies closer to it than that (measured: a lamp 2e-6 under a
     // ceiling in a box scaled by 1e-4 rendered 22% dark).
     let origin = offset_origin(sp, ng, ls.wi);

@@ -20,7 +20,7 @@ use crate::sampling::{
     sample_cdf, square_to_concentric_disk, square_to_cosine_hemisphere, square_to_uniform_cone,
     square_to_uniform_sphere,
 };
-use crate::shape::{disk, triangle, RAY_EPSILON};
+use crate::shape::{disk, offset_scale, triangle, RAY_EPSILON};
 use crate::spectrum::Rgb;
 
 /// The start of a light path.
@@ -29,7 +29,7 @@ pub struct EmissionSample {
     /// Where the light leaves (on the emitter's surface, or the point light's position).
     pub p: Vec3,
     /// Where rays leaving the emitter start: `p` moved off the surface to the emitting side by
-    /// Mitsuba's epsilon (`shape::offset_origin`'s), so that they do not re-hit it.
+    /// `shape::offset_origin`'s offset, so that they do not re-hit it.
     pub origin: Vec3,
     /// The emitting surface's normal (zero for point and spot lights).
     pub n: Vec3,
@@ -146,7 +146,7 @@ pub fn sample(
             return EmissionSample::none();
         }
         s.p = p;
-        s.origin = p + n * ((1.0 + p.abs().max_element().max(scale)) * RAY_EPSILON);
+        s.origin = p + n * (offset_scale(p, scale, prim.offset_floor) * RAY_EPSILON);
         s.n = n;
         s.dir = Frame::from_normal(n).to_world(local);
         s.position_weight = area / light.pmf;

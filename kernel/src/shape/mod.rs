@@ -42,6 +42,8 @@ pub struct SurfacePoint {
     /// Size of the primitive's own coordinates (a sphere's radius, a triangle's largest vertex
     /// coordinate): the rounding error of `p` grows with it as well as with `|p|`.
     pub error_scale: f32,
+    /// `Primitive::offset_floor`: the offset's absolute part.
+    pub offset_floor: f32,
     /// Texture coordinates (Mitsuba's conventions per shape).
     pub uv: Vec2,
 }
@@ -60,7 +62,7 @@ pub fn surface_point(
         let n = (p - centre).normalize() * flip;
         let error_scale = prim.p1[0];
         let uv = sphere::uv((p - centre) / prim.p1[0]);
-        return SurfacePoint { p, ng: n, ns: n, error_scale, uv };
+        return SurfacePoint { p, ng: n, ns: n, error_scale, offset_floor: prim.offset_floor, uv };
     }
     if prim.kind == PRIM_DISK {
         let (c, u, v) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
@@ -71,6 +73,7 @@ pub fn surface_point(
             ng: n,
             ns: n,
             error_scale,
+            offset_floor: prim.offset_floor,
             uv: disk::uv(hit.uv),
         };
     }
@@ -89,23 +92,38 @@ pub fn surface_point(
         }
     }
     let error_scale = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
-    SurfacePoint { p, ng, ns, error_scale, uv }
+    SurfacePoint { p, ng, ns, error_scale, offset_floor: prim.offset_floor, uv }
 }
 
-/// Mitsuba's `math::RayEpsilon<float>`: 1500 · 2⁻²⁴.
+/// Ray origins leave surfaces by `(f + max(|p|∞, the primitive's own coordinates)) · RAY_EPSILON`
+/// (`offset_scale`), relative to the magnitudes whose rounding a hit point carries (a point
+/// interpolated from a triangle's vertices, or reprojected onto a sphere, is off its surface by a
+/// few roundings of the largest of them) plus `f`, the scene's size up to 1 (`Primitive::offset_floor`).
+/// For scenes of size 1 and more this is Mitsuba's `(1 + |p|∞) · 1500 · 2⁻²⁴`; below, its absolute
+/// 8.9e-5 shrinks with the scene (in a box scaled by 1e-4 it was larger than every feature: single
+/// pixels off by |z| 29; now the box renders the unit box's image at any scale down to 1e-4).
+/// The factor and the absolute part stay Mitsuba's, far above the rounding bound (pbrt's is about
+/// 7 · 2⁻²⁴ for a triangle's point): rays leaving near-tangentially (a shading normal tilted from the
+/// facet) re-hit neighbouring facets with smaller offsets, and the smooth-shaded diamond furnace
+/// (Mitsuba 1.0000) came out 0.9982 without the absolute part, 0.9971 at 64 · 2⁻²⁴ of |p|, and 0.9970
+/// at 1500 · 2⁻²⁴ of the triangle's longest edge plus 64 · 2⁻²⁴ of |p|. Where a shape's size comes
+/// near the offset at its distance from the origin, the host warns at load time
+/// (`host/src/precision.rs`).
 pub const RAY_EPSILON: f32 = 1500.0 / 16_777_216.0;
 
+/// The size whose rounding errors a point `p` on a primitive of coordinates up to `error_scale`
+/// carries, plus the offset's absolute part `floor`; the ray offset is `RAY_EPSILON` times it.
+#[inline]
+pub fn offset_scale(p: Vec3, error_scale: f32, floor: f32) -> f32 {
+    floor + p.abs().max_element().max(error_scale)
+}
+
 /// Moves a ray origin off a surface along its geometric normal, towards the side `dir` leaves by, so
-/// that the new ray does not re-hit the surface it starts on. The offset is Mitsuba's,
-/// `(1 + |p|∞) · 1500 · 2⁻²⁴`, so that rays leaving near-tangentially (a shading normal tilted away
-/// from the facet) skip the same self-intersections in both renderers: with a ten times smaller
-/// offset such rays re-hit neighbouring facets, and the smooth-shaded diamond came out 0.2% dark.
-/// `|p|` is raised to the primitive's own scale (a point near the origin on a sphere of radius 1000
-/// carries the error of the sphere's size, which its own small coordinates do not show).
+/// that the new ray does not re-hit the surface it starts on (by `RAY_EPSILON · offset_scale`).
 #[inline]
 pub fn offset_origin(sp: &SurfacePoint, ng: Vec3, dir: Vec3) -> Vec3 {
     let p = sp.p;
-    let eps = (1.0 + p.abs().max_element().max(sp.error_scale)) * RAY_EPSILON;
+    let eps = offset_scale(p, sp.error_scale, sp.offset_floor) * RAY_EPSILON;
     if ng.dot(dir) >= 0.0 {
         p + ng * eps
     } else {
