@@ -181,36 +181,8 @@ fn loading_warns_where_float_precision_ends() {
 #[test]
 fn tiny_distant_sphere_light() {
     let (rho, radius, height, radiance) = (0.5f64, 1e-5f64, 1e3f64, 1e16f64);
-    let expected = rho * radiance * radius * radius / (height * height);
-    let xml = format!(
-        r#"<scene version="3.0.0">
-    <integrator type="path"><integer name="max_depth" value="-1"/></integrator>
-    <sensor type="perspective"><float name="fov" value="40"/>
-        <transform name="to_world"><lookat origin="0, 0, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
-        <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/><rfilter type="box"/></film>
-    </sensor>
-    <shape type="rectangle"><transform name="to_world"><scale value="10"/></transform>
-        <bsdf type="diffuse"><rgb name="reflectance" value="{rho}"/></bsdf></shape>
-    <shape type="sphere"><float name="radius" value="{radius:e}"/><point name="center" x="0" y="0" z="{height}"/>
-        <emitter type="area"><rgb name="radiance" value="{radiance:e}"/></emitter></shape>
-</scene>"#
-    );
-    let scene = load_xml(&xml, "tiny-light");
-    for choice in BACKENDS {
-        let film = render_scene(&scene, choice, 64, 3);
-        let mean = image_mean(&film);
-        let n = (3 * film.rgb.len()) as f64;
-        let se = film.variance.as_ref().unwrap().iter().flatten().copied().sum::<f64>().sqrt() / n;
-        println!(
-            "{choice:?}: tiny light: mean {mean:.6} ± {se:.2e}, expected {expected:.6}, invalid {}",
-            film.invalid_samples
-        );
-        assert_clean(&film, &format!("{choice:?} tiny light"));
-        assert!(
-            (mean - expected).abs() < 4.0 * se + 1e-3 * expected,
-            "{choice:?}: tiny light: mean {mean} ± {se}, expected {expected}"
-        );
-    }
+    let scene = floor_under_sphere_light(rho, radius, height, radiance, "tiny-light");
+    assert_floor_radiance(&scene, rho * radiance * radius * radius / (height * height), "tiny light");
 }
 
 /// A sun: a sphere light of the sun's radius (7e8) at its distance (1.5e11) straight above a diffuse
@@ -220,7 +192,14 @@ fn tiny_distant_sphere_light() {
 #[test]
 fn sun_sized_sphere_light() {
     let (rho, radius, distance, radiance) = (0.5f64, 7e8f64, 1.5e11f64, 4e4f64);
-    let expected = rho * radiance * (radius / distance).powi(2);
+    let scene = floor_under_sphere_light(rho, radius, distance, radiance, "sun");
+    assert_eq!(caustic::precision::warning(&scene), None, "the sun is well resolved at its own distance");
+    assert_floor_radiance(&scene, rho * radiance * (radius / distance).powi(2), "sun");
+}
+
+/// A diffuse floor of albedo `rho` seen from 3 above, under a sphere light of `radius` and
+/// `radiance` centred `distance` straight above it.
+fn floor_under_sphere_light(rho: f64, radius: f64, distance: f64, radiance: f64, tag: &str) -> Scene {
     let xml = format!(
         r#"<scene version="3.0.0">
     <integrator type="path"><integer name="max_depth" value="-1"/></integrator>
@@ -234,22 +213,26 @@ fn sun_sized_sphere_light() {
         <emitter type="area"><rgb name="radiance" value="{radiance:e}"/></emitter></shape>
 </scene>"#
     );
-    let scene = load_xml(&xml, "sun");
-    assert_eq!(caustic::precision::warning(&scene), None, "the sun is well resolved at its own distance");
+    load_xml(&xml, tag)
+}
+
+/// On both backends the image's mean is `expected` within four standard errors (and 1e-3 relative),
+/// with no invalid sample.
+fn assert_floor_radiance(scene: &Scene, expected: f64, label: &str) {
     for choice in BACKENDS {
-        let film = render_scene(&scene, choice, 64, 3);
+        let film = render_scene(scene, choice, 64, 3);
         let mean = image_mean(&film);
         let n = (3 * film.rgb.len()) as f64;
         let se = film.variance.as_ref().unwrap().iter().flatten().copied().sum::<f64>().sqrt() / n;
         println!(
-            "{choice:?}: sun: mean {mean:.6} ± {se:.2e}, expected {expected:.6} (relative {:+.2e}), invalid {}",
+            "{choice:?}: {label}: mean {mean:.6} ± {se:.2e}, expected {expected:.6} (relative {:+.2e}), invalid {}",
             mean / expected - 1.0,
             film.invalid_samples
         );
-        assert_clean(&film, &format!("{choice:?} sun"));
+        assert_clean(&film, &format!("{choice:?} {label}"));
         assert!(
             (mean - expected).abs() < 4.0 * se + 1e-3 * expected,
-            "{choice:?}: sun: mean {mean} ± {se}, expected {expected}"
+            "{choice:?}: {label}: mean {mean} ± {se}, expected {expected}"
         );
     }
 }
