@@ -458,6 +458,10 @@ pub fn camera(scene: &Scene) -> Camera {
             camera.tan_half_x = half_width;
             camera.tan_half_y = half_height;
         }
+        Projection::RadianceMeter => {
+            camera.tan_half_x = 0.0;
+            camera.tan_half_y = 0.0;
+        }
     }
     camera
 }
@@ -652,9 +656,13 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
 }
 
 /// What light tracing does not cover yet is refused, never rendered without it: the orthographic
-/// camera (light tracing connects to the pinhole and to points of a thin lens's aperture).
+/// camera (light tracing connects to the pinhole and to points of a thin lens's aperture) and the
+/// radiance meter (a single ray, which no light path can reach by a connection).
 fn check_light_tracing(scene: &Scene, name: &str) -> Result<()> {
     let integrator = name;
+    if matches!(scene.sensor.projection, Projection::RadianceMeter) {
+        bail!("{integrator}: the radiancemeter sensor measures a single ray, which light tracing cannot connect to (render this scene with path)");
+    }
     if !camera(scene).connectable() {
         bail!(
             "{integrator}: the orthographic sensor is not supported, only perspective and thinlens (render \

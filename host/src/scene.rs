@@ -108,6 +108,9 @@ pub enum Projection {
         half_width: f32,
         half_height: f32,
     },
+    /// Mitsuba's `radiancemeter`: the radiance along one ray, from the origin along local +z (a
+    /// perspective camera whose field of view is zero: every film position gives that ray).
+    RadianceMeter,
 }
 
 /// The part of the full image that is rendered (Mitsuba's `crop_*`).

@@ -57,6 +57,8 @@ fn scene_using(family: &str, plugin: &str) -> Option<String> {
         ("sensor", "thinlens") => {
             r#"<sensor type="thinlens"><float name="aperture_radius" value="0.1"/></sensor>"#.into()
         }
+        // Mitsuba refuses the default film (768×576) for a radiance meter, as caustic does.
+        ("sensor", "radiancemeter") => r#"<sensor type="radiancemeter"><film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/></film></sensor>"#.into(),
         ("sensor", _) => format!(r#"<sensor type="{plugin}"/>"#),
         ("shape", _) => format!(r#"<shape type="{plugin}"/>"#),
         ("spectrum", _) => format!(

@@ -1,11 +1,25 @@
-//! Sensor plugins (`perspective`) with their film (`hdrfilm`), reconstruction filter (`box`, `tent`,
+//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `radiancemeter`) with their film (`hdrfilm`), reconstruction filter (`box`, `tent`,
 //! `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`; `stratified`, `multijitter`, `orthogonal` and `ldsampler`
 //! all use caustic's stratified sequence with the sample count Mitsuba would take).
 use super::props::Props;
 use super::Loader;
-use crate::scene::{Crop, Filter, Projection, SamplerKind, Sensor};
+use crate::scene::{look_at, Crop, Filter, Projection, SamplerKind, Sensor};
 use anyhow::{bail, Result};
-use glam::Mat4;
+use glam::{Mat4, Vec3};
+
+/// Mitsuba's `math::RayEpsilon` for f32 (1500 · 2⁻²⁴): how far along its direction a radiance
+/// meter's ray starts.
+const RAY_EPSILON: f32 = 1500.0 / 16_777_216.0;
+
+/// Mitsuba rejects scaled camera transforms; normalising the axes gives the same rays.
+fn without_scale(m: Mat4) -> Mat4 {
+    Mat4::from_cols(
+        m.x_axis.truncate().normalize().extend(0.0),
+        m.y_axis.truncate().normalize().extend(0.0),
+        m.z_axis.truncate().normalize().extend(0.0),
+        m.w_axis,
+    )
+}
 
 /// Mitsuba's default perspective sensor: 768×576 film, a 50 mm focal length (38.18° horizontal),
 /// Gaussian filter, independent sampler at 4 spp.
@@ -92,7 +106,7 @@ fn fov_along_x(fov: f64, axis: &str, aspect: f64) -> Option<f64> {
 impl Loader {
     pub(crate) fn load_sensor(&mut self, props: &Props) -> Result<Sensor> {
         let mut sensor = default_sensor();
-        if !matches!(props.kind.as_str(), "perspective" | "thinlens" | "orthographic") {
+        if !matches!(props.kind.as_str(), "perspective" | "thinlens" | "orthographic" | "radiancemeter") {
             let message = format!(
                 "{}: sensor type '{}' is not supported yet; using perspective",
                 props.loc, props.kind
@@ -106,6 +120,11 @@ impl Loader {
         for e in props.nested("sampler") {
             let sampler = self.props(props.src, e.node)?;
             self.load_sampler(&sampler, &mut sensor)?;
+        }
+        if props.kind == "radiancemeter" {
+            sensor.to_world = without_scale(self.radiancemeter(props, &mut sensor)?);
+            self.warn_unused(props);
+            return Ok(sensor);
         }
         if props.kind != "orthographic" {
             sensor.fov_x = horizontal_fov(props, sensor.width as f64 / sensor.height as f64)?;
@@ -150,15 +169,49 @@ impl Loader {
                 Projection::Perspective
             }
         };
-        // Mitsuba rejects scaled camera transforms; normalising the axes gives the same rays.
-        sensor.to_world = Mat4::from_cols(
-            to_world.x_axis.truncate().normalize().extend(0.0),
-            to_world.y_axis.truncate().normalize().extend(0.0),
-            to_world.z_axis.truncate().normalize().extend(0.0),
-            to_world.w_axis,
-        );
+        sensor.to_world = without_scale(to_world);
         self.warn_unused(props);
         Ok(sensor)
+    }
+
+    /// Mitsuba's `radiancemeter` (`src/sensors/radiancemeter.cpp`): the ray from the origin along
+    /// local +z of `to_world`, or from `origin` along `direction` (both or neither; `to_world` wins
+    /// over them); returns the sensor's transform. Its film must be one pixel wide or high, as
+    /// Mitsuba requires; its ray starts Mitsuba's ray epsilon along the direction.
+    fn radiancemeter(&mut self, props: &Props, sensor: &mut Sensor) -> Result<Mat4> {
+        if sensor.width != 1 && sensor.height != 1 {
+            bail!(
+                "{}: the radiancemeter measures one ray: its film must be 1 pixel wide or high (Mitsuba refuses {}×{})",
+                props.loc,
+                sensor.width,
+                sensor.height
+            );
+        }
+        if sensor.filter.radius() > 0.5 + RAY_EPSILON {
+            self.warn(&format!(
+                "{}: Mitsuba advises a reconstruction filter of radius 0.5 or less (e.g. box) for the radiancemeter",
+                props.loc
+            ));
+        }
+        sensor.projection = Projection::RadianceMeter;
+        sensor.near_clip = RAY_EPSILON;
+        sensor.far_clip = f32::MAX;
+        if props.has("to_world") {
+            props.mark_used("origin");
+            props.mark_used("direction");
+            return props.transform("to_world");
+        }
+        if props.has("origin") != props.has("direction") {
+            bail!("{}: the radiancemeter needs both 'origin' and 'direction', or neither", props.loc);
+        }
+        if !props.has("direction") {
+            return Ok(Mat4::IDENTITY);
+        }
+        let origin = props.point("origin", Vec3::ZERO)?;
+        let direction = props.point("direction", Vec3::Z)?;
+        let up = direction.normalize_or_zero().any_orthonormal_vector();
+        look_at(origin, origin + direction, up)
+            .ok_or_else(|| anyhow::anyhow!("{}: the radiancemeter's 'direction' must not be zero", props.loc))
     }
 
     fn load_film(&mut self, props: &Props, sensor: &mut Sensor) -> Result<()> {
