@@ -60,6 +60,11 @@ fn scene_using(family: &str, plugin: &str) -> Option<String> {
         // Mitsuba refuses the default film (768×576) for a radiance meter, as caustic does.
         ("sensor", "radiancemeter") => r#"<sensor type="radiancemeter"><film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/></film></sensor>"#.into(),
         ("sensor", _) => format!(r#"<sensor type="{plugin}"/>"#),
+        // Mitsuba requires a group's id and an instance's group, as caustic does.
+        ("shape", "shapegroup") => r#"<shape type="shapegroup" id="g"><shape type="sphere"/></shape>"#.into(),
+        ("shape", "instance") => {
+            r#"<shape type="shapegroup" id="g"><shape type="sphere"/></shape><shape type="instance"><ref id="g"/></shape>"#.into()
+        }
         ("shape", _) => format!(r#"<shape type="{plugin}"/>"#),
         ("spectrum", _) => format!(
             r#"<shape type="sphere"><emitter type="area"><spectrum name="radiance" type="{plugin}"/></emitter></shape>"#

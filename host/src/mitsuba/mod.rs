@@ -46,6 +46,8 @@ pub(crate) struct Loader {
     textures: Vec<crate::scene::SceneTexture>,
     /// Named area emitters (`id`) defined at the top level, for shapes that `<ref>` them.
     named_area_emitters: HashMap<String, [f32; 3]>,
+    /// `shapegroup`s by id: their shapes in the group's space, for `instance`s to place.
+    shape_groups: HashMap<String, Vec<crate::scene::Shape>>,
     /// Named textures (`id`), as indices into `textures`.
     named_textures: HashMap<String, u32>,
     sensor: Option<crate::scene::Sensor>,
@@ -77,6 +79,7 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         textures: Vec::new(),
         named_textures: HashMap::new(),
         named_area_emitters: HashMap::new(),
+        shape_groups: HashMap::new(),
         sensor: None,
         integrator: None,
         warnings: Vec::new(),
