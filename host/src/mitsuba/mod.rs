@@ -254,24 +254,12 @@ impl Loader {
 
     /// Replaces `$name` references by their values.
     pub(crate) fn substitute(&self, value: &str, loc: &Loc) -> Result<String> {
-        if !value.contains('$') {
-            return Ok(value.to_string());
-        }
-        let mut out = String::new();
-        let mut rest = value;
-        while let Some(i) = rest.find('$') {
-            out.push_str(&rest[..i]);
-            let after = &rest[i + 1..];
-            let len = after.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).unwrap_or(after.len());
-            let name = &after[..len];
-            match self.params.get(name) {
-                Some(v) => out.push_str(v),
-                None => bail!("{loc}: undefined parameter ${name} (give it with -D {name}=… or a <default>)"),
-            }
-            rest = &after[len..];
-        }
-        out.push_str(rest);
-        Ok(out)
+        xml::substitute(&self.params, value, loc)
+    }
+
+    /// The scene's parameters as read so far.
+    pub(crate) fn params(&self) -> &xml::Params {
+        &self.params
     }
 
     /// Finds a file named in the scene: absolute, or relative to the search paths.

@@ -1,6 +1,6 @@
 //! Typed access to a plugin element's properties, each remembered with its file:line for messages.
 use super::spectrum::{spectrum_to_rgb, uniform_spectrum_to_rgb, SpectrumUse};
-use super::xml::{expand_value_to_xyz, vector_from_node, Loc, Source, XyzError};
+use super::xml::{expand_value_to_xyz, vector_from_node, Loc, Params, Source, XyzError};
 use super::Loader;
 use anyhow::{bail, Context, Result};
 use glam::{Mat4, Vec3};
@@ -26,6 +26,8 @@ pub struct Props<'a, 'input> {
     /// The file it was read from.
     pub src: &'a Source<'input>,
     pub entries: Vec<Entry<'a, 'input>>,
+    /// The scene's parameters when the element was read, for `$name` in attributes other than `value`.
+    params: Params,
     used: RefCell<Vec<bool>>,
 }
 
@@ -63,6 +65,7 @@ impl<'a, 'input> Props<'a, 'input> {
             id: node.attribute("id").map(str::to_string),
             src,
             entries,
+            params: loader.params().clone(),
             used: RefCell::new(vec![false; n]),
         })
     }
@@ -123,7 +126,7 @@ impl<'a, 'input> Props<'a, 'input> {
     pub fn point(&self, name: &str, default: Vec3) -> Result<Vec3> {
         let Some(i) = self.find(name) else { return Ok(default) };
         let e = &self.entries[i];
-        vector_from_node(e.node, e.value.as_deref(), &e.loc)
+        vector_from_node(e.node, e.value.as_deref(), &self.params, &e.loc)
     }
 
     /// A colour-valued property (`rgb`, `spectrum` or `float`), converted as Mitsuba's rgb variants do.
@@ -132,7 +135,7 @@ impl<'a, 'input> Props<'a, 'input> {
         let e = &self.entries[i];
         let value = self.value_of(i)?;
         let rgb = match e.tag.as_str() {
-            "rgb" => expand_value_to_xyz(e.node, Some(value), 0.0, &e.loc)
+            "rgb" => expand_value_to_xyz(e.node, Some(value), 0.0, &self.params, &e.loc)
                 .map_err(|err| match err {
                     XyzError::Numbers(err) => err,
                     // `value` is given, so no x/y/z attribute is read.
@@ -154,7 +157,7 @@ impl<'a, 'input> Props<'a, 'input> {
     pub fn transform(&self, name: &str) -> Result<Mat4> {
         let Some(i) = self.find(name) else { return Ok(Mat4::IDENTITY) };
         let e = &self.entries[i];
-        super::transform::parse(self.src, e.node, &e.loc)
+        super::transform::parse(self.src, e.node, &self.params, &e.loc)
     }
 
     /// Nested objects with the given tag (e.g. `bsdf`, `emitter`, `ref`), marked as used.

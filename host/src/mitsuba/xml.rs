@@ -139,14 +139,47 @@ pub enum XyzError {
     NotANumber(&'static str),
 }
 
+/// The scene's parameters (`<default>` and `-D name=value`), which `$name` in any attribute refers to.
+pub type Params = std::collections::HashMap<String, String>;
+
+/// `value` with its `$name` references replaced by the parameters' values, as Mitsuba does in every
+/// attribute; an undefined one is an error naming the place.
+pub fn substitute(params: &Params, value: &str, loc: &Loc) -> Result<String> {
+    if !value.contains('$') {
+        return Ok(value.to_string());
+    }
+    let mut out = String::new();
+    let mut rest = value;
+    while let Some(i) = rest.find('$') {
+        out.push_str(&rest[..i]);
+        let after = &rest[i + 1..];
+        let len = after.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).unwrap_or(after.len());
+        let name = &after[..len];
+        match params.get(name) {
+            Some(v) => out.push_str(v),
+            None => bail!("{loc}: undefined parameter ${name} (give it with -D {name}=… or a <default>)"),
+        }
+        rest = &after[len..];
+    }
+    out.push_str(rest);
+    Ok(out)
+}
+
+/// Attribute `name` of `node`, its `$name` references substituted.
+pub fn attribute(node: roxmltree::Node, name: &str, params: &Params, loc: &Loc) -> Result<Option<String>> {
+    node.attribute(name).map(|v| substitute(params, v, loc)).transpose()
+}
+
 /// A vector given as `value="v"` (all three components), `value="x, y, z"`, or as `x=… y=… z=…`
 /// attributes, each absent one `default` (0 for a translation, 1 for a scale), as Mitsuba's
-/// `expand_value_to_xyz` reads it. `value` is passed separately because some callers substitute
-/// `$name` references in it first; when it is given, `x`/`y`/`z` are not read.
+/// `expand_value_to_xyz` reads it. `value` is passed separately because the callers substitute
+/// `$name` references in it first (as this does in `x`, `y` and `z`); when it is given, `x`/`y`/`z`
+/// are not read.
 pub fn expand_value_to_xyz(
     node: roxmltree::Node,
     value: Option<&str>,
     default: f32,
+    params: &Params,
     loc: &Loc,
 ) -> Result<Vec3, XyzError> {
     if let Some(v) = value {
@@ -158,7 +191,7 @@ pub fn expand_value_to_xyz(
         };
     }
     let get = |a: &'static str| -> Result<f32, XyzError> {
-        match node.attribute(a) {
+        match attribute(node, a, params, loc).map_err(XyzError::Numbers)? {
             Some(s) => s.trim().parse().map_err(|_| XyzError::NotANumber(a)),
             None => Ok(default),
         }
@@ -167,8 +200,13 @@ pub fn expand_value_to_xyz(
 }
 
 /// A point or vector (`expand_value_to_xyz` with absent components 0).
-pub fn vector_from_node(node: roxmltree::Node, value: Option<&str>, loc: &Loc) -> Result<Vec3> {
-    expand_value_to_xyz(node, value, 0.0, loc).map_err(|e| match e {
+pub fn vector_from_node(
+    node: roxmltree::Node,
+    value: Option<&str>,
+    params: &Params,
+    loc: &Loc,
+) -> Result<Vec3> {
+    expand_value_to_xyz(node, value, 0.0, params, loc).map_err(|e| match e {
         XyzError::Numbers(e) => e,
         XyzError::Count(n) => anyhow::anyhow!("{loc}: expected 3 numbers, got {n}"),
         XyzError::NotANumber(a) => anyhow::anyhow!("{loc}: '{a}' must be a number"),
