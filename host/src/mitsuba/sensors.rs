@@ -1,5 +1,6 @@
-//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `radiancemeter`) with their film (`hdrfilm`), reconstruction filter (`box`, `tent`,
-//! `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`; `stratified`, `multijitter`, `orthogonal` and `ldsampler`
+//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `radiancemeter`) with their film
+//! (`hdrfilm`), reconstruction filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`,
+//! `lanczos`) and sampler (`independent`; `stratified`, `multijitter`, `orthogonal` and `ldsampler`
 //! all use caustic's stratified sequence with the sample count Mitsuba would take).
 use super::props::Props;
 use super::Loader;
