@@ -156,11 +156,7 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
     let shares: Vec<String> = ranks.shares().iter().map(u64::to_string).collect();
     show(&accum);
     let mut film = Film::from_accum(width, height, &accum);
-    session::sanitize(&mut film);
-    session::save_or_recover(&film, &job.output)?;
-    if job.variance {
-        film.save_variance(&film::variance_path(&job.output))?;
-    }
+    session::save_film(&mut film, job)?;
     if let Some((path, _)) = &job.checkpoint {
         // The image is safe on disk: the checkpoint has served.
         std::fs::remove_file(path).ok();
@@ -221,11 +217,7 @@ impl Out {
         let mut film = Film::from_accum(self.size.0, self.size.1, accum);
         film.comment =
             Some(format!("caustic: partial render, {} of {} spp (a rank was lost)", s.done, self.spp));
-        session::sanitize(&mut film);
-        let mut saved = session::save_or_recover(&film, output).map(|()| output.clone());
-        if let (Ok(_), true) = (&saved, self.job.variance) {
-            saved = film.save_variance(&film::variance_path(output)).map(|()| output.clone());
-        }
+        let saved = session::save_film(&mut film, &self.job).map(|()| output.clone());
         let resume = match &self.job.checkpoint {
             Some((path, _)) => format!("; the same command with --checkpoint {} resumes", path.display()),
             None => String::new(),

@@ -148,11 +148,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
     if interrupted.is_some() {
         film.comment = Some(format!("caustic: partial render, {spp_done} of {spp} spp (interrupted)"));
     }
-    sanitize(&mut film);
-    save_or_recover(&film, output)?;
-    if job.variance {
-        film.save_variance(&film::variance_path(output))?;
-    }
+    save_film(&mut film, job)?;
     if let Some((path, _, _)) = checkpoint.filter(|_| interrupted.is_none()) {
         // The image is safe on disk: the checkpoint has served.
         std::fs::remove_file(path).ok();
@@ -327,6 +323,16 @@ fn same_file(a: &Path, b: &Path) -> bool {
         (Some(a), Some(b)) => a == b,
         _ => a == b,
     }
+}
+
+/// Writes the job's image (non-finite values zeroed: `sanitize`) and, when asked, its variance.
+pub(crate) fn save_film(film: &mut Film, job: &RenderJob) -> Result<()> {
+    sanitize(film);
+    save_or_recover(film, &job.output)?;
+    if job.variance {
+        film.save_variance(&film::variance_path(&job.output))?;
+    }
+    Ok(())
 }
 
 /// Writes the finished image; if `output` cannot be written, keeps the render in the temporary
