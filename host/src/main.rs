@@ -252,22 +252,28 @@ fn error_chain(e: &anyhow::Error) -> String {
     text
 }
 
-fn cmd_render(ranks: Option<&dyn caustic::ranks::Ranks>, job: &RenderJob) -> Result<()> {
-    let Some(r) = session::render_share(job, ranks)? else { return Ok(()) };
+/// A render's summary line: backend, size, samples (partial or resumed ones said so), time,
+/// throughput and the image written.
+fn summary(r: &session::RenderReport, output: &Path) -> String {
     let resumed = if r.resumed_at > 0 { format!(" (resumed at {})", r.resumed_at) } else { String::new() };
     let spp = match r.interrupted {
         Some(_) => format!("partial: {} of {} spp (interrupted)", r.spp_done, r.spp),
         None => format!("{} spp", r.spp),
     };
-    say!(
+    format!(
         "{} | {}x{} | {spp}{resumed} | {:.2} s | {:.2} Msamples/s | {}",
         r.backend,
         r.width,
         r.height,
         r.seconds,
         r.msamples_per_second(),
-        job.output.display()
-    );
+        output.display()
+    )
+}
+
+fn cmd_render(ranks: Option<&dyn caustic::ranks::Ranks>, job: &RenderJob) -> Result<()> {
+    let Some(r) = session::render_share(job, ranks)? else { return Ok(()) };
+    say!("{}", summary(&r, &job.output));
     if let Some(signal) = r.interrupted {
         std::process::exit(caustic::interrupt::exit_code(signal));
     }
@@ -294,16 +300,7 @@ fn cmd_batch(ranks: Option<&dyn caustic::ranks::Ranks>, jobs: &[RenderJob]) -> R
             }
         }
         match session::render_to_file(&job) {
-            Ok(r) => say!(
-                "{who}{} | {}x{} | {} spp | {:.2} s | {:.2} Msamples/s | {}",
-                r.backend,
-                r.width,
-                r.height,
-                r.spp,
-                r.seconds,
-                r.msamples_per_second(),
-                job.output.display()
-            ),
+            Ok(r) => say!("{who}{}", summary(&r, &job.output)),
             Err(e) => {
                 eprintln!("error: {who}{}: {}", job.output.display(), error_chain(&e));
                 failed += 1;
