@@ -137,6 +137,11 @@ fn decode(words: &[u32]) -> Result<Work> {
     })
 }
 
+/// `rank R on HOST`, for messages (`hosts`: every rank's host name, gathered at start).
+fn rank_name(hosts: &[String], rank: usize) -> String {
+    format!("rank {rank} on {}", hosts.get(rank).map_or("?", String::as_str))
+}
+
 /// How long a rank may be silent before the render gives up on it (`STALL`).
 fn stall_limit() -> Duration {
     std::env::var("CAUSTIC_MPI_STALL")
@@ -153,7 +158,7 @@ fn stall_limit() -> Duration {
 fn serve(comm: ThreadComm, shared: Arc<Mutex<Shared>>, hosts: Vec<String>, lost: crate::ranks::Lost) {
     let comm = comm.0;
     let lock = || shared.lock().unwrap_or_else(PoisonError::into_inner);
-    let name = |rank: usize| format!("rank {rank} on {}", hosts.get(rank).map_or("?", String::as_str));
+    let name = |rank: usize| rank_name(&hosts, rank);
     let stall = stall_limit();
     loop {
         if lock().closed {
@@ -225,7 +230,7 @@ impl Ranks for World {
     }
 
     fn name(&self, rank: usize) -> String {
-        format!("rank {rank} on {}", self.hosts.get(rank).map_or("?", String::as_str))
+        rank_name(&self.hosts, rank)
     }
 
     fn reduce(&self, accum: &Accumulation) -> Result<Option<Accumulation>> {
