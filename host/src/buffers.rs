@@ -302,6 +302,11 @@ fn rows_of(m: Mat3) -> [[f32; 4]; 3] {
     [0, 1, 2].map(|r| m.row(r).extend(0.0).to_array())
 }
 
+/// A bitmap texture's texels (RGB) where `place_textures` put them in the table buffer.
+fn texels<'a>(t: &Texture, tables: &'a [f32]) -> &'a [f32] {
+    &tables[t.offset as usize..(t.offset + 3 * t.width * t.height) as usize]
+}
+
 /// An envmap's sampling tables (marginal CDF over the `height - 1` cell rows, then one conditional
 /// CDF of `width` cells per row; see `light::infinite`) and its power per unit scale and area. With
 /// `compensate`, the tables follow the luminance above the texels' mean (`mis_compensation`).
@@ -393,7 +398,7 @@ fn emitter_lights(
             }
             Emitter::Envmap { texture, to_world, scale, mis_compensation } => {
                 let t = &textures[*texture as usize];
-                let texels = &tables[t.offset as usize..(t.offset + 3 * t.width * t.height) as usize];
+                let texels = texels(t, tables);
                 // Light tracing draws emission from these tables alone, with nothing to cover the
                 // directions compensation leaves out: compensation is for NEE beside BSDF sampling.
                 let compensate = *mis_compensation
@@ -607,10 +612,9 @@ fn square_scale_log2(lights: &[Light], textures: &[Texture], tables: &[f32]) -> 
         .map(|l| {
             let mut m = l.radiance[..3].iter().fold(0.0f64, |m, &c| m.max(c.abs() as f64));
             if l.kind == LIGHT_ENVMAP {
-                if let Some(t) = textures.get(l.prim as usize) {
-                    let texels = tables.get(t.offset as usize..(t.offset + 3 * t.width * t.height) as usize);
-                    m *= texels.unwrap_or(&[]).iter().fold(0.0f64, |m, &c| m.max(c.abs() as f64));
-                }
+                m *= texels(&textures[l.prim as usize], tables)
+                    .iter()
+                    .fold(0.0f64, |m, &c| m.max(c.abs() as f64));
             }
             m
         })
