@@ -57,16 +57,21 @@ pub fn defines(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
     pairs.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect()
 }
 
-/// Loads a Mitsuba scene given as text (written to a temporary file named after `tag`, then removed);
-/// panics with the error if it does not load.
-pub fn load_xml(xml: &str, tag: &str) -> Scene {
+/// Loads a Mitsuba scene given as text (written to a temporary `scene.xml` in a folder named after
+/// `tag`, then removed) with `defines` (`-D`); the loader's result, errors naming that file.
+pub fn try_load_xml(xml: &str, tag: &str, defines_: &[(&str, &str)]) -> anyhow::Result<Scene> {
     let dir = std::env::temp_dir().join(format!("caustic-test-{}-{tag}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temporary folder");
     let path = dir.join("scene.xml");
     std::fs::write(&path, xml).expect("scene written");
-    let scene = caustic::load_scene(&path, &[]);
+    let scene = caustic::load_scene(&path, &defines(defines_));
     std::fs::remove_dir_all(&dir).ok();
-    scene.unwrap_or_else(|e| panic!("{tag}: the scene does not load: {e:#}"))
+    scene
+}
+
+/// `try_load_xml` without defines; panics with the error if the scene does not load.
+pub fn load_xml(xml: &str, tag: &str) -> Scene {
+    try_load_xml(xml, tag, &[]).unwrap_or_else(|e| panic!("{tag}: the scene does not load: {e:#}"))
 }
 
 /// Renders `scene` with `spp` samples and `seed` on `choice`; panics with the error if it fails.

@@ -73,13 +73,9 @@ fn instancing_refuses_what_mitsuba_refuses() {
         (r#"<shape type="instance"/>"#.to_string(), "names one shapegroup"),
     ];
     for (i, (body, expected)) in cases.iter().enumerate() {
-        let path =
-            std::env::temp_dir().join(format!("caustic-instance-refuse-{}-{i}.xml", std::process::id()));
-        std::fs::write(&path, format!("<scene version=\"3.0.0\">\n{}\n</scene>\n", body.replace('\n', " ")))
-            .unwrap();
-        let result = caustic::load_scene(&path, &[]);
-        std::fs::remove_file(&path).ok();
-        let error = format!("{:#}", result.expect_err(expected));
+        let xml = format!("<scene version=\"3.0.0\">\n{}\n</scene>\n", body.replace('\n', " "));
+        let error =
+            format!("{:#}", try_load_xml(&xml, &format!("instance-refuse-{i}"), &[]).expect_err(expected));
         println!("case {i}: {error}");
         assert!(error.contains(expected), "case {i}: {error}");
         assert!(error.contains(".xml:2"), "case {i} names no file and line: {error}");

@@ -29,14 +29,16 @@ fn parameters_stand_in_any_attribute() {
     assert_eq!(geometry(&with), geometry(&written), "shapes differ");
     assert_eq!(format!("{:?}", with.sensor), format!("{:?}", written.sensor), "sensors differ");
     // -D overrides a default in those attributes too.
-    let path = std::env::temp_dir().join(format!("caustic-params-{}.xml", std::process::id()));
-    std::fs::write(&path, scene(r#"x="$cx" y="0" z="0.5""#, "$turn", "$eye", "$shift")).unwrap();
-    let moved = caustic::load_scene(&path, &defines(&[("cx", "0.75")])).expect("loads");
-    let undefined = std::fs::write(&path, scene(r#"x="$cx" y="0" z="0.5""#, "$spin", "$eye", "$shift"))
-        .map(|_| caustic::load_scene(&path, &[]));
-    std::fs::remove_file(&path).ok();
+    let moved = try_load_xml(
+        &scene(r#"x="$cx" y="0" z="0.5""#, "$turn", "$eye", "$shift"),
+        "params-d",
+        &[("cx", "0.75")],
+    )
+    .expect("loads");
+    let undefined =
+        try_load_xml(&scene(r#"x="$cx" y="0" z="0.5""#, "$spin", "$eye", "$shift"), "params-undefined", &[]);
     let expected = load_xml(&scene(r#"x="0.75" y="0" z="0.5""#, "30", "0, -4, 1", "0.5 0 0"), "params-moved");
     assert_eq!(geometry(&moved), geometry(&expected), "-D did not reach the point");
-    let e = format!("{:#}", undefined.unwrap().expect_err("$spin is undefined"));
+    let e = format!("{:#}", undefined.expect_err("$spin is undefined"));
     assert!(e.contains("$spin") && e.contains(".xml:6"), "{e}");
 }

@@ -94,11 +94,8 @@ fn radiancemeter_refuses_what_mitsuba_refuses() {
         (meter("", ONE_PIXEL, "ptracer"), "single ray"),
     ];
     for (i, (xml, expected)) in cases.iter().enumerate() {
-        let path = std::env::temp_dir().join(format!("caustic-meter-refuse-{}-{i}.xml", std::process::id()));
-        std::fs::write(&path, xml).unwrap();
-        let result =
-            caustic::load_scene(&path, &[]).and_then(|scene| caustic::buffers::build(&scene).map(|_| ()));
-        std::fs::remove_file(&path).ok();
+        let result = try_load_xml(xml, &format!("meter-refuse-{i}"), &[])
+            .and_then(|scene| caustic::buffers::build(&scene).map(|_| ()));
         let error = format!("{:#}", result.expect_err(expected));
         println!("case {i}: {error}");
         assert!(error.contains(expected), "case {i}: {error}");
@@ -107,13 +104,8 @@ fn radiancemeter_refuses_what_mitsuba_refuses() {
         }
     }
     // A 1×5 film is allowed (Mitsuba refuses only films wider and higher than one pixel).
-    let path = std::env::temp_dir().join(format!("caustic-meter-strip-{}.xml", std::process::id()));
-    std::fs::write(
-        &path,
-        meter("", r#"<integer name="width" value="1"/><integer name="height" value="5"/>"#, "path"),
-    )
-    .unwrap();
-    let loaded = caustic::load_scene(&path, &[]);
-    std::fs::remove_file(&path).ok();
-    loaded.expect("a 1×5 film loads");
+    load_xml(
+        &meter("", r#"<integer name="width" value="1"/><integer name="height" value="5"/>"#, "path"),
+        "meter-strip",
+    );
 }
