@@ -461,6 +461,8 @@ fn cmd_bench(
     options: LoadOptions,
 ) -> Result<()> {
     let buffers = bench_buffers(scene_path, defines, spp, options)?;
+    // What the GPU kernel is specialised to (kernel/src/features.rs); scripts/specialization.sh reads it.
+    say!("kernel paths {} (feature mask)", buffers.features);
     say!("| backend | resolution | spp | seconds | Msamples/s |");
     say!("|---|---|---|---|---|");
     for &choice in choices {

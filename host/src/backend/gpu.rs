@@ -95,6 +95,7 @@ impl GpuBackend {
             None => None,
         };
         let words: Vec<u32> = bytemuck::pod_collect_to_vec(override_spv.as_deref().unwrap_or(KERNEL_SPV));
+        let specialisable = declares_spec_constant(&words, 0);
         // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are bounds-checked
         // in the source; dropping naga's duplicate runtime checks is what makes this path fast.
         let module = unsafe {
@@ -141,6 +142,10 @@ impl GpuBackend {
             bind_group_layouts: &[Some(&bind_group_layout)],
             immediate_size: 0,
         });
+        // A module built with the scene's mask already frozen in (CAUSTIC_KERNEL_SPV, e.g. spirv-opt
+        // --freeze-spec-const) has no constant left to set.
+        let spec_constants = [("0", buffers.features as f64)];
+        let constants: &[(&str, f64)] = if specialisable { &spec_constants } else { &[] };
         let pipeline = |entry_point: &str| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry_point),
@@ -148,10 +153,7 @@ impl GpuBackend {
                 module: &module,
                 entry_point: Some(entry_point),
                 // The scene's feature mask specialises the kernel (spec constant 0): unused paths fold away.
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: &[("0", buffers.features as f64)],
-                    ..Default::default()
-                },
+                compilation_options: wgpu::PipelineCompilationOptions { constants, ..Default::default() },
                 cache: None,
             })
         };
@@ -330,5 +332,42 @@ impl GpuBackend {
         encoder.clear_buffer(&self.accum_buffer, 0, None);
         self.queue.submit([encoder.finish()]);
         self.wait()
+    }
+}
+
+/// Whether a SPIR-V module decorates a specialization constant with `id` (`OpDecorate %c SpecId id`).
+fn declares_spec_constant(words: &[u32], id: u32) -> bool {
+    const OP_DECORATE: u32 = 71;
+    const DECORATION_SPEC_ID: u32 = 1;
+    // Five header words, then instructions: word count in the high half-word, opcode in the low.
+    let mut at = 5;
+    while let Some(&first) = words.get(at) {
+        let count = (first >> 16) as usize;
+        if count == 0 {
+            return false;
+        }
+        if first & 0xffff == OP_DECORATE
+            && words.get(at + 2) == Some(&DECORATION_SPEC_ID)
+            && words.get(at + 3) == Some(&id)
+        {
+            return true;
+        }
+        at += count;
+    }
+    false
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_committed_kernel_declares_the_feature_constant() {
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(KERNEL_SPV);
+        assert!(declares_spec_constant(&words, 0));
+        assert!(!declares_spec_constant(&words, 1));
+        // A module without decorations (header only) and a truncated one declare nothing.
+        assert!(!declares_spec_constant(&words[..5], 0));
+        assert!(!declares_spec_constant(&[0x0723_0203, 0, 0, 0, 0, 0], 0));
     }
 }
