@@ -182,3 +182,16 @@ fn white_furnace() {
         }
     }
 }
+
+/// A divergence from Mitsuba, on purpose: seen from inside a principled material without
+/// transmission, Mitsuba's `eval` is 0 and its `sample` draws nothing, but its `pdf` reports the
+/// interface's reflection (1.5778 for the defaults, wo = (0.6, 0, −0.8), wi = (−0.6, 0, −0.8), from
+/// `bsdf.pdf` in scalar_rgb). caustic's pdf is the density its `sample` draws with: 0. No image
+/// changes (the value is 0 either way), but a check of sample against pdf would.
+#[test]
+fn inside_without_transmission_is_void() {
+    let b = model("default", false);
+    let (wo, wi) = (Vec3::new(0.6, 0.0, -0.8), Vec3::new(-0.6, 0.0, -0.8));
+    assert_eq!((b.eval(wo, wi), b.pdf(wo, wi)), (Vec3::ZERO, 0.0));
+    assert_eq!(b.sample(wo, 0.5, Vec2::new(0.3, 0.3)).pdf, 0.0);
+}
