@@ -4,7 +4,7 @@
 //! (fewer registers, higher occupancy) and a scene pays nothing for features it does not use. On the
 //! CPU it is an ordinary value: the same branches are taken, so both backends still run one kernel.
 //! A cleared bit only ever removes a path the scene cannot reach.
-use crate::layout::{BSDF_FUZZY_METAL, LIGHT_ENVMAP};
+use crate::layout::{BSDF_PRINCIPLED, LIGHT_ENVMAP};
 
 /// Every path compiled in: the specialization constant's default.
 pub const ALL: u32 = u32::MAX;
@@ -33,7 +33,7 @@ pub const DISPERSION: u32 = 1 << 23;
 pub const MASK: u32 = 1 << 24;
 
 // The kinds must fit their bit ranges.
-const _: () = assert!(BSDF_FUZZY_METAL < 12 && LIGHT_ENVMAP < 8);
+const _: () = assert!(BSDF_PRINCIPLED < 12 && LIGHT_ENVMAP < 8);
 
 #[inline]
 pub fn has(features: u32, bits: u32) -> bool {

@@ -79,6 +79,8 @@ pub const BSDF_PLASTIC: u32 = 7;
 pub const BSDF_ROUGH_PLASTIC: u32 = 8;
 /// "Ray Tracing in One Weekend"'s fuzzy metal; `alpha_u` holds the fuzz.
 pub const BSDF_FUZZY_METAL: u32 = 9;
+/// Mitsuba's `principled` (Disney BSDF); its parameters' fields: `bsdf::principled::PrincipledParams`.
+pub const BSDF_PRINCIPLED: u32 = 10;
 
 /// Material flag: both sides of the surface scatter (Mitsuba's `twosided`).
 pub const MATERIAL_TWO_SIDED: u32 = 1;

@@ -1,6 +1,6 @@
 //! BSDF plugins: `diffuse`, `phong` (the modified Phong BRDF), `conductor`, `roughconductor`,
-//! `dielectric`, `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `twosided`; with
-//! Mitsuba 3's parameter names and defaults.
+//! `dielectric`, `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `principled`,
+//! `twosided`; with Mitsuba 3's parameter names and defaults.
 use super::ior;
 use super::props::Props;
 use super::spectrum::SpectrumUse;
@@ -8,6 +8,7 @@ use super::textures::ColorParam;
 use super::Loader;
 use crate::buffers::rgba;
 use anyhow::{bail, Result};
+use caustic_kernel::bsdf::principled::{eta_from_specular, PrincipledParams};
 use caustic_kernel::layout::*;
 
 fn set_reflectance(m: &mut Material, c: ColorParam) {
@@ -106,6 +107,7 @@ impl Loader {
             "conductor" | "roughconductor" => self.conductor(props)?,
             "dielectric" | "thindielectric" | "roughdielectric" => self.dielectric(props)?,
             "plastic" | "roughplastic" => self.plastic(props)?,
+            "principled" => self.principled(props)?,
             "twosided" => self.twosided(props)?,
             "mask" => self.mask(props)?,
             other => {
@@ -199,7 +201,12 @@ impl Loader {
         let inner_props = self.props(props.src, inner_entry.node)?;
         let index = self.load_bsdf(&inner_props)?;
         let mut m = self.materials[index as usize];
-        if matches!(m.kind, BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC | BSDF_ROUGH_DIELECTRIC) {
+        let transmissive = match m.kind {
+            BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC | BSDF_ROUGH_DIELECTRIC => true,
+            BSDF_PRINCIPLED => principled_transmits(&m),
+            _ => false,
+        };
+        if transmissive {
             bail!("{}: twosided cannot wrap a transmissive BSDF ('{}')", props.loc, inner_props.kind);
         }
         m.flags |= MATERIAL_TWO_SIDED;
@@ -372,4 +379,109 @@ impl Loader {
         }
         Ok(m)
     }
+
+    /// Mitsuba's `principled` (`caustic_kernel::bsdf::principled`): `base_color` (colour or
+    /// texture), `roughness`, `anisotropic` and `metallic` (numbers or textures, read as their
+    /// luminance), the other weights as numbers (a texture there is replaced by its mean: a
+    /// substitution), `eta` or `specular` (not both, as Mitsuba), and the three sampling rates.
+    fn principled(&mut self, props: &Props) -> Result<Material> {
+        let base = self.color_param(props, "base_color", SpectrumUse::Reflectance, [0.5; 3])?;
+        let mut m = Material { kind: BSDF_PRINCIPLED, ..Default::default() };
+        set_reflectance(&mut m, base);
+        let roughness;
+        let anisotropic;
+        let metallic;
+        (roughness, m.alpha_u_texture) = self.principled_weight(props, "roughness", 0.5)?;
+        (anisotropic, m.alpha_v_texture) = self.principled_weight(props, "anisotropic", 0.0)?;
+        (metallic, m.specular_texture) = self.principled_weight(props, "metallic", 0.0)?;
+        (m.alpha_u, m.alpha_v) = (roughness, anisotropic);
+        m.specular_reflectance = [metallic, metallic, metallic, 0.0];
+        let (spec_trans, spec_trans_textured) = self.principled_number(props, "spec_trans", 0.0)?;
+        let mut number =
+            |name: &str, default: f32| -> Result<f32> { Ok(self.principled_number(props, name, default)?.0) };
+        let p = PrincipledParams {
+            spec_trans,
+            spec_tint: number("spec_tint", 0.0)?,
+            sheen: number("sheen", 0.0)?,
+            sheen_tint: number("sheen_tint", 0.0)?,
+            clearcoat: number("clearcoat", 0.0)?,
+            clearcoat_gloss: number("clearcoat_gloss", 0.0)?,
+            flatness: number("flatness", 0.0)?,
+            spec_rate: props.float("main_specular_sampling_rate", 1.0)?,
+            clearcoat_rate: props.float("clearcoat_sampling_rate", 1.0)?,
+            diffuse_rate: props.float("diffuse_reflectance_sampling_rate", 1.0)?,
+        };
+        let rates = [p.spec_rate, p.clearcoat_rate, p.diffuse_rate];
+        if rates.iter().any(|r| !(r.is_finite() && *r >= 0.0)) || p.spec_rate + p.diffuse_rate <= 0.0 {
+            bail!(
+                "{}: principled sampling rates must be finite and non-negative, and the main specular and \
+                 diffuse ones not both zero (got {rates:?})",
+                props.loc
+            );
+        }
+        // Mitsuba's lobe switch: a weight given (as a texture, or a number other than 0) turns its
+        // lobe on; that of the transmission also nudges an index of 1 (`eta` 1, `specular` 0), which
+        // cannot refract, to a plausible one.
+        let has_spec_trans = spec_trans_textured || spec_trans != 0.0;
+        m.eta = match (props.has("eta"), props.has("specular")) {
+            (true, true) => bail!(
+                "{}: principled takes 'eta' or 'specular' (the same reflectance), not both, as Mitsuba",
+                props.loc
+            ),
+            (true, false) => {
+                let eta = props.float("eta", 1.5)?;
+                if !(eta > 0.0 && eta.is_finite()) {
+                    bail!("{}: principled eta must be a positive number, not {eta}", props.loc);
+                }
+                if has_spec_trans && eta == 1.0 {
+                    1.001
+                } else {
+                    eta
+                }
+            }
+            (false, _) => {
+                let specular = props.float("specular", 0.5)?;
+                let specular = if has_spec_trans && specular == 0.0 { 1e-3 } else { specular };
+                let eta = eta_from_specular(specular);
+                if !((0.0..12.5).contains(&specular) && eta > 0.0 && eta.is_finite()) {
+                    bail!("{}: principled specular must be in [0, 12.5), not {specular}", props.loc);
+                }
+                eta
+            }
+        };
+        let weights = [roughness, anisotropic, metallic, p.spec_trans, p.spec_tint, p.sheen, p.sheen_tint];
+        let weights = weights.into_iter().chain([p.clearcoat, p.clearcoat_gloss, p.flatness]);
+        if weights.clone().any(|w| !w.is_finite()) {
+            bail!("{}: principled weights must be finite numbers", props.loc);
+        }
+        p.pack(&mut m);
+        Ok(m)
+    }
+
+    /// A principled weight the kernel reads as one number: a texture is replaced by its mean (a
+    /// substitution). Also says whether it was a texture.
+    fn principled_number(&mut self, props: &Props, name: &str, default: f32) -> Result<(f32, bool)> {
+        let (value, texture) = self.principled_weight(props, name, default)?;
+        if texture != NONE {
+            let message = format!(
+                "{}: a textured principled '{name}' is not supported; using the texture's mean, {value}",
+                props.loc
+            );
+            self.substituted(format!("textured principled {name}"), &props.loc, message);
+        }
+        Ok((value, texture != NONE))
+    }
+
+    /// A principled weight: a number, or a texture (its luminance, as Mitsuba's `eval_1`) with its mean.
+    fn principled_weight(&mut self, props: &Props, name: &str, default: f32) -> Result<(f32, u32)> {
+        Ok(match self.scalar_texture(props, name)? {
+            Some((texture, mean)) => (mean, texture),
+            None => (props.float(name, default)?, NONE),
+        })
+    }
+}
+
+/// Whether a `principled` material has its transmission lobe (Mitsuba's `twosided` refuses it then).
+fn principled_transmits(m: &Material) -> bool {
+    PrincipledParams::unpack(m).spec_trans > 0.0
 }

@@ -10,6 +10,7 @@ pub mod fuzzy_metal;
 pub mod microfacet;
 pub mod phong;
 pub mod plastic;
+pub mod principled;
 pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod rough_plastic;
@@ -165,6 +166,10 @@ macro_rules! with_model {
             }
             BSDF_FUZZY_METAL if b.uses(BSDF_FUZZY_METAL) => {
                 let $model = fuzzy_metal::FuzzyMetal::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_PRINCIPLED if b.uses(BSDF_PRINCIPLED) => {
+                let $model = principled::Principled::from_material(m, r, s, t);
                 $body
             }
             _ => {

@@ -39,17 +39,22 @@ const PATH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/mitsuba_bsdf
 /// Reads the reference file. (Values go through f64 to f32: the file's 9-digit decimals read back as
 /// the float32s Mitsuba computed.)
 pub fn references() -> References {
-    let text = std::fs::read_to_string(PATH).unwrap_or_else(|e| panic!("{PATH}: {e}"));
-    let v: Value = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{PATH}: {e}"));
+    references_in(PATH)
+}
+
+/// Reads a file of reference rows in the format of `mitsuba_bsdf_values.json`.
+pub fn references_in(path: &str) -> References {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let v: Value = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
     let num =
-        |r: &Value, k: &str| r[k].as_f64().unwrap_or_else(|| panic!("{PATH}: no number {k} in {r}")) as f32;
+        |r: &Value, k: &str| r[k].as_f64().unwrap_or_else(|| panic!("{path}: no number {k} in {r}")) as f32;
     let vec3 = |r: &Value, k: &str| {
-        let a = r[k].as_array().filter(|a| a.len() == 3).unwrap_or_else(|| panic!("{PATH}: {k} in {r}"));
+        let a = r[k].as_array().filter(|a| a.len() == 3).unwrap_or_else(|| panic!("{path}: {k} in {r}"));
         Vec3::from_array([0, 1, 2].map(|i| a[i].as_f64().unwrap() as f32))
     };
     let model = |r: &Value| r["model"].as_str().unwrap().to_string();
     let adjoint = |r: &Value| r["adjoint"].as_bool().unwrap();
-    let rows = |k: &str| v[k].as_array().unwrap_or_else(|| panic!("{PATH}: no {k} rows")).clone();
+    let rows = |k: &str| v[k].as_array().unwrap_or_else(|| panic!("{path}: no {k} rows")).clone();
     let eval = rows("eval")
         .iter()
         .map(|r| EvalRef {

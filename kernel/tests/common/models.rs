@@ -187,7 +187,37 @@ pub fn every_model() -> Vec<(String, Material)> {
     for fuzz in [0.0f32, 0.05] {
         v.push((format!("fuzzymetal {fuzz}"), fuzzy(fuzz)));
     }
+    for spec_trans in [0.0f32, 0.6] {
+        v.push((format!("principled spec_trans={spec_trans}"), principled(spec_trans)));
+    }
     v
+}
+
+/// Mitsuba's `principled` with every lobe on (refraction with weight `spec_trans`).
+pub fn principled(spec_trans: f32) -> Material {
+    let mut m = Material {
+        kind: BSDF_PRINCIPLED,
+        eta: 1.4,
+        alpha_u: 0.4,
+        alpha_v: 0.3,
+        reflectance: c4(0.8, 0.4, 0.2),
+        specular_reflectance: c4(0.3, 0.3, 0.3),
+        ..Default::default()
+    };
+    caustic_kernel::bsdf::principled::PrincipledParams {
+        spec_trans,
+        spec_tint: 0.3,
+        sheen: 0.5,
+        sheen_tint: 0.5,
+        clearcoat: 0.6,
+        clearcoat_gloss: 0.5,
+        flatness: 0.2,
+        spec_rate: 1.0,
+        clearcoat_rate: 1.0,
+        diffuse_rate: 1.0,
+    }
+    .pack(&mut m);
+    m
 }
 
 pub fn dir(x: f32, y: f32, z: f32) -> Vec3 {
