@@ -219,6 +219,8 @@ fn bounds(p: &Primitive) -> Aabb {
 /// small. Measured on the H100 (2026-11-22) against the plain preset: cbox 175 → 239 Msamples/s,
 /// material previews +20% (glass 59 → 72, diffuse 113 → 136), the PLY bunny 131 → 165; the build of
 /// a 62k-triangle mesh takes ~0.1 s. More reinsertion (0.5–1.0) bought only 2% more for 2–4× the time.
+/// obvhs builds on rayon's threads (its `parallel` feature, same tree): on the H100 machine's 16 cores a
+/// 10M-triangle scene's buffers and BVH took 41.4 s single-threaded and 7.6 s so (BENCHMARKS.md).
 fn bvh_build_params() -> obvhs::BvhBuildParams {
     obvhs::BvhBuildParams {
         reinsertion_batch_ratio: 0.2,

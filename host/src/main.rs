@@ -7,7 +7,7 @@ use caustic::session::{self, RenderJob};
 use caustic::{buffers, compare, render, LoadOptions};
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 #[derive(Parser)]
 #[command(
@@ -448,8 +448,19 @@ fn bench_buffers(
     if spp == 0 {
         anyhow::bail!("--spp must be at least 1");
     }
+    let start = Instant::now();
     let scene = caustic::load_scene_with(scene_path, defines, options)?;
-    buffers::build(&scene)
+    let loaded = start.elapsed().as_secs_f64();
+    let buffers = buffers::build(&scene)?;
+    // What a large scene costs before its first sample (the large-scene table in BENCHMARKS.md).
+    let scene_bytes = caustic::memory::scene_bytes(&buffers);
+    say!(
+        "scene: {} primitives | load {loaded:.2} s | buffers and BVH {:.2} s | {:.1} MiB of scene buffers",
+        buffers.prims.len(),
+        start.elapsed().as_secs_f64() - loaded,
+        scene_bytes as f64 / (1u64 << 20) as f64
+    );
+    Ok(buffers)
 }
 
 fn cmd_bench(
@@ -485,6 +496,9 @@ fn cmd_bench(
             film.height,
             stats.seconds
         );
+    }
+    if let Some(peak) = caustic::memory::peak_resident() {
+        say!("peak host memory {:.1} MiB", peak as f64 / (1u64 << 20) as f64);
     }
     Ok(())
 }

@@ -20,12 +20,16 @@ pub fn render_need(buffers: &SceneBuffers) -> u64 {
     } else {
         0
     };
-    let scene: u64 = super::backend::limits::buffer_sizes(buffers)
+    scene_bytes(buffers) + pixels * (2 * accum + 3 * total + image + splat)
+}
+
+/// Bytes of the scene's own buffers (geometry, BVH, materials, lights, tables), without the film's.
+pub fn scene_bytes(buffers: &SceneBuffers) -> u64 {
+    super::backend::limits::buffer_sizes(buffers)
         .into_iter()
         .filter(|(what, _)| !matches!(*what, "film accumulator" | "light-tracing splats"))
         .map(|(_, size)| size)
-        .sum();
-    scene + pixels * (2 * accum + 3 * total + image + splat)
+        .sum()
 }
 
 /// The memory the kernel says can be allocated without swapping (`MemAvailable` of /proc/meminfo);
@@ -35,9 +39,21 @@ pub fn available() -> Option<u64> {
     parse_mem_available(&info)
 }
 
+/// This process's peak resident memory so far (`VmHWM` of /proc/self/status); `None` where that is
+/// not known.
+pub fn peak_resident() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    kib_field(&status, "VmHWM:")
+}
+
 /// `MemAvailable:  22937888 kB` → bytes.
 pub fn parse_mem_available(meminfo: &str) -> Option<u64> {
-    let line = meminfo.lines().find_map(|l| l.strip_prefix("MemAvailable:"))?;
+    kib_field(meminfo, "MemAvailable:")
+}
+
+/// The `NAME:  1234 kB` line of a /proc file, in bytes.
+fn kib_field(text: &str, name: &str) -> Option<u64> {
+    let line = text.lines().find_map(|l| l.strip_prefix(name))?;
     let kib: u64 = line.trim().strip_suffix("kB")?.trim().parse().ok()?;
     kib.checked_mul(1024)
 }
