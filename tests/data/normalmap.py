@@ -1,5 +1,7 @@
 """Writes the textures of normalmap.xml and renders normalmap.exr, the reference of
-tests/tests/normalmap.rs: normalmap.xml with Mitsuba 3.9.1's path integrator, 48x36, 16384 spp.
+tests/tests/normalmap.rs: normalmap.xml with Mitsuba 3.9.1's path integrator, 48x36, 16384 spp;
+and normalmap_ptracer.exr, the same with its ptracer (max_depth 4), 8192 spp (a normal map is not
+reciprocal, so light tracing renders another image).
 The textures: normalmap_normals.png (16x16 RGB, waves of the tangent-space normal along u and v,
 (n + 1) / 2 in 8 bits), normalmap_flat.png (1x1, the untilted normal: the negative control) and
 normalmap_height.png (16x16 grey, a height of crossed sines).
@@ -33,3 +35,6 @@ png("normalmap_height.png", np.round(height * 255.0).astype(np.uint8)[..., None]
 if __name__ == "__main__" and os.environ.get("TEXTURES_ONLY") is None:
     scene = mi.load_file(os.path.join(here, "normalmap.xml"))
     mi.Bitmap(mi.render(scene, spp=16384, seed=1)).write(os.path.join(here, "normalmap.exr"))
+    ptracer = mi.load_dict({"type": "ptracer", "max_depth": 4})
+    image = mi.render(scene, integrator=ptracer, spp=8192, seed=1)
+    mi.Bitmap(image).write(os.path.join(here, "normalmap_ptracer.exr"))
