@@ -7,7 +7,7 @@
 //!
 //! The comparison with Mitsuba catches each of these mistakes (measured on the CPU, 1024 spp, one
 //! seed; pixels passing, 99% needed): a tangent frame not following dp/du 94%, the normal map's green
-//! channel flipped 87%, `twosided` outside mirrored by caustic's untilted rule 97%, a `twosided`
+//! channel flipped 85%, `twosided` outside mirrored by caustic's untilted rule 97%, a `twosided`
 //! inside treated as outside 96% or not mirrored 95%, no shadowing term 99.4% but a luminance z of
 //! +14, the bump's gradient negated 86%, no `flip_invalid_normals` 89%.
 use caustic::backend::BackendChoice;

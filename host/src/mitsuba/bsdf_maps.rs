@@ -63,8 +63,9 @@ impl Loader {
         let texture = self.load_texture(&texture_props)?;
         let record = &self.textures[texture as usize].record;
         if bump && record.kind == TEXTURE_CHECKERBOARD {
+            // Mitsuba 3.9.1's checkerboard has no `eval_1_grad`: its render fails.
             bail!(
-                "{}: bumpmap needs a bitmap height texture (Mitsuba 3.9.1's checkerboard has no gradient and fails to render)",
+                "{}: bumpmap needs a bitmap height texture (a checkerboard has no gradient)",
                 texture_entry.loc
             );
         }

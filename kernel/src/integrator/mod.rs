@@ -159,8 +159,9 @@ pub fn accumulated(a: PixelAccum, sums: &PixelSums, sample_count: u32) -> PixelA
 
 /// The local shading frame at `sp` for a ray arriving along `dir`, the geometric normal on the same
 /// side as the frame's, the outgoing direction in the frame, and the tilt of a normal or bump map
-/// (`bsdf::perturb`; inactive without one) for `Bsdf::new`, as one `Shading`. Two-sided materials seen from behind are
-/// shaded as if from the front. Where the material has a map, the frame's tangent follows dp/du.
+/// (`bsdf::perturb`; inactive without one) for `Bsdf::new`, as one `Shading`. Two-sided materials
+/// seen from behind are shaded as if from the front. Where the material has a map, the frame's
+/// tangent follows dp/du.
 pub fn shading_frame(
     scene: &SceneView,
     material: &Material,
