@@ -658,6 +658,9 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     if materials.iter().any(|m| m.flags & MATERIAL_MASK != 0) {
         f |= features::MASK;
     }
+    if materials.iter().any(|m| m.perturb != 0) {
+        f |= features::NORMAL_MAPPING;
+    }
     f
 }
 

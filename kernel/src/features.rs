@@ -31,6 +31,9 @@ pub const LIGHT_TRACER: u32 = 1 << 22;
 pub const DISPERSION: u32 = 1 << 23;
 /// `mask` materials: paths and shadow rays pass through surfaces (`mask`).
 pub const MASK: u32 = 1 << 24;
+/// Normal and bump maps (`normalmap`, `bumpmap`): shading frames follow dp/du and the BSDF is
+/// evaluated in a perturbed frame (`bsdf::perturb`).
+pub const NORMAL_MAPPING: u32 = 1 << 25;
 
 // The kinds must fit their bit ranges.
 const _: () = assert!(BSDF_PRINCIPLED < 12 && LIGHT_ENVMAP < 8);

@@ -1,4 +1,7 @@
 //! Orthonormal shading frames.
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
 use crate::glam::Vec3;
 
 /// An orthonormal basis whose `n` axis is the shading normal; BSDFs work in its local coordinates
@@ -20,6 +23,22 @@ impl Frame {
         let s = Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
         let t = Vec3::new(b, sign + n.y * n.y * a, -n.y);
         Frame { s, t, n }
+    }
+
+    /// Mitsuba's shading frame: `s` is `dp_du` made orthogonal to the unit normal `n` (Gram–Schmidt),
+    /// `t = n × s`; where `dp_du` has no part orthogonal to `n` (zero, or along `n`; also NaN), the
+    /// frame of `from_normal`, as Mitsuba's fallback for a zero `dp_du`. (A part below 1e-5 of
+    /// `dp_du`'s length is rounding noise: Mitsuba normalises it into an arbitrary, non-orthogonal
+    /// tangent, caustic falls back.)
+    pub fn from_tangent(n: Vec3, dp_du: Vec3) -> Self {
+        let s = dp_du - n * n.dot(dp_du);
+        let len2 = s.length_squared();
+        if len2 > 1e-10 * dp_du.length_squared() && len2 <= f32::MAX {
+            let s = s / len2.sqrt();
+            Frame { s, t: n.cross(s), n }
+        } else {
+            Self::from_normal(n)
+        }
     }
 
     #[inline]

@@ -96,7 +96,20 @@ pub const MATERIAL_SELLMEIER: u32 = 16;
 /// luminance) and otherwise lets the path through unchanged (`crate::mask`).
 pub const MATERIAL_MASK: u32 = 32;
 
-/// A BSDF record (112 bytes). Which fields a model reads is documented by the model's `from_material`;
+/// `Material::perturb`: the kind of perturbation in the low two bits (0: none).
+pub const PERTURB_KIND: u32 = 3;
+/// Mitsuba's `normalmap`: the texture's RGB, `2c − 1`, is the normal in the shading frame.
+pub const PERTURB_NORMAL_MAP: u32 = 1;
+/// Mitsuba's `bumpmap`: the texture's luminance (times `bump_scale`) displaces the surface.
+pub const PERTURB_BUMP_MAP: u32 = 2;
+/// `flip_invalid_normals`: a perturbed normal facing away from the viewer is mirrored about the normal.
+pub const PERTURB_FLIP_INVALID: u32 = 4;
+/// `use_shadowing_function`: Estevez et al.'s microfacet shadowing of the bump terminator.
+pub const PERTURB_SHADOWING: u32 = 8;
+/// The perturbation wraps a `twosided` BSDF (else `twosided`, if any, wraps the perturbation).
+pub const PERTURB_TWO_SIDED_INSIDE: u32 = 16;
+
+/// A BSDF record (128 bytes). Which fields a model reads is documented by the model's `from_material`;
 /// colours are linear RGB with an unused fourth lane. `Default` is a black diffuse without textures.
 #[repr(C)]
 #[derive(Clone, Copy)]
@@ -138,6 +151,13 @@ pub struct Material {
     pub conductor_k: [f32; 4],
     /// Model-specific precomputed scalars (see the model's `precompute`).
     pub params: [f32; 4],
+    /// Normal or bump mapping around this BSDF (Mitsuba's `normalmap`, `bumpmap`; `bsdf::perturb`):
+    /// `PERTURB_*` bits, 0 for none; the normal map or height texture; the bump map's `scale`.
+    /// (One 16-byte group of its own.)
+    pub perturb: u32,
+    pub perturb_texture: u32,
+    pub bump_scale: f32,
+    pub _perturb_pad: u32,
 }
 
 impl Default for Material {
@@ -161,6 +181,10 @@ impl Default for Material {
             conductor_eta: [0.0; 4],
             conductor_k: [0.0; 4],
             params: [0.0; 4],
+            perturb: 0,
+            perturb_texture: NONE,
+            bump_scale: 1.0,
+            _perturb_pad: 0,
         }
     }
 }

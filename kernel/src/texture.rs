@@ -8,7 +8,7 @@ use crate::layout::{
     TEXTURE_WRAP_SHIFT,
 };
 use crate::math::vec3;
-use crate::spectrum::Rgb;
+use crate::spectrum::{luminance, Rgb};
 
 /// `constant` where `texture` is `NONE`, else the texture's value at `uv`.
 #[inline]
@@ -95,4 +95,35 @@ fn bitmap_bilinear(t: &Texture, tables: &[f32], uv: Vec2) -> Rgb {
     let top = texel(t, tables, xa, ya) * (1.0 - fx) + texel(t, tables, xb, ya) * fx;
     let bottom = texel(t, tables, xa, yb) * (1.0 - fx) + texel(t, tables, xb, yb) * fx;
     top * (1.0 - fy) + bottom * fy
+}
+
+/// Mitsuba's `eval_1_grad`: the gradient in (u, v) of the texture's luminance, the derivative of the
+/// bilinear interpolation within the texel square holding `uv` (through `to_uv`: its transpose takes
+/// the gradient back to the surface's uv). Nearest filtering and checkerboards are piecewise constant:
+/// zero (Mitsuba's nearest lookup returns zero; its checkerboard has no gradient at all).
+pub fn luminance_gradient(t: &Texture, tables: &[f32], uv: Vec2) -> Vec2 {
+    if t.kind == TEXTURE_CHECKERBOARD || t.flags & TEXTURE_NEAREST != 0 {
+        return Vec2::ZERO;
+    }
+    let st = apply_to_uv(t, uv);
+    let px = st.x * t.width as f32 - 0.5;
+    let py = st.y * t.height as f32 - 0.5;
+    let (x0f, y0f) = (px.floor(), py.floor());
+    let (fx, fy) = (px - x0f, py - y0f);
+    let (x0, y0) = (x0f as i32, y0f as i32);
+    let xa = wrap(x0, t.width, t.flags);
+    let xb = wrap(x0 + 1, t.width, t.flags);
+    let ya = wrap(y0, t.height, t.flags);
+    let yb = wrap(y0 + 1, t.height, t.flags);
+    let l = |x, y| luminance(texel(t, tables, x, y));
+    let (f00, f10, f01, f11) = (l(xa, ya), l(xb, ya), l(xa, yb), l(xb, yb));
+    // Per texel step; through `to_uv`'s transpose, then times the resolution, in Mitsuba's order (the
+    // exact chain rule scales first: they differ only where `to_uv` mixes u and v on a non-square
+    // texture).
+    let dx = (1.0 - fy) * (f10 - f00) + fy * (f11 - f01);
+    let dy = (1.0 - fx) * (f01 - f00) + fx * (f11 - f10);
+    let (r0, r1) = (t.to_uv[0], t.to_uv[1]);
+    let du = r0[0] * dx + r1[0] * dy;
+    let dv = r0[1] * dx + r1[1] * dy;
+    Vec2::new(du * t.width as f32, dv * t.height as f32)
 }

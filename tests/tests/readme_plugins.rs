@@ -32,6 +32,9 @@ fn scene_using(family: &str, plugin: &str) -> Option<String> {
         ("bsdf", "mask") => {
             r#"<shape type="sphere"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></shape>"#.into()
         }
+        // A bump map needs a bitmap (Mitsuba's checkerboard has no gradient): left to normalmap.rs.
+        ("bsdf", "bumpmap") => return None,
+        ("bsdf", "normalmap") => r#"<shape type="sphere"><bsdf type="normalmap"><texture name="normalmap" type="checkerboard"/><bsdf type="diffuse"/></bsdf></shape>"#.into(),
         ("bsdf", "twosided") => {
             r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>"#.into()
         }

@@ -110,6 +110,7 @@ impl Loader {
             "principled" => self.principled(props)?,
             "twosided" => self.twosided(props)?,
             "mask" => self.mask(props)?,
+            "normalmap" | "bumpmap" => self.normal_or_bump_map(props)?,
             other => {
                 let message = format!(
                     "{}: bsdf type '{other}' is not supported yet; rendering it as grey diffuse",

@@ -8,6 +8,7 @@ pub mod diffuse;
 pub mod fresnel;
 pub mod fuzzy_metal;
 pub mod microfacet;
+pub mod perturb;
 pub mod phong;
 pub mod plastic;
 pub mod principled;
@@ -193,11 +194,22 @@ pub struct Bsdf<'a> {
     pub tables: &'a [f32],
     /// The scene's `features`: models it does not use are never dispatched to.
     pub features: u32,
+    /// Normal or bump mapping: where active, the model is evaluated in its tilted frame
+    /// (`perturb::shading_frame` makes it).
+    pub perturbation: perturb::Perturbation,
 }
 
 impl<'a> Bsdf<'a> {
-    /// The BSDF of `m` at texture coordinates `uv` in a scene using `features`.
-    pub fn new(m: &Material, textures: &[Texture], tables: &'a [f32], uv: Vec2, features: u32) -> Bsdf<'a> {
+    /// The BSDF of `m` at texture coordinates `uv` in a scene using `features`, tilted by
+    /// `perturbation` (`Perturbation::NONE` without a map).
+    pub fn new(
+        m: &Material,
+        textures: &[Texture],
+        tables: &'a [f32],
+        uv: Vec2,
+        features: u32,
+        perturbation: perturb::Perturbation,
+    ) -> Bsdf<'a> {
         let (mut reflectance, mut specular) = (vec3_of(m.reflectance), vec3_of(m.specular_reflectance));
         let mut material = *m;
         if features::has(features, features::TEXTURES) {
@@ -214,7 +226,7 @@ impl<'a> Bsdf<'a> {
                     luminance(texture::eval(&textures[m.alpha_v_texture as usize], tables, uv));
             }
         }
-        Bsdf { material, reflectance, specular, tables, features }
+        Bsdf { material, reflectance, specular, tables, features, perturbation }
     }
 
     /// A BSDF without textures (tests, tools).
@@ -225,6 +237,7 @@ impl<'a> Bsdf<'a> {
             specular: vec3_of(m.specular_reflectance),
             tables,
             features: features::ALL,
+            perturbation: perturb::Perturbation::NONE,
         }
     }
 
@@ -233,19 +246,62 @@ impl<'a> Bsdf<'a> {
     }
 
     pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        if self.is_perturbed() {
+            let p = &self.perturbation;
+            if !p.keeps_side(wi) {
+                return Rgb::ZERO;
+            }
+            let (f, w) = (p.frame(), p.shadowing(wi));
+            return with_model!(self, |model| model.eval(f.to_local(wo), f.to_local(wi), mode)) * w;
+        }
         with_model!(self, |model| model.eval(wo, wi, mode))
     }
 
     pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        if self.is_perturbed() {
+            let p = &self.perturbation;
+            if !p.keeps_side(wi) {
+                return 0.0;
+            }
+            let f = p.frame();
+            return with_model!(self, |model| model.pdf(f.to_local(wo), f.to_local(wi), mode));
+        }
         with_model!(self, |model| model.pdf(wo, wi, mode))
     }
 
     pub fn eval_pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> EvalPdf {
+        if self.is_perturbed() {
+            let p = &self.perturbation;
+            if !p.keeps_side(wi) {
+                return EvalPdf::ZERO;
+            }
+            let f = p.frame();
+            let mut ep = with_model!(self, |model| model.eval_pdf(f.to_local(wo), f.to_local(wi), mode));
+            ep.f *= p.shadowing(wi);
+            return ep;
+        }
         with_model!(self, |model| model.eval_pdf(wo, wi, mode))
     }
 
     pub fn sample(&self, wo: Vec3, u_lobe: f32, u: Vec2, mode: TransportMode) -> BsdfSample {
+        if self.is_perturbed() {
+            let p = &self.perturbation;
+            let f = p.frame();
+            let mut bs = with_model!(self, |model| model.sample(f.to_local(wo), u_lobe, u, mode));
+            bs.wi = f.to_world(bs.wi);
+            if bs.pdf <= 0.0 || !p.keeps_side(bs.wi) {
+                return BsdfSample::invalid();
+            }
+            bs.weight *= p.shadowing(bs.wi);
+            return bs;
+        }
         with_model!(self, |model| model.sample(wo, u_lobe, u, mode))
+    }
+
+    /// Whether a normal or bump map tilts the frame (never in scenes without `NORMAL_MAPPING`).
+    #[inline]
+    fn is_perturbed(&self) -> bool {
+        features::has(self.features, features::NORMAL_MAPPING) && self.perturbation.active()
     }
 
     /// Whether the scene uses BSDF model `kind` (`features`).

@@ -5,6 +5,7 @@ pub mod nee;
 pub mod path;
 pub mod ptracer;
 
+use crate::bsdf::perturb::{self, Perturbation, Shading};
 use crate::camera::Ray;
 use crate::features;
 use crate::film;
@@ -12,11 +13,12 @@ use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
 pub use crate::layout::SceneView;
 use crate::layout::{
-    FrameParams, Material, PixelAccum, INTEGRATOR_DIRECT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER,
+    FrameParams, Material, PixelAccum, Primitive, INTEGRATOR_DIRECT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER,
+    MATERIAL_TWO_SIDED,
 };
 use crate::math::is_finite3;
 use crate::rng::Sampler;
-use crate::shape::SurfacePoint;
+use crate::shape::{Hit, SurfacePoint};
 use crate::spectrum::Rgb;
 use crate::splat::AtomicWords;
 use crate::wavelength;
@@ -156,9 +158,24 @@ pub fn accumulated(a: PixelAccum, sums: &PixelSums, sample_count: u32) -> PixelA
 }
 
 /// The local shading frame at `sp` for a ray arriving along `dir`, the geometric normal on the same
-/// side as the frame's, and the outgoing direction in the frame. Two-sided materials seen from behind
-/// are shaded as if from the front.
-pub fn shading_frame(two_sided: bool, sp: &SurfacePoint, dir: Vec3) -> (Frame, Vec3, Vec3) {
+/// side as the frame's, the outgoing direction in the frame, and the tilt of a normal or bump map
+/// (`bsdf::perturb`; inactive without one) for `Bsdf::new`, as one `Shading`. Two-sided materials
+/// seen from behind are shaded as if from the front. Where the material has a map, the frame's
+/// tangent follows dp/du.
+pub fn shading_frame(
+    scene: &SceneView,
+    material: &Material,
+    prim: &Primitive,
+    hit: &Hit,
+    sp: &SurfacePoint,
+    dir: Vec3,
+) -> Shading {
+    let two_sided = material.flags & MATERIAL_TWO_SIDED != 0;
+    if features::has(scene.features, features::NORMAL_MAPPING) && material.perturb != 0 {
+        let (dp_du, dp_dv) = crate::shape::tangents(prim, scene.attributes, hit, sp);
+        let map = perturb::MapContext { textures: scene.textures, tables: scene.tables, dp_du, dp_dv };
+        return perturb::shading_frame(material, &map, sp, dir);
+    }
     let (mut ns, mut ng) = (sp.ns, sp.ng);
     if two_sided && ng.dot(dir) > 0.0 {
         ns = -ns;
@@ -166,7 +183,7 @@ pub fn shading_frame(two_sided: bool, sp: &SurfacePoint, dir: Vec3) -> (Frame, V
     }
     let frame = Frame::from_normal(ns);
     let wo = frame.to_local(-dir);
-    (frame, ng, wo)
+    Shading::new(frame, ng, wo, Perturbation::NONE)
 }
 
 /// A path's wavelength before it has one (`wavelength`: drawn at the first dispersive vertex).

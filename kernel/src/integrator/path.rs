@@ -116,8 +116,9 @@ pub fn li(
 
         let dim_wavelength = DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE + DIM_WAVELENGTH;
         throughput *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);
-        let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features);
-        let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, ray.dir);
+        let shading = shading_frame(scene, &material, &prim, &hit, &sp, ray.dir);
+        let (frame, ng, wo) = (shading.frame(), shading.ng, shading.wo);
+        let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features, shading.tilt);
 
         let u_select = sampler.next_1d();
         let u_light = sampler.next_2d();

@@ -49,6 +49,15 @@ pub fn uv(ab: Vec2) -> Vec2 {
     Vec2::new(ab.length(), phi * INV_2PI)
 }
 
+/// Mitsuba's `dp/du`, `dp/dv` of the disk at disk coordinates `ab` (derivatives of `uv`: u the
+/// radius, v the angle as a fraction of a turn); both zero at the centre, as Mitsuba's.
+pub fn tangents(u: Vec3, v: Vec3, ab: Vec2) -> (Vec3, Vec3) {
+    let r = ab.length();
+    let inv_r = if r > 0.0 { 1.0 / r } else { 0.0 };
+    let (cos_phi, sin_phi) = (ab.x * inv_r, ab.y * inv_r);
+    (u * cos_phi + v * sin_phi, (v * cos_phi - u * sin_phi) * (2.0 * PI * r))
+}
+
 pub fn area(u: Vec3, v: Vec3) -> f32 {
     PI * u.cross(v).length()
 }

@@ -95,6 +95,29 @@ pub fn surface_point(
     SurfacePoint { p, ng, ns, error_scale, offset_floor: prim.offset_floor, uv }
 }
 
+/// `dp/du` and `dp/dv` at a hit (Mitsuba's parametrisation of each shape; a triangle's from its
+/// texture coordinates, which are the barycentric default when the mesh has none, so that its
+/// `dp/du` is then `p1 − p0` as Mitsuba's). Only normal and bump mapping ask for them.
+pub fn tangents(
+    prim: &Primitive,
+    attributes: &[TriangleAttributes],
+    hit: &Hit,
+    sp: &SurfacePoint,
+) -> (Vec3, Vec3) {
+    if prim.kind == PRIM_SPHERE {
+        let centre = vec3(prim.p0);
+        return sphere::tangents((sp.p - centre) / prim.p1[0], prim.p1[0]);
+    }
+    if prim.kind == PRIM_DISK {
+        return disk::tangents(vec3(prim.p1), vec3(prim.p2), hit.uv);
+    }
+    let a = attributes[hit.prim as usize];
+    triangle::tangents(
+        [vec3(prim.p0), vec3(prim.p1), vec3(prim.p2)],
+        [Vec2::from(a.uv0), Vec2::from(a.uv1), Vec2::from(a.uv2)],
+    )
+}
+
 /// Ray origins leave surfaces by `(f + max(|p|∞, the primitive's own coordinates)) · RAY_EPSILON`
 /// (`offset_scale`), relative to the magnitudes whose rounding a hit point carries (a point
 /// interpolated from a triangle's vertices, or reprojected onto a sphere, is off its surface by a

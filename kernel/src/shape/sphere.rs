@@ -54,3 +54,14 @@ pub fn uv(local: Vec3) -> Vec2 {
     let phi = if phi < 0.0 { phi + 2.0 * crate::math::PI } else { phi };
     Vec2::new(phi * crate::math::INV_2PI, local.z.clamp(-1.0, 1.0).acos() * crate::math::INV_PI)
 }
+
+/// Mitsuba's `dp/du`, `dp/dv` of a sphere of `radius` at the unit local position `local` (derivatives
+/// of `uv`: u a full turn in φ, v half a turn in θ); at the poles `dp/du` is zero and `dp/dv` points
+/// along +x, as Mitsuba sets them.
+pub fn tangents(local: Vec3, radius: f32) -> (Vec3, Vec3) {
+    let dp_du = Vec3::new(-local.y, local.x, 0.0) * (2.0 * crate::math::PI * radius);
+    let rd = (local.x * local.x + local.y * local.y).sqrt();
+    let dir =
+        if rd == 0.0 { Vec3::X } else { Vec3::new(local.z * local.x / rd, local.z * local.y / rd, -rd) };
+    (dp_du, dir * (crate::math::PI * radius))
+}

@@ -66,6 +66,21 @@ pub fn intersect(p0: Vec3, p1: Vec3, p2: Vec3, ray: &Ray, t_max: f32) -> Option<
     Some((t, Vec2::new(v * inv_det, w * inv_det)))
 }
 
+/// `dp/du`, `dp/dv` of a triangle with texture coordinates `uv0..uv2` (solving the 2×2 system of its
+/// edges, as Mitsuba's meshes); where the uv triangle is degenerate, the tangents of
+/// `Frame::from_normal` about the (unflipped) face normal, Mitsuba's fallback.
+pub fn tangents(p: [Vec3; 3], uv: [Vec2; 3]) -> (Vec3, Vec3) {
+    let (dp0, dp1) = (p[1] - p[0], p[2] - p[0]);
+    let (duv0, duv1) = (uv[1] - uv[0], uv[2] - uv[0]);
+    let det = duv0.x * duv1.y - duv0.y * duv1.x;
+    if det == 0.0 {
+        let f = crate::frame::Frame::from_normal(dp0.cross(dp1).normalize());
+        return (f.s, f.t);
+    }
+    let inv = 1.0 / det;
+    ((dp0 * duv1.y - dp1 * duv0.y) * inv, (dp1 * duv0.x - dp0 * duv1.x) * inv)
+}
+
 pub fn area(p0: Vec3, p1: Vec3, p2: Vec3) -> f32 {
     0.5 * (p1 - p0).cross(p2 - p0).length()
 }
