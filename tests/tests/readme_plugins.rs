@@ -32,6 +32,8 @@ fn scene_using(family: &str, plugin: &str) -> Option<String> {
         ("bsdf", "mask") => {
             r#"<shape type="sphere"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></shape>"#.into()
         }
+        // Mitsuba requires the weight and two BSDFs.
+        ("bsdf", "blendbsdf") => r#"<shape type="sphere"><bsdf type="blendbsdf"><float name="weight" value="0.5"/><bsdf type="diffuse"/><bsdf type="roughconductor"/></bsdf></shape>"#.into(),
         ("bsdf", "twosided") => {
             r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>"#.into()
         }

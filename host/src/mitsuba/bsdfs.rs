@@ -1,6 +1,6 @@
 //! BSDF plugins: `diffuse`, `phong` (the modified Phong BRDF), `conductor`, `roughconductor`,
 //! `dielectric`, `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `principled`,
-//! `twosided`; with Mitsuba 3's parameter names and defaults.
+//! `twosided`, `mask` and `blendbsdf` (`blend`); with Mitsuba 3's parameter names and defaults.
 use super::ior;
 use super::props::Props;
 use super::spectrum::SpectrumUse;
@@ -108,6 +108,7 @@ impl Loader {
             "dielectric" | "thindielectric" | "roughdielectric" => self.dielectric(props)?,
             "plastic" | "roughplastic" => self.plastic(props)?,
             "principled" => self.principled(props)?,
+            "blendbsdf" => self.blend(props)?,
             "twosided" => self.twosided(props)?,
             "mask" => self.mask(props)?,
             other => {
@@ -201,12 +202,7 @@ impl Loader {
         let inner_props = self.props(props.src, inner_entry.node)?;
         let index = self.load_bsdf(&inner_props)?;
         let mut m = self.materials[index as usize];
-        let transmissive = match m.kind {
-            BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC | BSDF_ROUGH_DIELECTRIC => true,
-            BSDF_PRINCIPLED => principled_transmits(&m),
-            _ => false,
-        };
-        if transmissive {
+        if self.transmits(&m) {
             bail!("{}: twosided cannot wrap a transmissive BSDF ('{}')", props.loc, inner_props.kind);
         }
         m.flags |= MATERIAL_TWO_SIDED;
@@ -481,7 +477,19 @@ impl Loader {
     }
 }
 
-/// Whether a `principled` material has its transmission lobe (Mitsuba's `twosided` refuses it then).
-fn principled_transmits(m: &Material) -> bool {
-    PrincipledParams::unpack(m).spec_trans > 0.0
+impl Loader {
+    /// Whether material `m` transmits (Mitsuba's `twosided` refuses it then): a dielectric, a principled
+    /// material with its transmission lobe, a blend of either.
+    fn transmits(&self, m: &Material) -> bool {
+        match m.kind {
+            BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC | BSDF_ROUGH_DIELECTRIC => true,
+            BSDF_PRINCIPLED => PrincipledParams::unpack(m).spec_trans > 0.0,
+            BSDF_BLEND => {
+                let (a, b) = caustic_kernel::bsdf::blend::children(m);
+                // Children are never blends (`blend`): no deeper recursion.
+                self.transmits(&self.materials[a as usize]) || self.transmits(&self.materials[b as usize])
+            }
+            _ => false,
+        }
+    }
 }

@@ -8,6 +8,7 @@
 //! substitution, `-D` overrides, `<include>`, `<path>`, `id`/`<ref>` (ids unique, as Mitsuba wants
 //! them), and one integrator per scene; `deviations` collects what was substituted or ignored, which
 //! `--strict` (`LoadOptions::strict`) refuses.
+mod blend;
 mod bsdfs;
 pub mod cie_tables;
 mod deviations;

@@ -47,7 +47,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     let mut lambda = NO_WAVELENGTH;
     let dispersion = disperse(scene, params, &mut material, &mut lambda, sampler, DIM_WAVELENGTH);
     let mut result = Rgb::ZERO;
-    let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features);
+    let bsdf = Bsdf::new(&material, scene.materials, scene.textures, scene.tables, sp.uv, scene.features);
     let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, camera_ray.dir);
 
     if bsdf.flags().has_smooth() {

@@ -116,7 +116,7 @@ pub fn li(
 
         let dim_wavelength = DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE + DIM_WAVELENGTH;
         throughput *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);
-        let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features);
+        let bsdf = Bsdf::new(&material, scene.materials, scene.textures, scene.tables, sp.uv, scene.features);
         let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, ray.dir);
 
         let u_select = sampler.next_1d();

@@ -231,7 +231,7 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         let mut material = scene.materials[prim.material as usize];
         let dim_wavelength = bounce_dims + DIM_WAVELENGTH;
         beta *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);
-        let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features);
+        let bsdf = Bsdf::new(&material, scene.materials, scene.textures, scene.tables, sp.uv, scene.features);
         let (frame, ng, wo) = shading_frame(bsdf.two_sided(), &sp, ray.dir);
         let wo_world = -ray.dir;
         let u_round = sampler.next_1d();

@@ -16,18 +16,33 @@ pub struct Model {
 impl Model {
     /// Builds the model of `m` as the host would: precomputes what it needs, evaluates no textures.
     pub fn new(m: &Material, adjoint: bool) -> Model {
+        Model::in_list(m, &[], adjoint)
+    }
+
+    /// Mitsuba's `blendbsdf` of `first` and `second` with weight `weight` (of `second`), built as the
+    /// host builds it: the blend record names the children's places in the material list.
+    pub fn blend(first: &Material, second: &Material, weight: f32, adjoint: bool) -> Model {
+        let blend = caustic_kernel::bsdf::blend::record(0, 1, weight, NONE);
+        Model::in_list(&blend, &[*first, *second], adjoint)
+    }
+
+    /// The model of `m` in a scene whose material list is `materials` (precomputed here, and leaked
+    /// with the tables: a test builds a few hundred models at most, and `Model` stays `Copy`).
+    fn in_list(m: &Material, materials: &[Material], adjoint: bool) -> Model {
         let mut m = *m;
+        let mut materials = materials.to_vec();
         // Behind some unrelated data, as in the host's table buffer: a model that reads its table at
         // the wrong offset reads these.
         let mut tables = vec![7.0f32; 5];
-        if let Some(table) = caustic_kernel::bsdf::precompute(&mut m) {
-            m.table = tables.len() as u32;
-            tables.extend(table);
+        for m in std::iter::once(&mut m).chain(materials.iter_mut()) {
+            if let Some(table) = caustic_kernel::bsdf::precompute(m) {
+                m.table = tables.len() as u32;
+                tables.extend(table);
+            }
         }
-        // Leaked: a test builds a few hundred models at most, and `Model` stays `Copy`.
         let tables: &'static [f32] = Box::leak(tables.into_boxed_slice());
         let mode = if adjoint { TransportMode::Importance } else { TransportMode::Radiance };
-        Model { bsdf: Bsdf::from_material(&m, tables), mode }
+        Model { bsdf: Bsdf::from_material(&m, &materials, tables), mode }
     }
 
     /// The same model in transport mode `mode`.
@@ -51,13 +66,18 @@ impl Model {
         self.bsdf.sample(wo, u_lobe, u, self.mode)
     }
 
+    /// The model's kind (`BSDF_BLEND` for a blend).
     pub fn kind(&self) -> u32 {
-        self.bsdf.material.kind
+        if self.bsdf.blended {
+            return BSDF_BLEND;
+        }
+        self.bsdf.first.material.kind
     }
 
     /// The concrete model, for tests that look inside it.
     pub fn concrete<M: Bxdf<'static>>(&self) -> M {
-        M::from_material(&self.bsdf.material, self.bsdf.reflectance, self.bsdf.specular, self.bsdf.tables)
+        let c = &self.bsdf.first;
+        M::from_material(&c.material, c.reflectance, c.specular, self.bsdf.tables)
     }
 }
 
