@@ -4,7 +4,7 @@
 //! (fewer registers, higher occupancy) and a scene pays nothing for features it does not use. On the
 //! CPU it is an ordinary value: the same branches are taken, so both backends still run one kernel.
 //! A cleared bit only ever removes a path the scene cannot reach.
-use crate::layout::{BSDF_BLEND, BSDF_PRINCIPLED, LIGHT_ENVMAP};
+use crate::layout::{BSDF_BLEND, BSDF_PRINCIPLED_THIN, LIGHT_ENVMAP};
 
 /// Every path compiled in: the specialization constant's default.
 pub const ALL: u32 = u32::MAX;
@@ -46,7 +46,7 @@ pub const MASK: u32 = 1 << 24;
 pub const BLEND: u32 = 1 << 26;
 
 // The kinds must fit their bit ranges.
-const _: () = assert!(BSDF_PRINCIPLED < 12 && BSDF_BLEND >= 12 && LIGHT_ENVMAP < 8);
+const _: () = assert!(BSDF_PRINCIPLED_THIN < 12 && BSDF_BLEND >= 12 && LIGHT_ENVMAP < 8);
 
 #[inline]
 pub fn has(features: u32, bits: u32) -> bool {

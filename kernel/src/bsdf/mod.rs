@@ -12,6 +12,7 @@ pub mod microfacet;
 pub mod phong;
 pub mod plastic;
 pub mod principled;
+pub mod principled_thin;
 pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod rough_plastic;
@@ -172,6 +173,10 @@ macro_rules! with_model {
             }
             BSDF_PRINCIPLED if b.uses(BSDF_PRINCIPLED) => {
                 let $model = principled::Principled::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_PRINCIPLED_THIN if b.uses(BSDF_PRINCIPLED_THIN) => {
+                let $model = principled_thin::PrincipledThin::from_material(m, r, s, t);
                 $body
             }
             _ => {
