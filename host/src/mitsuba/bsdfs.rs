@@ -1,6 +1,6 @@
 //! BSDF plugins: `diffuse`, `phong` (the modified Phong BRDF), `conductor`, `roughconductor`,
 //! `dielectric`, `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `principled`,
-//! `principledthin`, `twosided`, `mask` and `blendbsdf` (`blend`); with Mitsuba 3's parameter names and defaults.
+//! `principledthin`, `twosided`, `mask`, `blendbsdf` (`blend`) and `pplastic` (`pplastic`); with Mitsuba 3's parameter names and defaults.
 use super::ior;
 use super::props::Props;
 use super::spectrum::SpectrumUse;
@@ -111,6 +111,7 @@ impl Loader {
             "principled" => self.principled(props)?,
             "principledthin" => self.principled_thin(props)?,
             "blendbsdf" => self.blend(props)?,
+            "pplastic" => self.pplastic(props)?,
             "twosided" => self.twosided(props)?,
             "mask" => self.mask(props)?,
             other => {
@@ -213,7 +214,7 @@ impl Loader {
 
     /// `distribution`, `alpha` / `alpha_u`, `alpha_v` of the rough models (Mitsuba's default: Beckmann,
     /// α = 0.1); sets the material's roughness fields and flags.
-    fn microfacet(&mut self, props: &Props, m: &mut Material) -> Result<()> {
+    pub(super) fn microfacet(&mut self, props: &Props, m: &mut Material) -> Result<()> {
         match props.string("distribution")?.map(|d| d.to_lowercase()).as_deref() {
             None | Some("beckmann") => m.flags |= MATERIAL_BECKMANN,
             Some("ggx") => {}

@@ -15,6 +15,7 @@ mod deviations;
 mod emitters;
 mod integrators;
 pub mod ior;
+mod pplastic;
 mod props;
 mod sensors;
 mod shapes;

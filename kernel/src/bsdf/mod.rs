@@ -11,6 +11,7 @@ pub mod fuzzy_metal;
 pub mod microfacet;
 pub mod phong;
 pub mod plastic;
+pub mod pplastic;
 pub mod principled;
 pub mod principled_thin;
 pub mod rough_conductor;
@@ -177,6 +178,10 @@ macro_rules! with_model {
             }
             BSDF_PRINCIPLED_THIN if b.uses(BSDF_PRINCIPLED_THIN) => {
                 let $model = principled_thin::PrincipledThin::from_material(m, r, s, t);
+                $body
+            }
+            BSDF_PPLASTIC if b.uses(BSDF_PPLASTIC) => {
+                let $model = pplastic::PPlastic::from_material(m, r, s, t);
                 $body
             }
             _ => {
@@ -386,7 +391,7 @@ impl<'a> Bsdf<'a> {
     /// Whether the scene uses BSDF model `kind` (`features`).
     #[inline]
     fn uses(&self, kind: u32) -> bool {
-        features::has(self.features, features::bsdf(kind))
+        features::has(self.features, features::material(kind))
     }
 
     /// Whether both sides of the surface reflect like the front (Mitsuba's `twosided`).
