@@ -194,3 +194,61 @@ fn white_furnace() {
         }
     }
 }
+
+/// A blend of each model (`every_model`: every kind, Dirac ones too) with a smooth one, either way
+/// round: smooth samples weigh `eval / pdf` of the blend at their direction with the blend's `pdf`,
+/// Dirac ones keep a finite weight and a scaled probability, `eval_pdf` is `eval` and `pdf`, and the
+/// flags are the union of the children's.
+#[test]
+fn every_model_blends_consistently() {
+    let smooth = copper(rough(BSDF_ROUGH_CONDUCTOR, 0.3, 0.2, false));
+    let wos = random_dirs(12, 21);
+    let mut rng = Sampler::new(7, 7, 7);
+    for (name, m) in every_model() {
+        for (first, second, w) in [(m, smooth, 0.4f32), (smooth, m, 0.7)] {
+            for adjoint in [false, true] {
+                let b = Model::blend(&first, &second, w, adjoint);
+                let (fa, fb) =
+                    (Model::new(&first, adjoint).bsdf.flags(), Model::new(&second, adjoint).bsdf.flags());
+                assert_eq!(b.bsdf.flags().0, fa.0 | fb.0, "{name}: flags");
+                let (mut smooth_samples, mut dirac) = (0, 0);
+                for wo in &wos {
+                    for _ in 0..20 {
+                        let s = b.sample(*wo, rng.next_1d(), rng.next_2d());
+                        if !(s.pdf > 0.0) {
+                            continue;
+                        }
+                        assert!(
+                            s.weight.is_finite() && s.weight.min_element() >= 0.0,
+                            "{name}: weight {}",
+                            s.weight
+                        );
+                        if s.delta {
+                            dirac += 1;
+                            continue;
+                        }
+                        let (f, pdf) = (b.eval(*wo, s.wi), b.pdf(*wo, s.wi));
+                        let e = b.eval_pdf(*wo, s.wi);
+                        assert!(
+                            close3(e.f, f, 1e-6, 0.0) && close(e.pdf, pdf, 1e-6, 0.0),
+                            "{name}: eval_pdf"
+                        );
+                        let ctx = format!("{name} w={w} wo={wo} wi={}", s.wi);
+                        assert!(close(s.pdf, pdf, 2e-3, 1e-6), "{ctx}: sample pdf {} vs pdf {pdf}", s.pdf);
+                        assert!(
+                            close3(s.weight, f / pdf, 2e-3, 1e-6),
+                            "{ctx}: weight {} vs {}",
+                            s.weight,
+                            f / pdf
+                        );
+                        smooth_samples += 1;
+                    }
+                }
+                assert!(
+                    smooth_samples + dirac > 50,
+                    "{name}: {smooth_samples} smooth and {dirac} Dirac samples"
+                );
+            }
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! Mitsuba 3 XML scenes (a documented subset; see the README's table).
 //!
-//! One file per family of scene elements, as Mitsuba splits its plugins: `shapes`, `bsdfs`,
-//! `emitters`, `sensors` (sensor, film, filter, sampler), `integrators`; `transform` and `spectrum`
+//! One file per family of scene elements, as Mitsuba splits its plugins: `shapes`, `bsdfs` (with
+//! `blend` and `pplastic` beside it), `emitters`, `sensors` (sensor, film, filter, sampler), `integrators`; `transform` and `spectrum`
 //! parse values; `props` gives typed properties with their source locations; `xml` holds the XML
 //! primitives all of these share (locations, attributes, number lists, one-or-three-number vectors)
 //! and uses none of them. This module holds the document machinery: `<default>`, `$name`

@@ -210,7 +210,51 @@ pub fn every_model() -> Vec<(String, Material)> {
     for spec_trans in [0.0f32, 0.6] {
         v.push((format!("principled spec_trans={spec_trans}"), principled(spec_trans)));
     }
+    for (spec_trans, diff_trans) in [(0.0f32, 0.0f32), (0.5, 0.8)] {
+        let name = format!("principledthin spec_trans={spec_trans} diff_trans={diff_trans}");
+        v.push((name, principled_thin(spec_trans, diff_trans)));
+    }
+    for beckmann in [false, true] {
+        v.push((format!("pplastic beckmann={beckmann}"), pplastic(beckmann)));
+    }
     v
+}
+
+/// Mitsuba's `principledthin` with sheen, flatness and tint (transmission weights as given).
+pub fn principled_thin(spec_trans: f32, diff_trans: f32) -> Material {
+    let mut m = Material {
+        kind: BSDF_PRINCIPLED_THIN,
+        eta: 1.4,
+        alpha_u: 0.4,
+        alpha_v: 0.3,
+        reflectance: c4(0.8, 0.4, 0.2),
+        ..Default::default()
+    };
+    caustic_kernel::bsdf::principled_thin::ThinParams {
+        spec_trans,
+        spec_tint: 0.3,
+        sheen: 0.5,
+        sheen_tint: 0.5,
+        flatness: 0.2,
+        diff_trans,
+        spec_refl_rate: 1.0,
+        spec_trans_rate: 1.0,
+        diff_refl_rate: 1.0,
+        diff_trans_rate: 1.0,
+    }
+    .pack(&mut m);
+    m
+}
+
+/// Mitsuba's `pplastic` (unpolarized), anisotropic, with a coloured base and coat.
+pub fn pplastic(beckmann: bool) -> Material {
+    let mut m = Material {
+        reflectance: c4(0.3, 0.5, 0.7),
+        specular_reflectance: c4(0.9, 0.8, 0.7),
+        ..rough(BSDF_PPLASTIC, 0.2, 0.4, beckmann)
+    };
+    m.params[caustic_kernel::bsdf::pplastic::PARAM_SPECULAR_WEIGHT] = 0.6;
+    m
 }
 
 /// Mitsuba's `principled` with every lobe on (refraction with weight `spec_trans`).
