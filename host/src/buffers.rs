@@ -638,7 +638,7 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     // Lambert is also the fallback of the dispatch, so its path is always there.
     let mut f = features::bsdf(BSDF_DIFFUSE);
     for m in materials {
-        f |= features::bsdf(m.kind);
+        f |= features::material(m.kind);
     }
     for l in lights {
         f |= features::light(l.kind);

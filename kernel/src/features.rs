@@ -4,7 +4,7 @@
 //! (fewer registers, higher occupancy) and a scene pays nothing for features it does not use. On the
 //! CPU it is an ordinary value: the same branches are taken, so both backends still run one kernel.
 //! A cleared bit only ever removes a path the scene cannot reach.
-use crate::layout::{BSDF_PRINCIPLED, LIGHT_ENVMAP};
+use crate::layout::{BSDF_BLEND, BSDF_PPLASTIC, BSDF_PRINCIPLED_THIN, LIGHT_ENVMAP};
 
 /// Every path compiled in: the specialization constant's default.
 pub const ALL: u32 = u32::MAX;
@@ -13,6 +13,19 @@ pub const ALL: u32 = u32::MAX;
 #[inline]
 pub const fn bsdf(kind: u32) -> u32 {
     1 << kind
+}
+
+/// The bit of a material record of kind `kind`: its model's (`BLEND` for a blend, `PPLASTIC` for
+/// the model beyond bit 11).
+#[inline]
+pub const fn material(kind: u32) -> u32 {
+    if kind == BSDF_BLEND {
+        BLEND
+    } else if kind == BSDF_PPLASTIC {
+        PPLASTIC
+    } else {
+        bsdf(kind)
+    }
 }
 
 /// The bit of emitter kind `kind` (`LIGHT_*`, bits 12–19).
@@ -34,9 +47,15 @@ pub const MASK: u32 = 1 << 24;
 /// Normal and bump maps (`normalmap`, `bumpmap`): shading frames follow dp/du and the BSDF is
 /// evaluated in a perturbed frame (`bsdf::perturb`).
 pub const NORMAL_MAPPING: u32 = 1 << 25;
+/// `blendbsdf` records: a surface's BSDF is a weighted pair of models (`bsdf::blend`). (Bit 25 is
+/// taken by normal maps.)
+pub const BLEND: u32 = 1 << 26;
+/// Mitsuba's `pplastic` (`bsdf::pplastic`), whose kind lies past the models' bits.
+pub const PPLASTIC: u32 = 1 << 27;
 
 // The kinds must fit their bit ranges.
-const _: () = assert!(BSDF_PRINCIPLED < 12 && LIGHT_ENVMAP < 8);
+const _: () =
+    assert!(BSDF_PRINCIPLED_THIN < 12 && BSDF_BLEND >= 12 && BSDF_PPLASTIC >= 12 && LIGHT_ENVMAP < 8);
 
 #[inline]
 pub fn has(features: u32, bits: u32) -> bool {

@@ -81,6 +81,15 @@ pub const BSDF_ROUGH_PLASTIC: u32 = 8;
 pub const BSDF_FUZZY_METAL: u32 = 9;
 /// Mitsuba's `principled` (Disney BSDF); its parameters' fields: `bsdf::principled::PrincipledParams`.
 pub const BSDF_PRINCIPLED: u32 = 10;
+/// Mitsuba's `principledthin` (a thin Disney sheet); its parameters' fields:
+/// `bsdf::principled_thin::ThinParams`.
+pub const BSDF_PRINCIPLED_THIN: u32 = 11;
+/// Mitsuba's `blendbsdf`: not a model but a weighted pair of other records (`bsdf::blend`). Its kind
+/// lies outside the models' feature bits 0–11: its path has its own bit, `features::BLEND`.
+pub const BSDF_BLEND: u32 = 12;
+/// Mitsuba's `pplastic` (unpolarized): the models' feature bits are all taken, so its path has its own
+/// bit, `features::PPLASTIC`.
+pub const BSDF_PPLASTIC: u32 = 13;
 
 /// Material flag: both sides of the surface scatter (Mitsuba's `twosided`).
 pub const MATERIAL_TWO_SIDED: u32 = 1;

@@ -212,7 +212,7 @@ fn prism_deviation_follows_snell_with_the_glass_index() {
     for lambda in [450.0f32, 650.0] {
         let mut m = glass;
         m.eta = eta_at(&glass, lambda);
-        let bsdf = Bsdf::from_material(&m, &[]);
+        let bsdf = Bsdf::from_material(&m, &[], &[]);
         // First face (normal +z, viewer outside): refraction is the lobe sampled with u_lobe → 1.
         let wo = Vec3::new(theta1.sin() as f32, 0.0, theta1.cos() as f32);
         let inside = bsdf.sample(wo, 0.99999, Vec2::splat(0.5), TransportMode::Radiance);

@@ -227,6 +227,12 @@ fn refuses_what_cannot_render() {
             "inside another",
         ),
         (format!(r#"<bsdf type="bumpmap">{nested}</bsdf>"#), "bumpmap needs one nested <texture>"),
+        (
+            format!(
+                r#"<bsdf type="blendbsdf"><float name="weight" value="0.5"/>{nested}<bsdf type="normalmap"><texture name="normalmap" type="checkerboard"/>{nested}</bsdf></bsdf>"#
+            ),
+            "put the map around the blendbsdf",
+        ),
     ];
     for (i, (bsdf, expected)) in cases.iter().enumerate() {
         let xml = format!("<scene version=\"3.0.0\">\n<shape type=\"sphere\">{bsdf}</shape>\n</scene>\n");

@@ -35,6 +35,8 @@ fn scene_using(family: &str, plugin: &str) -> Option<String> {
         // A bump map needs a bitmap (Mitsuba's checkerboard has no gradient): left to normalmap.rs.
         ("bsdf", "bumpmap") => return None,
         ("bsdf", "normalmap") => r#"<shape type="sphere"><bsdf type="normalmap"><texture name="normalmap" type="checkerboard"/><bsdf type="diffuse"/></bsdf></shape>"#.into(),
+        // Mitsuba requires the weight and two BSDFs.
+        ("bsdf", "blendbsdf") => r#"<shape type="sphere"><bsdf type="blendbsdf"><float name="weight" value="0.5"/><bsdf type="diffuse"/><bsdf type="roughconductor"/></bsdf></shape>"#.into(),
         ("bsdf", "twosided") => {
             r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>"#.into()
         }

@@ -1,6 +1,6 @@
 //! BSDF plugins: `diffuse`, `phong` (the modified Phong BRDF), `conductor`, `roughconductor`,
 //! `dielectric`, `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `principled`,
-//! `twosided`; with Mitsuba 3's parameter names and defaults.
+//! `principledthin`, `twosided`, `mask`, `blendbsdf` (`blend`) and `pplastic` (`pplastic`); with Mitsuba 3's parameter names and defaults.
 use super::ior;
 use super::props::Props;
 use super::spectrum::SpectrumUse;
@@ -9,6 +9,7 @@ use super::Loader;
 use crate::buffers::rgba;
 use anyhow::{bail, Result};
 use caustic_kernel::bsdf::principled::{eta_from_specular, PrincipledParams};
+use caustic_kernel::bsdf::principled_thin::ThinParams;
 use caustic_kernel::layout::*;
 
 fn set_reflectance(m: &mut Material, c: ColorParam) {
@@ -108,6 +109,9 @@ impl Loader {
             "dielectric" | "thindielectric" | "roughdielectric" => self.dielectric(props)?,
             "plastic" | "roughplastic" => self.plastic(props)?,
             "principled" => self.principled(props)?,
+            "principledthin" => self.principled_thin(props)?,
+            "blendbsdf" => self.blend(props)?,
+            "pplastic" => self.pplastic(props)?,
             "twosided" => self.twosided(props)?,
             "mask" => self.mask(props)?,
             "normalmap" | "bumpmap" => self.normal_or_bump_map(props)?,
@@ -202,12 +206,7 @@ impl Loader {
         let inner_props = self.props(props.src, inner_entry.node)?;
         let index = self.load_bsdf(&inner_props)?;
         let mut m = self.materials[index as usize];
-        let transmissive = match m.kind {
-            BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC | BSDF_ROUGH_DIELECTRIC => true,
-            BSDF_PRINCIPLED => principled_transmits(&m),
-            _ => false,
-        };
-        if transmissive {
+        if self.transmits(&m) {
             bail!("{}: twosided cannot wrap a transmissive BSDF ('{}')", props.loc, inner_props.kind);
         }
         m.flags |= MATERIAL_TWO_SIDED;
@@ -216,7 +215,7 @@ impl Loader {
 
     /// `distribution`, `alpha` / `alpha_u`, `alpha_v` of the rough models (Mitsuba's default: Beckmann,
     /// α = 0.1); sets the material's roughness fields and flags.
-    fn microfacet(&mut self, props: &Props, m: &mut Material) -> Result<()> {
+    pub(super) fn microfacet(&mut self, props: &Props, m: &mut Material) -> Result<()> {
         match props.string("distribution")?.map(|d| d.to_lowercase()).as_deref() {
             None | Some("beckmann") => m.flags |= MATERIAL_BECKMANN,
             Some("ggx") => {}
@@ -459,6 +458,58 @@ impl Loader {
         Ok(m)
     }
 
+    /// Mitsuba's `principledthin` (`caustic_kernel::bsdf::principled_thin`): `base_color` (colour or
+    /// texture), `roughness` and `anisotropic` (numbers or textures, their luminance), the other
+    /// weights and `eta` as numbers (a texture there is replaced by its mean: a substitution), and the
+    /// four sampling rates; Mitsuba's defaults.
+    fn principled_thin(&mut self, props: &Props) -> Result<Material> {
+        let base = self.color_param(props, "base_color", SpectrumUse::Reflectance, [0.5; 3])?;
+        let mut m = Material { kind: BSDF_PRINCIPLED_THIN, ..Default::default() };
+        set_reflectance(&mut m, base);
+        (m.alpha_u, m.alpha_u_texture) = self.principled_weight(props, "roughness", 0.5)?;
+        (m.alpha_v, m.alpha_v_texture) = self.principled_weight(props, "anisotropic", 0.0)?;
+        let mut number =
+            |name: &str, default: f32| -> Result<f32> { Ok(self.principled_number(props, name, default)?.0) };
+        m.eta = number("eta", 1.5)?;
+        let p = ThinParams {
+            spec_trans: number("spec_trans", 0.0)?,
+            spec_tint: number("spec_tint", 0.0)?,
+            sheen: number("sheen", 0.0)?,
+            sheen_tint: number("sheen_tint", 0.0)?,
+            flatness: number("flatness", 0.0)?,
+            diff_trans: number("diff_trans", 0.0)?,
+            spec_refl_rate: props.float("specular_reflectance_sampling_rate", 1.0)?,
+            spec_trans_rate: props.float("specular_transmittance_sampling_rate", 1.0)?,
+            diff_refl_rate: props.float("diffuse_reflectance_sampling_rate", 1.0)?,
+            diff_trans_rate: props.float("diffuse_transmittance_sampling_rate", 1.0)?,
+        };
+        let rates = [p.spec_refl_rate, p.spec_trans_rate, p.diff_refl_rate, p.diff_trans_rate];
+        if rates.iter().any(|r| !(r.is_finite() && *r >= 0.0)) || rates.iter().sum::<f32>() <= 0.0 {
+            bail!(
+                "{}: principledthin sampling rates must be finite and non-negative, and not all zero (got {rates:?})",
+                props.loc
+            );
+        }
+        if !(m.eta > 0.0 && m.eta.is_finite()) {
+            bail!("{}: principledthin eta must be a positive number, not {}", props.loc, m.eta);
+        }
+        let weights = [
+            m.alpha_u,
+            m.alpha_v,
+            p.spec_trans,
+            p.spec_tint,
+            p.sheen,
+            p.sheen_tint,
+            p.flatness,
+            p.diff_trans,
+        ];
+        if weights.iter().any(|w| !w.is_finite()) {
+            bail!("{}: principledthin weights must be finite numbers", props.loc);
+        }
+        p.pack(&mut m);
+        Ok(m)
+    }
+
     /// A principled weight the kernel reads as one number: a texture is replaced by its mean (a
     /// substitution). Also says whether it was a texture.
     fn principled_number(&mut self, props: &Props, name: &str, default: f32) -> Result<(f32, bool)> {
@@ -482,7 +533,21 @@ impl Loader {
     }
 }
 
-/// Whether a `principled` material has its transmission lobe (Mitsuba's `twosided` refuses it then).
-fn principled_transmits(m: &Material) -> bool {
-    PrincipledParams::unpack(m).spec_trans > 0.0
+impl Loader {
+    /// Whether material `m` transmits (Mitsuba's `twosided` refuses it then): a dielectric, a principled
+    /// material with its transmission lobe, a blend of either.
+    fn transmits(&self, m: &Material) -> bool {
+        match m.kind {
+            BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC | BSDF_ROUGH_DIELECTRIC => true,
+            BSDF_PRINCIPLED => PrincipledParams::unpack(m).spec_trans > 0.0,
+            // Mitsuba's thin sheet always has its diffuse transmission lobe.
+            BSDF_PRINCIPLED_THIN => true,
+            BSDF_BLEND => {
+                let (a, b) = caustic_kernel::bsdf::blend::children(m);
+                // Children are never blends (`blend`): no deeper recursion.
+                self.transmits(&self.materials[a as usize]) || self.transmits(&self.materials[b as usize])
+            }
+            _ => false,
+        }
+    }
 }

@@ -1,13 +1,15 @@
 //! Mitsuba 3 XML scenes (a documented subset; see the README's table).
 //!
-//! One file per family of scene elements, as Mitsuba splits its plugins: `shapes`, `bsdfs`,
-//! `bsdf_maps` (normal and bump maps), `emitters`, `sensors` (sensor, film, filter, sampler), `integrators`; `transform` and `spectrum`
-//! parse values; `props` gives typed properties with their source locations; `xml` holds the XML
-//! primitives all of these share (locations, attributes, number lists, one-or-three-number vectors)
-//! and uses none of them. This module holds the document machinery: `<default>`, `$name`
-//! substitution, `-D` overrides, `<include>`, `<path>`, `id`/`<ref>` (ids unique, as Mitsuba wants
-//! them), and one integrator per scene; `deviations` collects what was substituted or ignored, which
-//! `--strict` (`LoadOptions::strict`) refuses.
+//! One file per family of scene elements, as Mitsuba splits its plugins: `shapes`, `bsdfs` (with
+//! `blend`, `pplastic` and `bsdf_maps`, normal and bump maps, beside it), `emitters`, `sensors`
+//! (sensor, film, filter, sampler), `integrators`; `transform` and `spectrum` parse values; `props`
+//! gives typed properties with their source locations; `xml` holds the XML primitives all of these
+//! share (locations, attributes, number lists, one-or-three-number vectors) and uses none of them.
+//! This module holds the document machinery: `<default>`, `$name` substitution, `-D` overrides,
+//! `<include>`, `<path>`, `id`/`<ref>` (ids unique, as Mitsuba wants them), and one integrator per
+//! scene; `deviations` collects what was substituted or ignored, which `--strict`
+//! (`LoadOptions::strict`) refuses.
+mod blend;
 mod bsdf_maps;
 mod bsdfs;
 pub mod cie_tables;
@@ -15,6 +17,7 @@ mod deviations;
 mod emitters;
 mod integrators;
 pub mod ior;
+mod pplastic;
 mod props;
 mod sensors;
 mod shapes;

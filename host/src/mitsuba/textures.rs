@@ -148,7 +148,7 @@ impl Loader {
     }
 
     /// The mean colour of a texture (checkerboard: of its two colours).
-    fn texture_mean(&self, index: u32) -> [f32; 3] {
+    pub(crate) fn texture_mean(&self, index: u32) -> [f32; 3] {
         let t = &self.textures[index as usize];
         if t.record.kind == TEXTURE_CHECKERBOARD {
             return [0, 1, 2].map(|c| 0.5 * (t.record.color0[c] + t.record.color1[c]));

@@ -104,7 +104,7 @@ fn schlick_weight(cos: f32) -> f32 {
 /// inside) for relative index `eta`: of the incident cosine where the path enters a denser medium,
 /// else of the refracted one (1 under total internal reflection).
 #[inline]
-fn schlick_weight_eta(cos_i: f32, eta: f32) -> f32 {
+pub(crate) fn schlick_weight_eta(cos_i: f32, eta: f32) -> f32 {
     let eta_it = if cos_i >= 0.0 { eta } else { 1.0 / eta };
     if eta_it > 1.0 {
         schlick_weight(cos_i.abs())
@@ -115,7 +115,7 @@ fn schlick_weight_eta(cos_i: f32, eta: f32) -> f32 {
 
 /// Normal-incidence reflectance of index ratio `eta`.
 #[inline]
-fn r0_of_eta(eta: f32) -> f32 {
+pub(crate) fn r0_of_eta(eta: f32) -> f32 {
     sqr((eta - 1.0) / (eta + 1.0))
 }
 
@@ -225,12 +225,7 @@ impl Principled {
     /// `base_color` over its luminance (white where it is black).
     #[inline]
     fn tint(&self) -> Rgb {
-        let lum = luminance(self.base_color);
-        if lum > 0.0 {
-            self.base_color / lum
-        } else {
-            Rgb::ONE
-        }
+        tint_of(self.base_color)
     }
 
     /// The main reflection's Fresnel term on the front: the dielectric `f`, Schlick metal and tinted
@@ -249,24 +244,68 @@ impl Principled {
 
     /// Diffuse, retro-reflection, flatness and sheen: `f·cos θi` on the front.
     fn eval_base(&self, wo: Vec3, wi: Vec3, h: Vec3, brdf: f32) -> Rgb {
-        let (ci, co) = (wo.z.abs(), wi.z.abs());
-        let (f_i, f_o) = (schlick_weight(ci), schlick_weight(co));
-        let f_diff = (1.0 - 0.5 * f_i) * (1.0 - 0.5 * f_o);
-        let cos_d = h.dot(wi);
-        let rr = 2.0 * self.roughness * cos_d * cos_d;
-        let f_retro = rr * (f_o + f_i + f_o * f_i * (rr - 1.0));
-        let fss90 = 0.5 * rr;
-        let fss = (1.0 + (fss90 - 1.0) * f_o) * (1.0 + (fss90 - 1.0) * f_i);
-        let f_ss = 1.25 * (fss * (1.0 / (co + ci) - 0.5) + 0.5);
-        let flat = self.p.flatness;
-        let mut value =
-            self.base_color * (brdf * co * INV_PI * ((f_diff + f_retro) * (1.0 - flat) + f_ss * flat));
-        if self.p.sheen > 0.0 && self.metallic < 1.0 {
-            let sheen_color = Rgb::ONE + (self.tint() - Rgb::ONE) * self.p.sheen_tint;
-            value += sheen_color * (self.p.sheen * (1.0 - self.metallic) * schlick_weight(cos_d.abs()) * co);
-        }
-        value
+        // Sheen (Mitsuba's scalar_rgb) is weighted by (1 − metallic) alone, not by the transmission.
+        let sheen_weight = if self.metallic < 1.0 { 1.0 - self.metallic } else { 0.0 };
+        let p = &self.p;
+        let (ci, co, cos_d) = (wo.z.abs(), wi.z.abs(), h.dot(wi));
+        diffuse_base(
+            self.base_color,
+            self.roughness,
+            p.flatness,
+            p.sheen,
+            p.sheen_tint,
+            ci,
+            co,
+            cos_d,
+            brdf,
+            sheen_weight,
+        )
     }
+}
+
+/// `base_color` over its luminance (white where it is black).
+#[inline]
+pub(crate) fn tint_of(base_color: Rgb) -> Rgb {
+    let lum = luminance(base_color);
+    if lum > 0.0 {
+        base_color / lum
+    } else {
+        Rgb::ONE
+    }
+}
+
+/// Burley's diffuse base, `f·cos θi`: diffuse with retro-reflection blended by `flatness` with the
+/// Hanrahan–Krueger term (weight `weight`), and sheen (weight `sheen_weight`), for the cosines `ci`
+/// (viewer), `co` (light) and `cos_d` (light against the half vector). `principled` and
+/// `principledthin` share it.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn diffuse_base(
+    base_color: Rgb,
+    roughness: f32,
+    flatness: f32,
+    sheen: f32,
+    sheen_tint: f32,
+    ci: f32,
+    co: f32,
+    cos_d: f32,
+    weight: f32,
+    sheen_weight: f32,
+) -> Rgb {
+    let (f_i, f_o) = (schlick_weight(ci), schlick_weight(co));
+    let f_diff = (1.0 - 0.5 * f_i) * (1.0 - 0.5 * f_o);
+    let rr = 2.0 * roughness * cos_d * cos_d;
+    let f_retro = rr * (f_o + f_i + f_o * f_i * (rr - 1.0));
+    let fss90 = 0.5 * rr;
+    let fss = (1.0 + (fss90 - 1.0) * f_o) * (1.0 + (fss90 - 1.0) * f_i);
+    let f_ss = 1.25 * (fss * (1.0 / (co + ci) - 0.5) + 0.5);
+    let mut value =
+        base_color * (weight * co * INV_PI * ((f_diff + f_retro) * (1.0 - flatness) + f_ss * flatness));
+    if sheen > 0.0 && sheen_weight > 0.0 {
+        let sheen_color = Rgb::ONE + (tint_of(base_color) - Rgb::ONE) * sheen_tint;
+        value += sheen_color * (sheen * sheen_weight * schlick_weight(cos_d.abs()) * co);
+    }
+    value
 }
 
 impl<'a> Bxdf<'a> for Principled {

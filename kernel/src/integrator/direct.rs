@@ -49,7 +49,15 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     let mut result = Rgb::ZERO;
     let shading = shading_frame(scene, &material, &prim, &hit, &sp, camera_ray.dir);
     let (frame, ng, wo) = (shading.frame(), shading.ng, shading.wo);
-    let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features, shading.tilt);
+    let bsdf = Bsdf::new(
+        &material,
+        scene.materials,
+        scene.textures,
+        scene.tables,
+        sp.uv,
+        scene.features,
+        shading.tilt,
+    );
 
     if bsdf.flags().has_smooth() {
         let mut i = 0;

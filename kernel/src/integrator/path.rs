@@ -118,7 +118,15 @@ pub fn li(
         throughput *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);
         let shading = shading_frame(scene, &material, &prim, &hit, &sp, ray.dir);
         let (frame, ng, wo) = (shading.frame(), shading.ng, shading.wo);
-        let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features, shading.tilt);
+        let bsdf = Bsdf::new(
+            &material,
+            scene.materials,
+            scene.textures,
+            scene.tables,
+            sp.uv,
+            scene.features,
+            shading.tilt,
+        );
 
         let u_select = sampler.next_1d();
         let u_light = sampler.next_2d();

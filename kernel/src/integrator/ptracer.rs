@@ -233,7 +233,15 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         beta *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);
         let shading = shading_frame(scene, &material, &prim, &hit, &sp, ray.dir);
         let (frame, ng, wo) = (shading.frame(), shading.ng, shading.wo);
-        let bsdf = Bsdf::new(&material, scene.textures, scene.tables, sp.uv, scene.features, shading.tilt);
+        let bsdf = Bsdf::new(
+            &material,
+            scene.materials,
+            scene.textures,
+            scene.tables,
+            sp.uv,
+            scene.features,
+            shading.tilt,
+        );
         let wo_world = -ray.dir;
         let u_round = sampler.next_1d();
         let smooth = bsdf.flags().has_smooth();

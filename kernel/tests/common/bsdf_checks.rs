@@ -6,6 +6,7 @@ use super::chi2::{chi2_grid, integrate_grid, Grid};
 use super::models::Model;
 use caustic_kernel::bsdf::fresnel::reflect;
 use caustic_kernel::bsdf::microfacet::Microfacet;
+use caustic_kernel::bsdf::pplastic::PPlastic;
 use caustic_kernel::bsdf::rough_conductor::RoughConductor;
 use caustic_kernel::bsdf::rough_dielectric::RoughDielectric;
 use caustic_kernel::bsdf::rough_plastic::RoughPlastic;
@@ -149,6 +150,12 @@ pub fn sampling_density(b: &Model, wo: Vec3, wi: Vec3) -> f64 {
                 r.specular_probability(r.transmittance(wo.z)) * r.distr.d(h) * r.distr.smith_g1(wo, h)
                     / (4.0 * wo.z);
             pdf + (beckmann_correction(&r.distr, wo) - 1.0) * glossy as f64
+        }
+        BSDF_PPLASTIC if wo.z > 0.0 && wi.z > 0.0 => {
+            let p = b.concrete::<PPlastic>();
+            let h = (wo + wi).normalize();
+            let glossy = p.specular_probability * p.distr.d(h) * p.distr.smith_g1(wo, h) / (4.0 * wo.z);
+            pdf + (beckmann_correction(&p.distr, wo) - 1.0) * glossy as f64
         }
         _ => pdf,
     }

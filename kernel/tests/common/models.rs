@@ -16,18 +16,33 @@ pub struct Model {
 impl Model {
     /// Builds the model of `m` as the host would: precomputes what it needs, evaluates no textures.
     pub fn new(m: &Material, adjoint: bool) -> Model {
+        Model::in_list(m, &[], adjoint)
+    }
+
+    /// Mitsuba's `blendbsdf` of `first` and `second` with weight `weight` (of `second`), built as the
+    /// host builds it: the blend record names the children's places in the material list.
+    pub fn blend(first: &Material, second: &Material, weight: f32, adjoint: bool) -> Model {
+        let blend = caustic_kernel::bsdf::blend::record(0, 1, weight, NONE);
+        Model::in_list(&blend, &[*first, *second], adjoint)
+    }
+
+    /// The model of `m` in a scene whose material list is `materials` (precomputed here, and leaked
+    /// with the tables: a test builds a few hundred models at most, and `Model` stays `Copy`).
+    fn in_list(m: &Material, materials: &[Material], adjoint: bool) -> Model {
         let mut m = *m;
+        let mut materials = materials.to_vec();
         // Behind some unrelated data, as in the host's table buffer: a model that reads its table at
         // the wrong offset reads these.
         let mut tables = vec![7.0f32; 5];
-        if let Some(table) = caustic_kernel::bsdf::precompute(&mut m) {
-            m.table = tables.len() as u32;
-            tables.extend(table);
+        for m in std::iter::once(&mut m).chain(materials.iter_mut()) {
+            if let Some(table) = caustic_kernel::bsdf::precompute(m) {
+                m.table = tables.len() as u32;
+                tables.extend(table);
+            }
         }
-        // Leaked: a test builds a few hundred models at most, and `Model` stays `Copy`.
         let tables: &'static [f32] = Box::leak(tables.into_boxed_slice());
         let mode = if adjoint { TransportMode::Importance } else { TransportMode::Radiance };
-        Model { bsdf: Bsdf::from_material(&m, tables), mode }
+        Model { bsdf: Bsdf::from_material(&m, &materials, tables), mode }
     }
 
     /// The same model in transport mode `mode`.
@@ -51,13 +66,18 @@ impl Model {
         self.bsdf.sample(wo, u_lobe, u, self.mode)
     }
 
+    /// The model's kind (`BSDF_BLEND` for a blend).
     pub fn kind(&self) -> u32 {
-        self.bsdf.material.kind
+        if self.bsdf.blended {
+            return BSDF_BLEND;
+        }
+        self.bsdf.first.material.kind
     }
 
     /// The concrete model, for tests that look inside it.
     pub fn concrete<M: Bxdf<'static>>(&self) -> M {
-        M::from_material(&self.bsdf.material, self.bsdf.reflectance, self.bsdf.specular, self.bsdf.tables)
+        let c = &self.bsdf.first;
+        M::from_material(&c.material, c.reflectance, c.specular, self.bsdf.tables)
     }
 }
 
@@ -190,7 +210,51 @@ pub fn every_model() -> Vec<(String, Material)> {
     for spec_trans in [0.0f32, 0.6] {
         v.push((format!("principled spec_trans={spec_trans}"), principled(spec_trans)));
     }
+    for (spec_trans, diff_trans) in [(0.0f32, 0.0f32), (0.5, 0.8)] {
+        let name = format!("principledthin spec_trans={spec_trans} diff_trans={diff_trans}");
+        v.push((name, principled_thin(spec_trans, diff_trans)));
+    }
+    for beckmann in [false, true] {
+        v.push((format!("pplastic beckmann={beckmann}"), pplastic(beckmann)));
+    }
     v
+}
+
+/// Mitsuba's `principledthin` with sheen, flatness and tint (transmission weights as given).
+pub fn principled_thin(spec_trans: f32, diff_trans: f32) -> Material {
+    let mut m = Material {
+        kind: BSDF_PRINCIPLED_THIN,
+        eta: 1.4,
+        alpha_u: 0.4,
+        alpha_v: 0.3,
+        reflectance: c4(0.8, 0.4, 0.2),
+        ..Default::default()
+    };
+    caustic_kernel::bsdf::principled_thin::ThinParams {
+        spec_trans,
+        spec_tint: 0.3,
+        sheen: 0.5,
+        sheen_tint: 0.5,
+        flatness: 0.2,
+        diff_trans,
+        spec_refl_rate: 1.0,
+        spec_trans_rate: 1.0,
+        diff_refl_rate: 1.0,
+        diff_trans_rate: 1.0,
+    }
+    .pack(&mut m);
+    m
+}
+
+/// Mitsuba's `pplastic` (unpolarized), anisotropic, with a coloured base and coat.
+pub fn pplastic(beckmann: bool) -> Material {
+    let mut m = Material {
+        reflectance: c4(0.3, 0.5, 0.7),
+        specular_reflectance: c4(0.9, 0.8, 0.7),
+        ..rough(BSDF_PPLASTIC, 0.2, 0.4, beckmann)
+    };
+    m.params[caustic_kernel::bsdf::pplastic::PARAM_SPECULAR_WEIGHT] = 0.6;
+    m
 }
 
 /// Mitsuba's `principled` with every lobe on (refraction with weight `spec_trans`).

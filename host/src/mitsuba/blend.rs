@@ -1,0 +1,114 @@
+//! Mitsuba's `blendbsdf`: `weight` (a number, colour or texture, read as its luminance and clipped
+//! to [0, 1] as Mitsuba's `eval_weight`; required, as Mitsuba has no default) and exactly two nested
+//! BSDFs (`<bsdf>` or `<ref>`, in document order: the first is Mitsuba's `bsdf_0`, weighted `1 − w`).
+//! The record (`caustic_kernel::bsdf::blend`) names the two children's places in the material list.
+//!
+//! What the kernel cannot mix is refused with the child's file and line: a blend inside a blend (the
+//! kernel builds two models, with no recursion; flattening would need a list of weights per surface,
+//! textured weights multiplied), a `mask` inside (the kernel reads a mask's opacity on the surface's
+//! own record), a dispersive dielectric inside (its wavelength is drawn on the surface's own record),
+//! and a two-sided child beside a one-sided one (a surface's shading frame is mirrored for all of it).
+//! A child with a Dirac lobe beside one with a smooth lobe renders differently from Mitsuba
+//! (`caustic_kernel::bsdf::blend`): a substitution, which `--strict` refuses.
+use super::props::{Entry, Props};
+use super::spectrum::SpectrumUse;
+use super::Loader;
+use anyhow::{bail, Result};
+use caustic_kernel::bsdf::blend;
+use caustic_kernel::layout::*;
+
+impl Loader {
+    pub(super) fn blend(&mut self, props: &Props) -> Result<Material> {
+        // Marks the nested elements as read; the order comes from the entries.
+        props.nested("bsdf");
+        props.nested("ref");
+        let children: Vec<&Entry> = props
+            .entries
+            .iter()
+            .filter(|e| e.tag == "bsdf" || (e.tag == "ref" && e.name.as_deref() != Some("weight")))
+            .collect();
+        if children.len() != 2 {
+            bail!(
+                "{}: blendbsdf takes exactly two nested BSDFs (Mitsuba refuses other counts), found {}",
+                props.loc,
+                children.len()
+            );
+        }
+        let (weight, texture) = self.blend_weight(props)?;
+        let mut index = [0u32; 2];
+        let mut two_sided = [false; 2];
+        for (k, entry) in children.iter().enumerate() {
+            let child_props = self.props(props.src, entry.node)?;
+            let i = self.load_bsdf(&child_props)?;
+            let m = self.materials[i as usize];
+            let refusal = if m.kind == BSDF_BLEND {
+                Some("a blendbsdf inside a blendbsdf is not supported (the kernel mixes two models, no deeper)")
+            } else if m.flags & MATERIAL_MASK != 0 {
+                Some("a mask inside a blendbsdf is not supported; put the mask around the blendbsdf")
+            } else if m.perturb != 0 {
+                Some("a normalmap or bumpmap inside a blendbsdf is not supported; put the map around the blendbsdf")
+            } else if caustic_kernel::wavelength::disperses(&m) {
+                Some("a dispersive dielectric inside a blendbsdf is not supported")
+            } else {
+                None
+            };
+            if let Some(why) = refusal {
+                bail!("{}: {why}", entry.loc);
+            }
+            index[k] = i;
+            two_sided[k] = m.flags & MATERIAL_TWO_SIDED != 0;
+        }
+        if two_sided[0] != two_sided[1] {
+            bail!(
+                "{}: a blendbsdf of a two-sided and a one-sided BSDF is not supported (caustic mirrors a \
+                 surface's shading frame for the whole BSDF); make both two-sided or wrap the blendbsdf",
+                props.loc
+            );
+        }
+        let kinds = index.map(|i| self.materials[i as usize].kind);
+        if (dirac(kinds[0]) && smooth(kinds[1])) || (dirac(kinds[1]) && smooth(kinds[0])) {
+            let message = format!(
+                "{}: blendbsdf of a Dirac lobe and a smooth one: Mitsuba weighs the Dirac samples with the \
+                 other BSDF's density (biased), caustic does not; the image differs",
+                props.loc
+            );
+            self.substituted("blendbsdf of a Dirac and a smooth lobe".into(), &props.loc, message);
+        }
+        let mut m = blend::record(index[0], index[1], weight, texture);
+        if two_sided[0] {
+            m.flags |= MATERIAL_TWO_SIDED;
+        }
+        Ok(m)
+    }
+
+    /// `weight` as Mitsuba's `eval_1` reads it: a texture (its luminance, with its mean), a number,
+    /// or a colour's luminance; clipped to [0, 1] (the kernel clips a texture's per hit).
+    fn blend_weight(&mut self, props: &Props) -> Result<(f32, u32)> {
+        if let Some((texture, mean)) = self.scalar_texture(props, "weight")? {
+            return Ok((mean.clamp(0.0, 1.0), texture));
+        }
+        let tag = props.entries.iter().find(|e| e.name.as_deref() == Some("weight")).map(|e| e.tag.as_str());
+        let weight = match tag {
+            None => bail!("{}: blendbsdf needs a 'weight' (Mitsuba has no default)", props.loc),
+            Some("float") => props.float("weight", 0.0)?,
+            Some(_) => {
+                let c = props.color("weight", SpectrumUse::Reflectance, [0.0; 3])?;
+                caustic_kernel::spectrum::luminance(glam::Vec3::from(c))
+            }
+        };
+        if !weight.is_finite() {
+            bail!("{}: blendbsdf weight must be a finite number, not {weight}", props.loc);
+        }
+        Ok((weight.clamp(0.0, 1.0), NONE))
+    }
+}
+
+/// Models with a Dirac-delta lobe.
+fn dirac(kind: u32) -> bool {
+    matches!(kind, BSDF_CONDUCTOR | BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC | BSDF_PLASTIC)
+}
+
+/// Models with a lobe `eval` sees (every one but the purely specular).
+fn smooth(kind: u32) -> bool {
+    !matches!(kind, BSDF_CONDUCTOR | BSDF_DIELECTRIC | BSDF_THIN_DIELECTRIC)
+}
