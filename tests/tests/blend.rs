@@ -178,3 +178,20 @@ fn a_dirac_child_beside_a_smooth_one_is_a_substitution() {
     strict(&blend(DIFFUSE, rough), "smooth").expect("two smooth children");
     strict(&blend(r#"<bsdf type="dielectric"/>"#, MIRROR), "two-dirac").expect("two Dirac children");
 }
+
+/// The blend path is behind its own feature bit: with the scene's mask and with every path compiled
+/// in, the CPU renders the blended spheres bit for bit alike (it takes the same branches either way).
+#[test]
+fn specialization_keeps_blends() {
+    let scene = caustic::load_scene(&test_data("blend.xml"), &[]).expect("loads");
+    let specialised = buffers::build(&scene).expect("builds");
+    assert!(features::has(specialised.features, features::BLEND));
+    let mut general = specialised.clone();
+    general.features = features::ALL;
+    let (a, b) = (
+        render_buffers(&specialised, BackendChoice::Cpu, 16, 5),
+        render_buffers(&general, BackendChoice::Cpu, 16, 5),
+    );
+    assert!(a.rgb.iter().zip(&b.rgb).all(|(p, q)| p == q), "the full kernel renders the blends differently");
+    assert!(a.rgb.iter().any(|p| p[0] > 0.0), "a black image");
+}
