@@ -180,7 +180,7 @@ fn a_dirac_child_beside_a_smooth_one_is_a_substitution() {
 }
 
 /// The blend path is behind its own feature bit: with the scene's mask and with every path compiled
-/// in, the CPU renders the blended spheres bit for bit alike (it takes the same branches either way).
+/// in, the CPU renders the blended spheres alike (it takes the same branches either way).
 #[test]
 fn specialization_keeps_blends() {
     let scene = caustic::load_scene(&test_data("blend.xml"), &[]).expect("loads");
@@ -192,6 +192,15 @@ fn specialization_keeps_blends() {
         render_buffers(&specialised, BackendChoice::Cpu, 16, 5),
         render_buffers(&general, BackendChoice::Cpu, 16, 5),
     );
-    assert!(a.rgb.iter().zip(&b.rgb).all(|(p, q)| p == q), "the full kernel renders the blends differently");
+    // Within f32 rounding, as cross_backend's specialization test: the CPU backend sizes its passes by
+    // time, so under a loaded machine the two renders may sum their samples in different groups
+    // (bit-for-bit equality failed beside the other tests of this file, and passed alone).
+    let differ = a
+        .rgb
+        .iter()
+        .zip(&b.rgb)
+        .filter(|(p, q)| (0..3).any(|c| (p[c] - q[c]).abs() > 1e-5 * (1.0 + p[c].abs())))
+        .count();
+    assert_eq!(differ, 0, "the full kernel renders {differ} pixels of the blends differently");
     assert!(a.rgb.iter().any(|p| p[0] > 0.0), "a black image");
 }
