@@ -94,8 +94,15 @@ impl GpuBackend {
             ),
             None => None,
         };
-        let words: Vec<u32> = bytemuck::pod_collect_to_vec(override_spv.as_deref().unwrap_or(KERNEL_SPV));
-        let specialisable = declares_spec_constant(&words, 0);
+        let mut words: Vec<u32> = bytemuck::pod_collect_to_vec(override_spv.as_deref().unwrap_or(KERNEL_SPV));
+        let mut specialisable = declares_spec_constant(&words, 0);
+        // The scene's paths alone (`prune`): a pruned module has its mask frozen in, no constant left.
+        if specialisable && super::prune::wanted(info.device_type == wgpu::DeviceType::Cpu) {
+            if let Some(pruned) = super::prune::pruned(&words, buffers.features) {
+                words = pruned;
+                specialisable = declares_spec_constant(&words, 0);
+            }
+        }
         // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are bounds-checked
         // in the source; dropping naga's duplicate runtime checks is what makes this path fast.
         let module = unsafe {

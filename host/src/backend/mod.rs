@@ -4,6 +4,7 @@ pub mod cpu;
 pub mod gpu;
 pub mod limits;
 pub mod pool;
+pub mod prune;
 pub mod runtime_dir;
 
 use crate::film::Accumulation;

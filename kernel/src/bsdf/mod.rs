@@ -297,10 +297,11 @@ impl<'a> Bsdf<'a> {
         Bsdf::new(m, materials, &[], tables, Vec2::ZERO, features::ALL, perturb::Perturbation::NONE)
     }
 
-    /// How many models the surface mixes (two for a blend), and the `i`-th with its weight. (Each method
-    /// below loops over them rather than writing the dispatch out once per child: measured, the SPIR-V
-    /// is 4.97 MB so, 6.7 MB with two dispatches per method, 4.16 MB before blends; `sample` holds
-    /// two, its own and the mixture's `eval_pdf`.)
+    /// How many models the surface mixes (two for a blend), and the `i`-th with its weight. Each query
+    /// below answers a record that is not a blend with one dispatch before its loop over a blend's
+    /// children. Without that early return (the loop alone: 6.2 MB of SPIR-V against 8.8 MB) scenes
+    /// without blends ran 10–35% slower on the H100 than before blends existed: the driver no longer
+    /// folded the loop away (BENCHMARKS.md, "What blends cost scenes without them").
     #[inline]
     fn count(&self) -> u32 {
         if self.blended {
@@ -331,6 +332,9 @@ impl<'a> Bsdf<'a> {
     }
 
     pub fn flags(&self) -> BsdfFlags {
+        if !self.blended {
+            return with_model!(self, &self.first, |model| model.flags());
+        }
         let mut bits = 0;
         let mut i = 0;
         while i < self.count() {
@@ -342,6 +346,9 @@ impl<'a> Bsdf<'a> {
     }
 
     fn eval_flat(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        if !self.blended {
+            return with_model!(self, &self.first, |model| model.eval(wo, wi, mode));
+        }
         let mut f = Rgb::ZERO;
         let mut i = 0;
         while i < self.count() {
@@ -354,6 +361,9 @@ impl<'a> Bsdf<'a> {
     }
 
     fn pdf_flat(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        if !self.blended {
+            return with_model!(self, &self.first, |model| model.pdf(wo, wi, mode));
+        }
         let mut pdf = 0.0;
         let mut i = 0;
         while i < self.count() {
@@ -366,6 +376,9 @@ impl<'a> Bsdf<'a> {
     }
 
     fn eval_pdf_flat(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> EvalPdf {
+        if !self.blended {
+            return with_model!(self, &self.first, |model| model.eval_pdf(wo, wi, mode));
+        }
         let mut sum = EvalPdf::ZERO;
         let mut i = 0;
         while i < self.count() {
@@ -380,13 +393,12 @@ impl<'a> Bsdf<'a> {
     }
 
     fn sample_flat(&self, wo: Vec3, u_lobe: f32, u: Vec2, mode: TransportMode) -> BsdfSample {
-        let (second, p_chosen, u_child) =
-            if self.blended { blend::choose(u_lobe, self.weight) } else { (false, 1.0, u_lobe) };
+        if !self.blended {
+            return with_model!(self, &self.first, |model| model.sample(wo, u_lobe, u, mode));
+        }
+        let (second, p_chosen, u_child) = blend::choose(u_lobe, self.weight);
         let chosen = if second { self.second } else { self.first };
         let bs = with_model!(self, &chosen, |model| model.sample(wo, u_child, u, mode));
-        if !self.blended {
-            return bs;
-        }
         if bs.delta || !(bs.pdf > 0.0) {
             return blend::scale_choice(bs, p_chosen);
         }
