@@ -145,6 +145,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
     let interrupted = crate::interrupt::requested().filter(|_| done_at.get() < spp);
     let spp_done = if interrupted.is_some() { done_at.get() } else { spp };
     let mut film = Film::from_accum(width, height, &accum);
+    crate::aov::add_to(&mut film, &buffers, spp_done, seed);
     if interrupted.is_some() {
         film.comment = Some(format!("caustic: partial render, {spp_done} of {spp} spp (interrupted)"));
     }
