@@ -634,7 +634,8 @@ fn aov_scenes_write_one_exr_with_every_channel() {
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/");
     let scene_path = format!("{data}aov.xml");
     let render = |out: &std::path::Path, extra: &[&str]| {
-        let mut args = vec!["render", &scene_path, "--backend", "cpu", "--spp", "8", "--seed", "3", "-q", "-o"];
+        let mut args =
+            vec!["render", &scene_path, "--backend", "cpu", "--spp", "8", "--seed", "3", "-q", "-o"];
         args.push(out.to_str().unwrap());
         args.extend(extra);
         let out = caustic(&args);
@@ -642,7 +643,8 @@ fn aov_scenes_write_one_exr_with_every_channel() {
     };
     // Half of the samples through the library, as an interrupted render leaves them.
     let buffers =
-        caustic::buffers::build(&caustic::load_scene(std::path::Path::new(&scene_path), &[]).unwrap()).unwrap();
+        caustic::buffers::build(&caustic::load_scene(std::path::Path::new(&scene_path), &[]).unwrap())
+            .unwrap();
     let (seed, spp) = (3u32, 8u32);
     let mut backend = caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers).unwrap();
     caustic::render::render_with_checkpoints(backend.as_mut(), &buffers, 0, spp, seed, &[4], |done, _, _| {
