@@ -28,7 +28,6 @@ pub fn render(buffers: &SceneBuffers, spec: &AovSpec, spp: u32, seed: u32) -> (V
     let mut params = buffers.params;
     params.spp_total = spp;
     let (width, height) = (params.width as usize, params.height as usize);
-    let env_counts = params.env_light != NONE && params.hide_emitters == 0;
     let stats: Vec<(Vec<f64>, Vec<f64>)> = (0..width * height)
         .into_par_iter()
         .map(|pixel| {
@@ -36,7 +35,7 @@ pub fn render(buffers: &SceneBuffers, spec: &AovSpec, spp: u32, seed: u32) -> (V
             let mut sum_sq = vec![0.0f64; channels];
             let mut values = vec![0.0f32; channels];
             for s in 0..spp {
-                let weight = sample(buffers, spec, &params, pixel as u32, s, seed, env_counts, &mut values);
+                let weight = sample(buffers, spec, &params, pixel as u32, s, seed, &mut values);
                 for c in 0..channels {
                     let v = (values[c] * weight) as f64;
                     sum[c] += v;
@@ -68,7 +67,6 @@ fn sample(
     pixel: u32,
     sample_index: u32,
     seed: u32,
-    env_counts: bool,
     values: &mut [f32],
 ) -> f32 {
     let scene = buffers.view();
@@ -81,19 +79,15 @@ fn sample(
     let weight = if params.filter_signed != 0 { film.weight } else { 1.0 };
     let accel = Accel { nodes: scene.nodes, prims: scene.prims };
     values.fill(0.0);
-    let Some(hit) = accel.trace(&ray, false, NONE) else {
-        if spec.nested.is_some() && env_counts {
-            values[0] = 1.0;
-        }
-        return weight;
-    };
-    let prim = scene.prims[hit.prim as usize];
-    let sp = surface_point(&prim, scene.attributes, &hit, &ray);
+    let found = accel.trace(&ray, false, NONE);
     let mut i = 0;
     if spec.nested.is_some() {
-        values[0] = 1.0;
+        values[0] = alpha(params, found.map(|h| &scene.prims[h.prim as usize]));
         i = 1;
     }
+    let Some(hit) = found else { return weight };
+    let prim = scene.prims[hit.prim as usize];
+    let sp = surface_point(&prim, scene.attributes, &hit, &ray);
     for aov in &spec.aovs {
         let v: [f32; 3] = match aov.kind {
             // Mitsuba's camera rays start on the near clip plane, caustic's at the camera with that
@@ -115,6 +109,27 @@ fn sample(
         i += n;
     }
     weight
+}
+
+/// The nested image's alpha for a camera ray that first meets `hit` (or nothing), as Mitsuba's
+/// integrators mark a sample valid: `direct` where the ray meets a surface; `path` (and caustic's
+/// other integrators) also where it leaves to a visible environment emitter, and at `max_depth` 1
+/// only where it meets an emitter (0 at `max_depth` 0). (Mitsuba's `path` also skips surfaces whose
+/// BSDF has a null lobe, such as `mask`; here every surface counts.)
+fn alpha(params: &FrameParams, hit: Option<&Primitive>) -> f32 {
+    let visible_env = params.env_light != NONE && params.hide_emitters == 0;
+    let valid = match hit {
+        _ if params.max_depth == 0 => false,
+        Some(_) if params.integrator == INTEGRATOR_DIRECT => true,
+        None => visible_env && params.integrator != INTEGRATOR_DIRECT,
+        Some(p) if params.max_depth == 1 => p.light != NONE && params.hide_emitters == 0,
+        Some(_) => true,
+    };
+    if valid {
+        1.0
+    } else {
+        0.0
+    }
 }
 
 /// The shading normal, on the shape's side (Mitsuba's `sh_frame.n`, which is not turned towards the
