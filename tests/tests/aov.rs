@@ -166,3 +166,27 @@ fn bad_aov_lists_are_refused_with_file_and_line() {
     assert_eq!(loaded.aovs.expect("aovs").aovs.len(), 1);
     assert!(loaded.warnings.iter().any(|w| w.contains("duv_dx")), "{:?}", loaded.warnings);
 }
+
+/// Without a nested integrator the image is black and only the AOV channels follow it (Mitsuba
+/// 3.9.1 wrote `R G B dd.y.T nn.X nn.Y nn.Z` for `dd.y:depth,nn:sh_normal` alone); with neither
+/// AOVs nor a nested integrator, a black image and no extra channel.
+#[test]
+fn an_aov_integrator_without_nested_integrator_renders_black() {
+    let scene = |aovs: &str| {
+        format!(
+            "<scene version=\"3.0.0\"><integrator type=\"aov\"><string name=\"aovs\" value=\"{aovs}\"/>\
+             </integrator><shape type=\"sphere\"/><emitter type=\"constant\"/></scene>"
+        )
+    };
+    for (aovs, names) in [("dd.y:depth,nn:sh_normal", vec!["dd.y.T", "nn.X", "nn.Y", "nn.Z"]), ("", vec![])] {
+        let loaded = try_load_xml(&scene(aovs), "no-nested", &[]).expect("loads");
+        let built = buffers::build(&loaded).expect("builds");
+        let mut film = render_buffers(&built, BackendChoice::Cpu, 4, 1);
+        caustic::aov::add_to(&mut film, &built, 4, 1);
+        assert!(film.rgb.iter().all(|p| *p == [0.0; 3]), "{aovs:?}: the image is not black");
+        assert_eq!(film.aovs.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), names, "{aovs:?}");
+        if let Some(depth) = film.aovs.first() {
+            assert!(depth.values.iter().any(|&d| d > 0.0), "the sphere is not in the depth channel");
+        }
+    }
+}

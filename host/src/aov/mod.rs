@@ -169,6 +169,11 @@ impl AovSpec {
 /// puts them into `film` (`AovSpec::develop`). A scene without AOVs costs nothing here.
 pub fn add_to(film: &mut Film, buffers: &crate::buffers::SceneBuffers, spp: u32, seed: u32) {
     if let Some(spec) = &buffers.aovs {
+        if spec.computed_channels().is_empty() {
+            // An `aov` with neither AOVs nor a nested integrator: a black image, nothing to trace.
+            spec.develop(film, Vec::new(), Vec::new());
+            return;
+        }
         let (values, variance) = pass::render(buffers, spec, spp, seed);
         spec.develop(film, values, variance);
     }

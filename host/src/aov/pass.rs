@@ -37,7 +37,10 @@ pub fn render(buffers: &SceneBuffers, spec: &AovSpec, spp: u32, seed: u32) -> (V
             for s in 0..spp {
                 let weight = sample(buffers, spec, &params, pixel as u32, s, seed, &mut values);
                 for c in 0..channels {
-                    let v = (values[c] * weight) as f64;
+                    // A non-finite value (a degenerate triangle's normal) counts as 0, as the image
+                    // counts a non-finite sample as black.
+                    let v = values[c] * weight;
+                    let v = if v.is_finite() { v as f64 } else { 0.0 };
                     sum[c] += v;
                     sum_sq[c] += v * v;
                 }
