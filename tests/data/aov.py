@@ -1,9 +1,11 @@
 """Writes aov_mesh.obj (a smooth low-poly sphere, 8 x 5 segments, with vertex normals and texture
-coordinates: its shading normals differ from its facets') and renders aov.exr and aov_depth.exr, the references of tests/tests/aov.rs: aov.xml with Mitsuba
-3.9.1's aov integrator (every AOV type caustic computes, a path integrator nested), 64x48, 4096 spp,
-and the same scene with Mitsuba's depth integrator, 4096 spp. The EXR channel names are Mitsuba's own
-(the film's bitmap written as it is).
-Run: python aov.py (with mitsuba installed; scalar_rgb took 57 s on a shared 2-core machine)."""
+coordinates: its shading normals differ from its facets') and renders the references of
+tests/tests/aov.rs: aov.exr, aov.xml with Mitsuba 3.9.1's aov integrator (every AOV type caustic
+computes, a path integrator nested), 64x48, 4096 spp; aov_depth.exr, the same scene with Mitsuba's
+depth integrator, 4096 spp; and aov_normalmap.exr, aov_normalmap.xml (normalmap.xml's scene with
+shading normals, albedo and shape indices), 48x36, 1024 spp. The EXR channel names are Mitsuba's
+own (the film's bitmap written as it is).
+Run: python aov.py (with mitsuba installed; scalar_rgb took 64 s on a shared 2-core machine)."""
 import math
 import os
 import mitsuba as mi
@@ -43,3 +45,6 @@ if __name__ == "__main__":
     depth = mi.load_dict({"type": "depth"})
     mi.render(scene, integrator=depth, spp=4096, seed=1)
     scene.sensors()[0].film().bitmap().write(os.path.join(here, "aov_depth.exr"))
+    mapped = mi.load_file(os.path.join(here, "aov_normalmap.xml"))
+    mi.render(mapped, spp=1024, seed=1)
+    mapped.sensors()[0].film().bitmap().write(os.path.join(here, "aov_normalmap.exr"))

@@ -140,7 +140,10 @@ fn alpha(params: &FrameParams, hit: Option<&Primitive>) -> f32 {
 }
 
 /// The shading normal, on the shape's side (Mitsuba's `sh_frame.n`, which is not turned towards the
-/// viewer); under a normal or bump map, the map's tilted normal.
+/// viewer). Under a normal or bump map, Mitsuba's map gives its tilted normal in world space (in the
+/// unmirrored shading frame, `flip_invalid_normals` applied), but a `twosided` wrapping the map has
+/// no `sh_frame` of its own and gives the untilted one (measured on `normalmap.xml`: the sphere,
+/// the disk in `twosided(normalmap)` and the rectangle in `normalmap(twosided)` then agree).
 fn shading_normal(
     buffers: &SceneBuffers,
     prim: &Primitive,
@@ -149,10 +152,15 @@ fn shading_normal(
     dir: Vec3,
 ) -> Vec3 {
     let material = &buffers.materials[prim.material as usize];
-    if features::has(buffers.features, features::NORMAL_MAPPING) && material.perturb != 0 {
-        return shading_frame(&buffers.view(), material, prim, hit, sp, dir).tilt.n;
+    let mapped = features::has(buffers.features, features::NORMAL_MAPPING) && material.perturb != 0;
+    let twosided_outside =
+        material.flags & MATERIAL_TWO_SIDED != 0 && material.perturb & PERTURB_TWO_SIDED_INSIDE == 0;
+    if !mapped || twosided_outside {
+        return sp.ns;
     }
-    sp.ns
+    // Without a `twosided` outside the map, the frame `shading_frame` tilts is the unmirrored one.
+    let shading = shading_frame(&buffers.view(), material, prim, hit, sp, dir);
+    shading.frame().to_world(shading.tilt.n)
 }
 
 /// Mitsuba's `eval_diffuse_reflectance`: the textured diffuse reflectance of `diffuse`, `plastic`,
