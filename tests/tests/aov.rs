@@ -101,7 +101,7 @@ fn names(channels: &[(String, Vec<f32>)]) -> Vec<String> {
 #[test]
 fn every_aov_matches_mitsuba() {
     let (_, _, reference) = read_channels(&test_data("aov.exr")).expect("reference loads");
-    for (choice, spp) in [(BackendChoice::Cpu, 256), (BackendChoice::Gpu, 64)] {
+    for (choice, spp) in [(BackendChoice::Cpu, 256), (BackendChoice::Gpu, 128)] {
         let (film, channels) = render(choice, spp, &[]);
         assert_eq!(names(&channels), names(&reference), "{choice:?}: channel names differ from Mitsuba's");
         for (name, pass, rmse) in agreement(&film, spp, &reference) {
