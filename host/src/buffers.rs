@@ -31,6 +31,11 @@ pub struct SceneBuffers {
     /// What the scene uses (`caustic_kernel::features`); the kernel skips, and on the GPU compiles
     /// out, everything else.
     pub features: u32,
+    /// The scene's `aov` or `depth` integrator (`crate::aov`), rendered beside the image.
+    pub aovs: Option<crate::aov::AovSpec>,
+    /// Host only, for AOVs (empty without): per primitive (BVH order), Mitsuba's shape index
+    /// (`aov::pass::shape_indices`) and its index within the shape.
+    pub prim_origins: Vec<[u32; 2]>,
 }
 
 impl SceneBuffers {
@@ -233,6 +238,7 @@ fn bvh_build_params() -> obvhs::BvhBuildParams {
 fn build_bvh(
     prims: &mut Vec<Primitive>,
     attributes: &mut Vec<TriangleAttributes>,
+    origins: &mut Vec<[u32; 2]>,
     lights: &mut [Light],
 ) -> Result<Vec<BvhNode>> {
     let aabbs: Vec<Aabb> = prims.iter().map(bounds).collect();
@@ -245,6 +251,9 @@ fn build_bvh(
     }
     *prims = order.iter().map(|&i| prims[i as usize]).collect();
     *attributes = order.iter().map(|&i| attributes[i as usize]).collect();
+    if !origins.is_empty() {
+        *origins = order.iter().map(|&i| origins[i as usize]).collect();
+    }
     for l in lights.iter_mut().filter(|l| matches!(l.kind, LIGHT_AREA | LIGHT_SPHERE)) {
         l.prim = new_index[l.prim as usize];
     }
@@ -490,9 +499,10 @@ fn place_textures(scene: &Scene, tables: &mut Vec<f32>) -> Vec<Texture> {
 pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let mut light_list = LightList::default();
     let (mut prims, mut attributes) = primitives(scene, &mut light_list);
+    let mut prim_origins = if scene.aovs.is_some() { prim_origins(scene) } else { Vec::new() };
     let has_prims = !prims.is_empty();
     let nodes = if has_prims {
-        build_bvh(&mut prims, &mut attributes, &mut light_list.lights)?
+        build_bvh(&mut prims, &mut attributes, &mut prim_origins, &mut light_list.lights)?
     } else {
         // A leaf holding only the placeholder primitive pushed below (a triangle of zero area that no
         // ray hits). Not an inner node with an inverted box: the slab test swaps min and max, so such a
@@ -594,6 +604,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     if prims.is_empty() {
         prims.push(Primitive { light: NONE, ..Primitive::default() });
         attributes.push(TriangleAttributes::default());
+        prim_origins.push([0, 0]);
     }
     if lights.is_empty() {
         lights.push(Light::default());
@@ -601,7 +612,37 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     if textures.is_empty() {
         textures.push(Texture::default());
     }
-    Ok(SceneBuffers { nodes, prims, attributes, materials, lights, textures, tables, params, features })
+    let aovs = scene.aovs.clone();
+    Ok(SceneBuffers {
+        nodes,
+        prims,
+        attributes,
+        materials,
+        lights,
+        textures,
+        tables,
+        params,
+        features,
+        aovs,
+        prim_origins,
+    })
+}
+
+/// Per primitive in scene order (as `primitives` pushes them): Mitsuba's shape index and the
+/// primitive's index within its shape (a triangle's in its mesh; 0 for analytic shapes).
+fn prim_origins(scene: &Scene) -> Vec<[u32; 2]> {
+    let is_mesh: Vec<bool> =
+        scene.shapes.iter().map(|s| matches!(s.geometry, Geometry::Triangles { .. })).collect();
+    let shape_index = crate::aov::pass::shape_indices(&is_mesh);
+    let mut origins = Vec::new();
+    for (shape, &index) in scene.shapes.iter().zip(&shape_index) {
+        let count = match &shape.geometry {
+            Geometry::Triangles { triangles, .. } => triangles.len() as u32,
+            Geometry::Sphere { .. } | Geometry::Disk { .. } => 1,
+        };
+        origins.extend((0..count).map(|i| [index, i]));
+    }
+    origins
 }
 
 /// `FrameParams::square_scale_log2`: the power of two that brings the scene's brightest emission

@@ -18,6 +18,18 @@ pub struct Film {
     pub invalid_samples: u64,
     /// A note written into EXR files' `comments` attribute (a partial render says so there).
     pub comment: Option<String>,
+    /// Extra EXR channels after R, G, B: the AOVs of Mitsuba's `aov` integrator (`crate::aov`),
+    /// empty otherwise. PNG and PPM files and the tev stream show the image only.
+    pub aovs: Vec<AovChannel>,
+}
+
+/// One extra channel of the film: its EXR name, per-pixel values (row-major) and, where known, the
+/// variance of each value (the mean of its samples).
+#[derive(Clone, Debug, PartialEq)]
+pub struct AovChannel {
+    pub name: String,
+    pub values: Vec<f32>,
+    pub variance: Option<Vec<f64>>,
 }
 
 /// One pixel's totals on the host: the device's f32 sums (`PixelAccum`) folded in every
@@ -164,7 +176,15 @@ impl Film {
             variance.push(var);
             invalid += px.invalid as u64;
         }
-        Film { width, height, rgb, variance: Some(variance), invalid_samples: invalid, comment: None }
+        Film {
+            width,
+            height,
+            rgb,
+            variance: Some(variance),
+            invalid_samples: invalid,
+            comment: None,
+            aovs: Vec::new(),
+        }
     }
 
     /// The window of `width` × `height` pixels starting at (`x`, `y`) (clamped to the image).
@@ -176,9 +196,18 @@ impl Film {
             width: w,
             height: h,
             rgb: rows.clone().map(|i| self.rgb[i]).collect(),
-            variance: self.variance.as_ref().map(|v| rows.map(|i| v[i]).collect()),
+            variance: self.variance.as_ref().map(|v| rows.clone().map(|i| v[i]).collect()),
             invalid_samples: self.invalid_samples,
             comment: self.comment.clone(),
+            aovs: self
+                .aovs
+                .iter()
+                .map(|c| AovChannel {
+                    name: c.name.clone(),
+                    values: rows.clone().map(|i| c.values[i]).collect(),
+                    variance: c.variance.as_ref().map(|v| rows.clone().map(|i| v[i]).collect()),
+                })
+                .collect(),
         }
     }
 
@@ -189,6 +218,7 @@ impl Film {
         }
         let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
         match ext.as_str() {
+            "exr" if !self.aovs.is_empty() => crate::aov::exr::write(self, path),
             "exr" => write_exr(path, self.width, self.height, &self.rgb, self.comment.as_deref()),
             "png" => {
                 let img =
@@ -245,6 +275,7 @@ impl Film {
             variance: None,
             invalid_samples: 0,
             comment: None,
+            aovs: Vec::new(),
         })
     }
 

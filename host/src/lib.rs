@@ -1,6 +1,7 @@
 //! caustic's host: scene loading (Mitsuba 3 XML, OBJ/MTL), BVH construction, the GPU (wgpu) and CPU
 //! backends, render sessions, progressive rendering, image output, comparison and error-against-time
 //! curves. No shading code lives here: all of it is in `caustic-kernel`.
+pub mod aov;
 pub mod backend;
 pub mod batch;
 pub mod buffers;

@@ -202,6 +202,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
         shapes,
         emitters: vec![],
         textures: vec![],
+        aovs: None,
         warnings,
     })
 }

@@ -156,6 +156,7 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
     let shares: Vec<String> = ranks.shares().iter().map(u64::to_string).collect();
     show(&accum);
     let mut film = Film::from_accum(width, height, &accum);
+    crate::aov::add_to(&mut film, &buffers, spp, job.seed);
     session::save_film(&mut film, job)?;
     if let Some((path, _)) = &job.checkpoint {
         // The image is safe on disk: the checkpoint has served.

@@ -281,6 +281,8 @@ pub struct Scene {
     pub shapes: Vec<Shape>,
     pub emitters: Vec<Emitter>,
     pub textures: Vec<SceneTexture>,
+    /// Mitsuba's `aov` or `depth` integrator: what is rendered beside (or instead of) the image.
+    pub aovs: Option<crate::aov::AovSpec>,
     /// Non-fatal problems found while loading (unsupported elements, clamped values), already printed.
     pub warnings: Vec<String>,
 }

@@ -145,6 +145,10 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
     let interrupted = crate::interrupt::requested().filter(|_| done_at.get() < spp);
     let spp_done = if interrupted.is_some() { done_at.get() } else { spp };
     let mut film = Film::from_accum(width, height, &accum);
+    if buffers.aovs.is_some() && job.progress_bar {
+        eprintln!("tracing the AOVs ({spp_done} spp, on the CPU)");
+    }
+    crate::aov::add_to(&mut film, &buffers, spp_done, seed);
     if interrupted.is_some() {
         film.comment = Some(format!("caustic: partial render, {spp_done} of {spp} spp (interrupted)"));
     }

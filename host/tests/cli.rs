@@ -362,7 +362,7 @@ fn compare_refuses_non_finite_pixels() {
         if let Some((at, v)) = bad {
             rgb[at][1] = v;
         }
-        Film { width: 4, height: 3, rgb, variance: None, invalid_samples: 0, comment: None }
+        Film { width: 4, height: 3, rgb, variance: None, invalid_samples: 0, comment: None, aovs: Vec::new() }
     };
     let (good, nan, inf) = (dir.join("good.exr"), dir.join("nan.exr"), dir.join("inf.exr"));
     film(None).save(&good).unwrap();
@@ -617,5 +617,67 @@ fn a_batch_renders_every_scene_and_variant() {
         "{stderr}"
     );
     assert_eq!(String::from_utf8_lossy(&out.stdout).lines().count(), 2);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A scene with Mitsuba's `aov` integrator: `render -o x.exr` writes one EXR holding the image and
+/// every AOV channel under Mitsuba's names (those of the reference Mitsuba wrote for the scene), all
+/// finite; a render resumed from a checkpoint of half its samples writes the AOV channels of the
+/// uninterrupted one (they are traced from the samples `[0, spp)` at the end); `-o x.png` writes the
+/// image alone, and nothing else is written beside either.
+#[test]
+fn aov_scenes_write_one_exr_with_every_channel() {
+    use caustic::aov::exr::read_channels;
+    use caustic::checkpoint::{fingerprint, Checkpoint};
+    let dir = std::env::temp_dir().join(format!("caustic-cli-aov-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/");
+    let scene_path = format!("{data}aov.xml");
+    let render = |out: &std::path::Path, extra: &[&str]| {
+        let mut args =
+            vec!["render", &scene_path, "--backend", "cpu", "--spp", "8", "--seed", "3", "-q", "-o"];
+        args.push(out.to_str().unwrap());
+        args.extend(extra);
+        let out = caustic(&args);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    };
+    // Half of the samples through the library, as an interrupted render leaves them.
+    let buffers =
+        caustic::buffers::build(&caustic::load_scene(std::path::Path::new(&scene_path), &[]).unwrap())
+            .unwrap();
+    let (seed, spp) = (3u32, 8u32);
+    let mut backend = caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers).unwrap();
+    caustic::render::render_with_checkpoints(backend.as_mut(), &buffers, 0, spp, seed, &[4], |done, _, _| {
+        Ok(if done == 4 { Break(()) } else { Continue(()) })
+    })
+    .unwrap();
+    let accum = backend.read_accum().unwrap();
+    let ckpt = dir.join("aov.ckpt");
+    Checkpoint { scene: fingerprint(&buffers, seed, spp), seed, spp_total: spp, spp_done: 4, accum }
+        .save(&ckpt)
+        .unwrap();
+
+    let (whole, resumed, png) = (dir.join("whole.exr"), dir.join("resumed.exr"), dir.join("image.png"));
+    render(&whole, &[]);
+    render(&resumed, &["--checkpoint", ckpt.to_str().unwrap()]);
+    render(&png, &[]);
+    let (_, _, reference) = read_channels(std::path::Path::new(&format!("{data}aov.exr"))).unwrap();
+    let (w, h, a) = read_channels(&whole).unwrap();
+    let (_, _, b) = read_channels(&resumed).unwrap();
+    assert_eq!((w, h), (64, 48));
+    let names = |c: &[(String, Vec<f32>)]| c.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&a), names(&reference), "channel names differ from Mitsuba's");
+    assert_eq!(names(&b), names(&a));
+    for ((name, p), (_, q)) in a.iter().zip(&b) {
+        assert!(p.iter().all(|v| v.is_finite()), "{name} has a non-finite value");
+        let same = p.iter().zip(q).all(|(x, y)| (x - y).abs() <= 1e-5 * (1.0 + y.abs()));
+        assert!(same, "{name}: the resumed render differs from the uninterrupted one");
+    }
+    let image = image::open(&png).unwrap();
+    assert_eq!((image.width(), image.height(), image.color().channel_count()), (64, 48, 3));
+    let mut written: Vec<String> =
+        std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into()).collect();
+    written.sort();
+    assert_eq!(written, ["image.png", "resumed.exr", "whole.exr"], "files written besides the images");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -395,6 +395,7 @@ fn hostile_numbers_in_files_are_refused_naming_where() {
             variance: None,
             invalid_samples: 0,
             comment: None,
+            aovs: Vec::new(),
         };
         film.save(&write_scene(name, "").with_file_name(name)).unwrap();
     };

@@ -47,6 +47,7 @@ fn furnace(inner: Material) -> Scene {
         ],
         emitters: vec![],
         textures: vec![],
+        aovs: None,
         warnings: vec![],
     }
 }
@@ -162,6 +163,7 @@ fn convergence_against_the_exact_furnace_image() {
         variance: None,
         invalid_samples: 0,
         comment: None,
+        aovs: Vec::new(),
     };
     let mut backend = caustic::backend::create(BackendChoice::Cpu, &buffers).unwrap();
     let points = caustic::convergence::measure(backend.as_mut(), &buffers, &exact, 256, 9).unwrap();

@@ -1,6 +1,6 @@
 //! Integrator plugins: `path`, `direct`, `ptracer` (light tracing), `ibpt` (caustic's own: path and
 //! light tracing combined by MIS) and `moment` (its nested integrator; caustic always tracks
-//! the variance).
+//! the variance), and Mitsuba's `aov` and `depth` (`crate::aov`: outputs rendered beside the image).
 use super::props::Props;
 use super::Loader;
 use crate::scene::{Integrator, IntegratorKind};
@@ -71,6 +71,12 @@ impl Loader {
                 let inner = self.props(props.src, inner.node)?;
                 self.load_integrator(&inner)?
             }
+            "aov" => self.load_aov(props)?,
+            "depth" => {
+                self.aovs = Some(crate::aov::depth_integrator());
+                // The image is the depth (`aov`): the cheapest image integrator renders beside it.
+                Integrator { kind: IntegratorKind::Path, max_depth: 1, rr_depth: 5, hide_emitters: false }
+            }
             other => {
                 let message = format!("{}: integrator '{other}' is not supported yet; using path", props.loc);
                 self.substituted(format!("integrator '{other}'"), &props.loc, message);
@@ -79,6 +85,48 @@ impl Loader {
             }
         };
         self.warn_unused(props);
+        Ok(integrator)
+    }
+}
+
+impl Loader {
+    /// Mitsuba's `aov`: the `aovs` list and the nested integrator that renders the image (the
+    /// first; a second is left out with a warning; none gives a black image).
+    fn load_aov(&mut self, props: &Props) -> Result<Integrator> {
+        if self.aovs.is_some() {
+            bail!("{}: an aov integrator inside another aov or depth integrator", props.loc);
+        }
+        let text = props.string("aovs")?.unwrap_or_default();
+        let (aovs, skipped) =
+            crate::aov::parse_aovs(&text).map_err(|e| anyhow::anyhow!("{}: {e}", props.loc))?;
+        for token in skipped {
+            let message =
+                format!("{}: AOV '{token}' is not supported (no ray differentials); left out", props.loc);
+            self.ignored(format!("AOV '{token}'"), &props.loc, message);
+        }
+        let nested = props.nested("integrator");
+        let (name, integrator) = match nested.first() {
+            Some(entry) => {
+                // Mitsuba names the first unnamed child object `_arg_0` (measured: an unnamed nested
+                // `path` writes `_arg_0.R` …).
+                let name = entry.name.clone().unwrap_or_else(|| "_arg_0".to_string());
+                let inner = self.props(props.src, entry.node)?;
+                if inner.kind == "aov" || inner.kind == "depth" {
+                    bail!("{}: an aov or depth integrator nested in aov is not supported", inner.loc);
+                }
+                (Some(name), self.load_integrator(&inner)?)
+            }
+            None => (
+                None,
+                Integrator { kind: IntegratorKind::Path, max_depth: 1, rr_depth: 5, hide_emitters: false },
+            ),
+        };
+        if nested.len() > 1 {
+            let message =
+                format!("{}: aov with several nested integrators renders only the first", props.loc);
+            self.ignored("aov's second integrator".to_string(), &props.loc, message);
+        }
+        self.aovs = Some(crate::aov::AovSpec { nested: name, aovs, depth_image: false });
         Ok(integrator)
     }
 }

@@ -56,6 +56,8 @@ pub(crate) struct Loader {
     named_textures: HashMap<String, u32>,
     sensor: Option<crate::scene::Sensor>,
     integrator: Option<Integrator>,
+    /// The `aov` or `depth` integrator's outputs (`crate::aov`).
+    aovs: Option<crate::aov::AovSpec>,
     warnings: Vec<String>,
     /// What the scene asks for that the loaded scene does not do (reported or refused at the end).
     deviations: Deviations,
@@ -86,6 +88,7 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         shape_groups: HashMap::new(),
         sensor: None,
         integrator: None,
+        aovs: None,
         warnings: Vec::new(),
         deviations: Deviations::default(),
         include_depth: 0,
@@ -118,6 +121,7 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         shapes: loader.shapes,
         emitters: loader.emitters,
         textures: loader.textures,
+        aovs: loader.aovs.take(),
         warnings: loader.warnings,
     })
 }
