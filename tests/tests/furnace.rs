@@ -35,6 +35,7 @@ fn furnace(inner: Material) -> Scene {
                 geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 1.0 },
                 material: 0,
                 emission: None,
+                emission_texture: None,
                 flip_normals: false,
             },
             Shape {
@@ -42,6 +43,7 @@ fn furnace(inner: Material) -> Scene {
                 geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 10.0 },
                 material: 1,
                 emission: Some([1.0; 3]),
+                emission_texture: None,
                 flip_normals: true,
             },
         ],

@@ -49,7 +49,7 @@ pub(crate) struct Loader {
     emitters: Vec<crate::scene::Emitter>,
     textures: Vec<crate::scene::SceneTexture>,
     /// Named area emitters (`id`) defined at the top level, for shapes that `<ref>` them.
-    named_area_emitters: HashMap<String, [f32; 3]>,
+    named_area_emitters: HashMap<String, emitters::AreaEmission>,
     /// `shapegroup`s by id: their shapes in the group's space, for `instance`s to place.
     shape_groups: HashMap<String, Vec<crate::scene::Shape>>,
     /// Named textures (`id`), as indices into `textures`.
