@@ -109,16 +109,20 @@ const DEFAULT_UVS: [Vec2; 3] = [Vec2::ZERO, Vec2::X, Vec2::Y];
 
 /// Primitive records and their attributes in scene order, and the area lights on them.
 fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<TriangleAttributes>) {
+    let light_tracing = scene.integrator.kind == IntegratorKind::Ptracer;
     let mut prims = Vec::new();
     let mut attributes = Vec::new();
     for shape in &scene.shapes {
-        if shape.emission.is_some() {
+        // Mitsuba's `directionalarea` lights nothing that path tracing finds (its `eval` and light
+        // samples are zero): outside light tracing its shape is an ordinary (black) surface.
+        let emission = shape.emission.filter(|_| !shape.emission_directional || light_tracing);
+        if emission.is_some() {
             lights.begin_emitter();
         }
         let flags_base = if shape.flip_normals { PRIM_FLAG_FLIP } else { 0 };
         let mut push = |mut prim: Primitive, attr: TriangleAttributes, area: f32, light_kind: u32| {
             prim.light = NONE;
-            if let Some(radiance) = shape.emission {
+            if let Some(radiance) = emission {
                 // A textured emitter's radiance is the texture's (the kernel multiplies by 1); its
                 // power, the mean's.
                 let light = Light {
@@ -127,9 +131,12 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
                     table: NONE,
                     radiance: if shape.emission_texture.is_some() { [1.0; 4] } else { rgba(radiance) },
                     texture: shape.emission_texture.unwrap_or(NONE),
+                    flags: if shape.emission_directional { LIGHT_FLAG_DIRECTIONAL_AREA } else { 0 },
                     ..Default::default()
                 };
-                prim.light = lights.push(light, PI * area * luminance(Vec3::from(radiance)));
+                // Power: π·A·L, or A·L along the normal alone.
+                let lobe = if shape.emission_directional { 1.0 } else { PI };
+                prim.light = lights.push(light, lobe * area * luminance(Vec3::from(radiance)));
             }
             prims.push(prim);
             attributes.push(attr);
@@ -576,6 +583,13 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         }
         IntegratorKind::Ibpt => {
             check_light_tracing(scene, "ibpt")?;
+            if let Some(s) = scene.shapes.iter().find(|s| s.emission.is_some() && s.emission_directional) {
+                bail!(
+                    "{}: a directionalarea emitter is rendered by ptracer (which alone sees it in Mitsuba) \
+                     and by path and direct (as black), not by ibpt",
+                    s.origin
+                );
+            }
             (INTEGRATOR_IBPT, 1, 1)
         }
     };

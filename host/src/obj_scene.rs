@@ -143,6 +143,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
             material: slot as u32,
             emission: *emission,
             emission_texture: None,
+            emission_directional: false,
             flip_normals: false,
         });
     }
@@ -183,6 +184,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
         material: materials.len() as u32 - 1,
         emission: Some([radiance; 3]),
         emission_texture: None,
+        emission_directional: false,
         flip_normals: false,
     });
     Ok(Scene {

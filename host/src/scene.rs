@@ -233,6 +233,9 @@ pub struct Shape {
     /// The texture (index into `Scene::textures`) giving the area emitter's radiance over the
     /// surface's uv, if textured.
     pub emission_texture: Option<u32>,
+    /// Mitsuba's `directionalarea`: the emitter sends its radiance along the surface's normal only
+    /// (light tracing alone carries that light; path tracing sees a black surface, as in Mitsuba).
+    pub emission_directional: bool,
     pub flip_normals: bool,
 }
 

@@ -206,6 +206,9 @@ pub const LIGHT_SPOT: u32 = 3;
 pub const LIGHT_DIRECTIONAL: u32 = 4;
 pub const LIGHT_CONSTANT: u32 = 5;
 pub const LIGHT_ENVMAP: u32 = 6;
+/// Light flag of an area emitter: Mitsuba's `directionalarea`, which emits along its surface's normal
+/// only (a Dirac delta in direction): light tracing alone starts paths there (`light::emission`).
+pub const LIGHT_FLAG_DIRECTIONAL_AREA: u32 = 1;
 /// Mitsuba's `projector`: an image projected from a point through a pinhole (`light::projector`).
 pub const LIGHT_PROJECTOR: u32 = 7;
 
@@ -236,7 +239,9 @@ pub struct Light {
     /// an area emitter's radiance over its surface's uv, a spot's image over its cone, a projector's
     /// irradiance; `NONE` for uniform emission. (An envmap's texture is in `prim`.)
     pub texture: u32,
-    pub _pad: [u32; 3],
+    /// `LIGHT_FLAG_*` bits.
+    pub flags: u32,
+    pub _pad: [u32; 2],
 }
 
 impl Default for Light {
@@ -251,7 +256,8 @@ impl Default for Light {
             params: [0.0; 4],
             to_local: [[0.0; 4]; 3],
             texture: NONE,
-            _pad: [0; 3],
+            flags: 0,
+            _pad: [0; 2],
         }
     }
 }

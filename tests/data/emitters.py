@@ -1,6 +1,7 @@
 """Writes the textures of emitter_area.xml, emitter_spot.xml and emitter_projector.xml and renders
 their references, for tests/tests/textured_emitters.rs: each scene with Mitsuba 3.9.1's path
-integrator (max_depth 2), 32x32, 8192 spp.
+integrator (max_depth 2), 32x32, 8192 spp; and emitter_directionalarea.xml with its ptracer
+(max_depth 3, which alone sees that emitter's light), 32x32, 8192 spp.
 The textures: emitter_area_tex.exr (4x4, strong colours up to 6, every texel different),
 emitter_area_flat.exr (4x4, its mean everywhere: the negative control), emitter_image.exr (6x4,
 colours from 0.05 to 4: the spot's and projector's image) and emitter_flat.exr (2x2, its mean).
@@ -28,6 +29,9 @@ exr("emitter_image.exr", image)
 exr("emitter_flat.exr", np.broadcast_to(image.mean(axis=(0, 1)), (2, 2, 3)))
 
 if __name__ == "__main__" and os.environ.get("TEXTURES_ONLY") is None:
-    for name in ["emitter_area", "emitter_spot", "emitter_projector"]:
+    for name in ([] if os.environ.get("DIRECTIONALAREA_ONLY") else ["emitter_area", "emitter_spot", "emitter_projector"]):
         scene = mi.load_file(os.path.join(here, name + ".xml"))
         mi.Bitmap(mi.render(scene, spp=8192, seed=1)).write(os.path.join(here, name + ".exr"))
+    scene = mi.load_file(os.path.join(here, "emitter_directionalarea.xml"))
+    image = mi.render(scene, spp=8192, seed=1)
+    mi.Bitmap(image).write(os.path.join(here, "emitter_directionalarea.exr"))

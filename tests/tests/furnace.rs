@@ -36,6 +36,7 @@ fn furnace(inner: Material) -> Scene {
                 material: 0,
                 emission: None,
                 emission_texture: None,
+                emission_directional: false,
                 flip_normals: false,
             },
             Shape {
@@ -44,6 +45,7 @@ fn furnace(inner: Material) -> Scene {
                 material: 1,
                 emission: Some([1.0; 3]),
                 emission_texture: None,
+                emission_directional: false,
                 flip_normals: true,
             },
         ],

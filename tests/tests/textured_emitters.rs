@@ -1,7 +1,8 @@
 //! Textured emitters against Mitsuba 3.9.1: `area` with a textured `radiance` (a bitmap nested, a
-//! checkerboard by `<ref>` on a disk and a sphere), `spot` with a `texture`, and `projector`
-//! (`tests/data/emitter_*.xml`; `emitters.py` writes the textures and the references). Each scene is
-//! rendered with max_depth 2, where path, direct, ptracer and IBPT all estimate the reference's image:
+//! checkerboard by `<ref>` on a disk and a sphere), `spot` with a `texture`, `projector`, and
+//! `directionalarea` (`tests/data/emitter_*.xml`; `emitters.py` writes the textures and the
+//! references). The first three are rendered with max_depth 2, where path, direct, ptracer and IBPT
+//! all estimate the reference's image (`directionalarea` under light tracing alone):
 //! per-pixel z-test and mean-luminance z-score, on the CPU and the GPU backend, with a negative
 //! control each (the image replaced by a uniform one of the same mean must fail). Also: the
 //! specialization bit is set only for scenes with textured emission, and bad input is refused with
@@ -74,6 +75,23 @@ fn projectors_match_mitsuba() {
     assert_caught(scene, &[("irradiance", "emitter_flat.exr")]);
 }
 
+/// Mitsuba's `directionalarea` (along the normal only, textured or not) under light tracing, which
+/// alone carries its light; path tracing renders it black, as Mitsuba's, and IBPT is refused.
+#[test]
+fn directional_area_emitters_match_mitsuba_light_tracing() {
+    let scene = "emitter_directionalarea.xml";
+    assert_matches(scene, &[], BackendChoice::Cpu, 1024);
+    assert_matches(scene, &[], BackendChoice::Gpu, 256);
+    assert_caught(scene, &[("tilt", "0")]);
+    let path = caustic::load_scene(&test_data(scene), &defines(&[("integrator", "path")])).unwrap();
+    let film = render_scene(&path, BackendChoice::Cpu, 16, 1);
+    assert!(film.rgb.iter().flatten().all(|&c| c == 0.0), "path tracing saw a directionalarea's light");
+    let ibpt = caustic::load_scene(&test_data(scene), &defines(&[("integrator", "ibpt")])).unwrap();
+    let Err(e) = caustic::buffers::build(&ibpt) else { panic!("ibpt rendered a directionalarea") };
+    let message = format!("{e:#}");
+    assert!(message.contains("emitter_directionalarea.xml:") && message.contains("ibpt"), "{message}");
+}
+
 /// Only scenes that use textured emission compile its lookups in.
 #[test]
 fn the_textured_emission_bit_follows_the_scene() {
@@ -91,8 +109,8 @@ fn the_textured_emission_bit_follows_the_scene() {
     assert!(features::has(f, features::light(caustic_kernel::layout::LIGHT_PROJECTOR)));
 }
 
-/// A missing image, a texture of an unknown type, a constant spot `texture` and a `<ref>` to nothing
-/// are refused with the file and line.
+/// A missing image, a texture of an unknown type, a constant spot `texture`, a `<ref>` to nothing and
+/// a `directionalarea` outside a shape are refused with the file and line.
 #[test]
 fn bad_emitter_textures_are_refused_with_file_and_line() {
     let cases = [
@@ -117,6 +135,7 @@ fn bad_emitter_textures_are_refused_with_file_and_line() {
             <ref name="radiance" id="nothing"/></emitter></shape></scene>"#,
             "nothing",
         ),
+        (r#"<scene version="3.0.0"><emitter type="directionalarea"/></scene>"#, "nested in a <shape>"),
     ];
     for (i, (xml, needle)) in cases.iter().enumerate() {
         let Err(e) = try_load_xml(xml, &format!("bad-emitter-texture-{i}"), &[]) else {

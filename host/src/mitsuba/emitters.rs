@@ -1,4 +1,5 @@
-//! Emitter plugins: `area` (attached to a shape; its radiance may be a texture), `point`, `spot`
+//! Emitter plugins: `area` and `directionalarea` (attached to a shape; the radiance may be a
+//! texture), `point`, `spot`
 //! (with an optional `texture`), `projector`, `directional`, `constant` and `envmap` (at most one
 //! environment emitter per scene, as in Mitsuba).
 use super::props::Props;
@@ -10,17 +11,18 @@ use caustic_kernel::layout::{Texture, NONE, TEXTURE_BITMAP};
 use glam::{Mat3, Vec3};
 
 /// An area emitter's radiance: uniform, or a texture over the surface's uv (`radiance` then holds
-/// its mean).
+/// its mean); `directional` for Mitsuba's `directionalarea` (along the normal only).
 #[derive(Clone, Copy, Debug)]
 pub struct AreaEmission {
     pub radiance: [f32; 3],
     pub texture: Option<u32>,
+    pub directional: bool,
 }
 
 impl Loader {
     /// The radiance of an `<emitter>` nested in a shape, or `None` (with a warning) for other kinds.
     pub(crate) fn load_shape_emitter(&mut self, props: &Props) -> Result<Option<AreaEmission>> {
-        if props.kind != "area" {
+        if props.kind != "area" && props.kind != "directionalarea" {
             let message = format!(
                 "{}: emitter type '{}' cannot be attached to a shape; ignored",
                 props.loc, props.kind
@@ -32,7 +34,8 @@ impl Loader {
         let radiance = self.color_param(props, "radiance", SpectrumUse::Emission, [1.0; 3])?;
         self.warn_unused(props);
         let texture = (radiance.texture != NONE).then_some(radiance.texture);
-        Ok(Some(AreaEmission { radiance: radiance.rgb, texture }))
+        let directional = props.kind == "directionalarea";
+        Ok(Some(AreaEmission { radiance: radiance.rgb, texture, directional }))
     }
 
     /// A top-level `<emitter>`.
@@ -80,7 +83,9 @@ impl Loader {
                 Emitter::Constant { radiance: props.color("radiance", SpectrumUse::Emission, [1.0; 3])? }
             }
             "envmap" => self.envmap(props, Mat3::from_mat4(to_world))?,
-            "area" => bail!("{}: an area emitter must be nested in a <shape>", props.loc),
+            "area" | "directionalarea" => {
+                bail!("{}: an {} emitter must be nested in a <shape>", props.loc, props.kind)
+            }
             other => {
                 let message = format!("{}: emitter type '{other}' is not supported yet; ignored", props.loc);
                 self.substituted(format!("emitter '{other}'"), &props.loc, message);

@@ -77,9 +77,18 @@ impl Loader {
         }
         let (material, emission) = self.shape_bsdf_and_emitter(props)?;
         self.warn_unused(props);
+        let emission_directional = emission.is_some_and(|e| e.directional);
         let (emission, emission_texture) = (emission.map(|e| e.radiance), emission.and_then(|e| e.texture));
         let origin = props.loc.to_string();
-        self.shapes.push(Shape { origin, geometry, material, emission, emission_texture, flip_normals });
+        self.shapes.push(Shape {
+            origin,
+            geometry,
+            material,
+            emission,
+            emission_texture,
+            emission_directional,
+            flip_normals,
+        });
         Ok(())
     }
 

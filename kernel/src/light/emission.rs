@@ -3,7 +3,8 @@
 //! `Le·|cos| / (pmf · p(point) · p(direction))` that the light path starts with.
 //!
 //! Supported: area emitters on triangles, disks and spheres (uniform by area, cosine-weighted
-//! directions; a textured one's texture weights the point it draws), point lights (uniform
+//! directions; a textured one's texture weights the point it draws; a `directionalarea` emits along
+//! the normal alone), point lights (uniform
 //! directions), spots (uniform inside the cutoff cone) and projectors (uniform over the image); for
 //! plain light tracing also the infinite emitters (directional, constant, envmap), as Mitsuba's
 //! `ptracer` traces them: a direction drawn as next-event estimation draws it towards the emitter, and
@@ -14,7 +15,8 @@ use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::{
     FrameParams, Light, SceneView, INTEGRATOR_PTRACER, LIGHT_AREA, LIGHT_CONSTANT, LIGHT_DIRECTIONAL,
-    LIGHT_ENVMAP, LIGHT_POINT, LIGHT_PROJECTOR, LIGHT_SPHERE, LIGHT_SPOT, NONE, PRIM_DISK, PRIM_FLAG_FLIP,
+    LIGHT_ENVMAP, LIGHT_FLAG_DIRECTIONAL_AREA, LIGHT_POINT, LIGHT_PROJECTOR, LIGHT_SPHERE, LIGHT_SPOT, NONE,
+    PRIM_DISK, PRIM_FLAG_FLIP,
 };
 use crate::math::{vec3, PI};
 use crate::sampling::{
@@ -41,7 +43,8 @@ pub struct EmissionSample {
     /// `Le` toward any direction is `radiance · area / pmf` per unit `cos`: what connecting the emitter
     /// point itself to the camera carries, `position_weight · Le(ω)·cos θ` (area emitters only).
     pub position_weight: f32,
-    /// The emitter is a point (point, spot) or at infinity: the camera cannot see the sampled point.
+    /// The emitter is a point (point, spot, projector), at infinity, or emits along one direction
+    /// (`directionalarea`): the camera cannot see the sampled point.
     pub delta_position: bool,
     /// The emitter is at infinity (directional, constant, envmap; `visible_infinite` shows it).
     pub infinite: bool,
@@ -140,6 +143,21 @@ pub fn sample(
             let (n, area) = area::normal_and_area(&prim);
             (q, n, area, 0.0)
         };
+        if light.flags & LIGHT_FLAG_DIRECTIONAL_AREA != 0 {
+            // Mitsuba's `directionalarea`: along the normal, Le·A / pmf; no camera ray can meet that
+            // direction, so the point itself is not connected to the camera.
+            if !(area > 0.0) {
+                return EmissionSample::none();
+            }
+            s.p = p;
+            s.origin = p + n * (offset_scale(p, scale, prim.offset_floor) * RAY_EPSILON);
+            s.n = n;
+            s.dir = n;
+            s.weight = textured::at_surface_point(scene, &light, light.prim, p) * (area / light.pmf);
+            s.delta_position = true;
+            s.prim = light.prim;
+            return s;
+        }
         // Cosine-weighted about the emitting side: Le·cos / (pmf · (1/A) · cos/π) = Le·A·π / pmf.
         let local = square_to_cosine_hemisphere(u_dir);
         if !(local.z > 0.0) || !(area > 0.0) {
