@@ -7,6 +7,11 @@
 //! control each (the image replaced by a uniform one of the same mean must fail). Also: the
 //! specialization bit is set only for scenes with textured emission, and bad input is refused with
 //! file and line.
+//!
+//! Besides the negative controls, the comparisons catch these mistakes (measured on the CPU, 1024 spp,
+//! one seed; pixels passing, 99% needed): next-event estimation without the texture 62.6% (path); a
+//! triangle's barycentrics swapped in the emitting point's uv 98.7% (path) and 82% (ptracer); the
+//! spot image's v flipped 72%; the projector image's u flipped 91% (path and ptracer alike).
 use caustic::backend::BackendChoice;
 use caustic_kernel::features;
 use caustic_tests::*;
