@@ -114,24 +114,34 @@ const DEFAULT_UVS: [Vec2; 3] = [Vec2::ZERO, Vec2::X, Vec2::Y];
 
 /// Primitive records and their attributes in scene order, and the area lights on them.
 fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<TriangleAttributes>) {
+    let light_tracing = scene.integrator.kind == IntegratorKind::Ptracer;
     let mut prims = Vec::new();
     let mut attributes = Vec::new();
     for shape in &scene.shapes {
-        if shape.emission.is_some() {
+        // Mitsuba's `directionalarea` lights nothing that path tracing finds (its `eval` and light
+        // samples are zero): outside light tracing its shape is an ordinary (black) surface.
+        let emission = shape.emission.filter(|_| !shape.emission_directional || light_tracing);
+        if emission.is_some() {
             lights.begin_emitter();
         }
         let flags_base = if shape.flip_normals { PRIM_FLAG_FLIP } else { 0 };
         let mut push = |mut prim: Primitive, attr: TriangleAttributes, area: f32, light_kind: u32| {
             prim.light = NONE;
-            if let Some(radiance) = shape.emission {
+            if let Some(radiance) = emission {
+                // A textured emitter's radiance is the texture's (the kernel multiplies by 1); its
+                // power, the mean's.
                 let light = Light {
                     kind: light_kind,
                     prim: prims.len() as u32,
                     table: NONE,
-                    radiance: rgba(radiance),
+                    radiance: if shape.emission_texture.is_some() { [1.0; 4] } else { rgba(radiance) },
+                    texture: shape.emission_texture.unwrap_or(NONE),
+                    flags: if shape.emission_directional { LIGHT_FLAG_DIRECTIONAL_AREA } else { 0 },
                     ..Default::default()
                 };
-                prim.light = lights.push(light, PI * area * luminance(Vec3::from(radiance)));
+                // Power: π·A·L, or A·L along the normal alone.
+                let lobe = if shape.emission_directional { 1.0 } else { PI };
+                prim.light = lights.push(light, lobe * area * luminance(Vec3::from(radiance)));
             }
             prims.push(prim);
             attributes.push(attr);
@@ -384,7 +394,7 @@ fn emitter_lights(
                 light.position = position.extend(0.0).to_array();
                 4.0 * PI * luminance(Vec3::from(*intensity))
             }
-            Emitter::Spot { to_world, intensity, cutoff_angle, beam_width } => {
+            Emitter::Spot { to_world, intensity, cutoff_angle, beam_width, texture } => {
                 let (cutoff, beam) =
                     (cutoff_angle.to_radians(), beam_width.to_radians().min(cutoff_angle.to_radians()));
                 light.kind = LIGHT_SPOT;
@@ -393,8 +403,24 @@ fn emitter_lights(
                 let inv_transition = if cutoff > beam { 1.0 / (cutoff - beam) } else { 0.0 };
                 light.params = [cutoff.cos(), beam.cos(), cutoff, inv_transition];
                 light.to_local = rows_of(orthonormal(Mat3::from_mat4(*to_world)).transpose());
+                light.texture = texture.unwrap_or(NONE);
+                let mean = texture.map_or(1.0, |t| luminance(Vec3::from(scene.textures[t as usize].mean())));
                 // Solid angle of the cone out to the middle of the falloff ramp.
-                2.0 * PI * (1.0 - (0.5 * (cutoff + beam)).cos()) * luminance(Vec3::from(*intensity))
+                2.0 * PI * (1.0 - (0.5 * (cutoff + beam)).cos()) * luminance(Vec3::from(*intensity)) * mean
+            }
+            Emitter::Projector { to_world, irradiance, texture, fov_x, aspect } => {
+                let tan_x = (0.5 * fov_x.to_radians()).tan();
+                let tan_y = tan_x / aspect;
+                let image_area = 4.0 * tan_x * tan_y;
+                light.kind = LIGHT_PROJECTOR;
+                light.radiance = rgba(*irradiance);
+                light.texture = texture.unwrap_or(NONE);
+                light.position = to_world.w_axis.truncate().extend(0.0).to_array();
+                light.params = [tan_x, tan_y, 0.0, image_area];
+                light.to_local = rows_of(orthonormal(Mat3::from_mat4(*to_world)).transpose());
+                let mean = texture.map_or(1.0, |t| luminance(Vec3::from(scene.textures[t as usize].mean())));
+                // Power: π · value · image area (`light::projector`).
+                PI * image_area * luminance(Vec3::from(*irradiance)) * mean
             }
             Emitter::Directional { direction, irradiance } => {
                 light.kind = LIGHT_DIRECTIONAL;
@@ -567,6 +593,13 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         }
         IntegratorKind::Ibpt => {
             check_light_tracing(scene, "ibpt")?;
+            if let Some(s) = scene.shapes.iter().find(|s| s.emission.is_some() && s.emission_directional) {
+                bail!(
+                    "{}: a directionalarea emitter is rendered by ptracer (which alone sees it in Mitsuba) \
+                     and by path and direct (as black), not by ibpt",
+                    s.origin
+                );
+            }
             (INTEGRATOR_IBPT, 1, 1)
         }
     };
@@ -654,8 +687,12 @@ fn square_scale_log2(lights: &[Light], textures: &[Texture], tables: &[f32]) -> 
         .iter()
         .map(|l| {
             let mut m = l.radiance[..3].iter().fold(0.0f64, |m, &c| m.max(c.abs() as f64));
-            if l.kind == LIGHT_ENVMAP {
-                m *= texels(&textures[l.prim as usize], tables)
+            let texture = if l.kind == LIGHT_ENVMAP { l.prim } else { l.texture };
+            if texture != NONE && textures[texture as usize].kind == TEXTURE_CHECKERBOARD {
+                let t = &textures[texture as usize];
+                m *= t.color0[..3].iter().chain(&t.color1[..3]).fold(0.0f64, |m, &c| m.max(c.abs() as f64));
+            } else if texture != NONE {
+                m *= texels(&textures[texture as usize], tables)
                     .iter()
                     .fold(0.0f64, |m, &c| m.max(c.abs() as f64));
             }
@@ -683,6 +720,9 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     }
     for l in lights {
         f |= features::light(l.kind);
+        if l.texture != NONE {
+            f |= features::TEXTURED_EMISSION;
+        }
     }
     if textures {
         f |= features::TEXTURES;

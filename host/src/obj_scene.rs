@@ -142,6 +142,8 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
             },
             material: slot as u32,
             emission: *emission,
+            emission_texture: None,
+            emission_directional: false,
             flip_normals: false,
         });
     }
@@ -181,6 +183,8 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
         geometry: Geometry::Sphere { center: light_pos, radius: light_radius },
         material: materials.len() as u32 - 1,
         emission: Some([radiance; 3]),
+        emission_texture: None,
+        emission_directional: false,
         flip_normals: false,
     });
     Ok(Scene {

@@ -227,8 +227,15 @@ pub struct Shape {
     pub geometry: Geometry,
     /// Index into `Scene::materials`.
     pub material: u32,
-    /// Uniform emitted radiance (linear sRGB) of an area emitter on this shape.
+    /// Uniform emitted radiance (linear sRGB) of an area emitter on this shape; with
+    /// `emission_texture`, the texture's mean (what selection by power uses).
     pub emission: Option<[f32; 3]>,
+    /// The texture (index into `Scene::textures`) giving the area emitter's radiance over the
+    /// surface's uv, if textured.
+    pub emission_texture: Option<u32>,
+    /// Mitsuba's `directionalarea`: the emitter sends its radiance along the surface's normal only
+    /// (light tracing alone carries that light; path tracing sees a black surface, as in Mitsuba).
+    pub emission_directional: bool,
     pub flip_normals: bool,
 }
 
@@ -245,6 +252,17 @@ pub enum Emitter {
         intensity: [f32; 3],
         cutoff_angle: f32,
         beam_width: f32,
+        /// Mitsuba's `texture`: an image spread over the cone, multiplying the intensity.
+        texture: Option<u32>,
+    },
+    /// Mitsuba's `projector`: `to_world` maps the projection axis to local +z; `irradiance` times
+    /// `scale` (and the texture, if any); `fov_x` in degrees, `aspect` the image's width / height.
+    Projector {
+        to_world: Mat4,
+        irradiance: [f32; 3],
+        texture: Option<u32>,
+        fov_x: f32,
+        aspect: f32,
     },
     /// `direction` the light travels in.
     Directional {
@@ -271,6 +289,18 @@ pub enum Emitter {
 pub struct SceneTexture {
     pub record: Texture,
     pub texels: Vec<f32>,
+}
+
+impl SceneTexture {
+    /// The mean colour (a checkerboard's: of its two colours).
+    pub fn mean(&self) -> [f32; 3] {
+        let r = &self.record;
+        if r.kind == caustic_kernel::layout::TEXTURE_CHECKERBOARD {
+            return [0, 1, 2].map(|c| 0.5 * (r.color0[c] + r.color1[c]));
+        }
+        let n = (self.texels.len() / 3).max(1) as f64;
+        [0, 1, 2].map(|c| (self.texels.iter().skip(c).step_by(3).map(|&v| v as f64).sum::<f64>() / n) as f32)
+    }
 }
 
 #[derive(Clone, Debug)]

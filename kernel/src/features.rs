@@ -4,7 +4,7 @@
 //! (fewer registers, higher occupancy) and a scene pays nothing for features it does not use. On the
 //! CPU it is an ordinary value: the same branches are taken, so both backends still run one kernel.
 //! A cleared bit only ever removes a path the scene cannot reach.
-use crate::layout::{BSDF_BLEND, BSDF_PPLASTIC, BSDF_PRINCIPLED_THIN, LIGHT_ENVMAP};
+use crate::layout::{BSDF_BLEND, BSDF_PPLASTIC, BSDF_PRINCIPLED_THIN, LIGHT_ENVMAP, LIGHT_PROJECTOR};
 
 /// Every path compiled in: the specialization constant's default.
 pub const ALL: u32 = u32::MAX;
@@ -28,7 +28,7 @@ pub const fn material(kind: u32) -> u32 {
     }
 }
 
-/// The bit of emitter kind `kind` (`LIGHT_*`, bits 12–19).
+/// The bit of emitter kind `kind` (`LIGHT_*`, bits 12–19; `LIGHT_PROJECTOR` takes the last).
 #[inline]
 pub const fn light(kind: u32) -> u32 {
     1 << (12 + kind)
@@ -52,10 +52,18 @@ pub const NORMAL_MAPPING: u32 = 1 << 25;
 pub const BLEND: u32 = 1 << 26;
 /// Mitsuba's `pplastic` (`bsdf::pplastic`), whose kind lies past the models' bits.
 pub const PPLASTIC: u32 = 1 << 27;
+/// Emitters whose emission a texture modulates (`Light::texture`: textured area lights, spots with
+/// an image, projectors' irradiance; `light::textured`).
+pub const TEXTURED_EMISSION: u32 = 1 << 28;
 
 // The kinds must fit their bit ranges.
-const _: () =
-    assert!(BSDF_PRINCIPLED_THIN < 12 && BSDF_BLEND >= 12 && BSDF_PPLASTIC >= 12 && LIGHT_ENVMAP < 8);
+const _: () = assert!(
+    BSDF_PRINCIPLED_THIN < 12
+        && BSDF_BLEND >= 12
+        && BSDF_PPLASTIC >= 12
+        && LIGHT_ENVMAP < 8
+        && LIGHT_PROJECTOR < 8
+);
 
 #[inline]
 pub fn has(features: u32, bits: u32) -> bool {

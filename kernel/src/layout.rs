@@ -206,11 +206,16 @@ pub const LIGHT_SPOT: u32 = 3;
 pub const LIGHT_DIRECTIONAL: u32 = 4;
 pub const LIGHT_CONSTANT: u32 = 5;
 pub const LIGHT_ENVMAP: u32 = 6;
+/// Light flag of an area emitter: Mitsuba's `directionalarea`, which emits along its surface's normal
+/// only (a Dirac delta in direction): light tracing alone starts paths there (`light::emission`).
+pub const LIGHT_FLAG_DIRECTIONAL_AREA: u32 = 1;
+/// Mitsuba's `projector`: an image projected from a point through a pinhole (`light::projector`).
+pub const LIGHT_PROJECTOR: u32 = 7;
 
 /// An emitter (128 bytes), chosen for next-event estimation with probability `pmf` (proportional to
-/// its power).
+/// its power). `Default` has no texture.
 #[repr(C)]
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(bytemuck::Pod, bytemuck::Zeroable, Debug))]
 pub struct Light {
     pub kind: u32,
@@ -224,11 +229,37 @@ pub struct Light {
     /// Position (point, spot); the scene's bounding-sphere centre and radius in `w` (directional,
     /// constant, envmap).
     pub position: [f32; 4],
-    /// Spot: `cos cutoff, cos beam_width, cutoff (radians), 1 / (cutoff - beam_width)`.
+    /// Spot: `cos cutoff, cos beam_width, cutoff (radians), 1 / (cutoff - beam_width)`; projector:
+    /// `tan(fov_x / 2), tan(fov_y / 2)`, unused, the image's area on the plane z = 1.
     pub params: [f32; 4],
     /// Rows of the world-to-local rotation (spot: local +z is the beam axis; directional: local +z is
-    /// the direction of travel; envmap: Mitsuba's lat-long frame).
+    /// the direction of travel; envmap: Mitsuba's lat-long frame; projector: local +z is the axis).
     pub to_local: [[f32; 4]; 3],
+    /// The texture that multiplies `radiance` (`light::textured`, under `features::TEXTURED_EMISSION`):
+    /// an area emitter's radiance over its surface's uv, a spot's image over its cone, a projector's
+    /// irradiance; `NONE` for uniform emission. (An envmap's texture is in `prim`.)
+    pub texture: u32,
+    /// `LIGHT_FLAG_*` bits.
+    pub flags: u32,
+    pub _pad: [u32; 2],
+}
+
+impl Default for Light {
+    fn default() -> Self {
+        Light {
+            kind: 0,
+            prim: 0,
+            pmf: 0.0,
+            table: 0,
+            radiance: [0.0; 4],
+            position: [0.0; 4],
+            params: [0.0; 4],
+            to_local: [[0.0; 4]; 3],
+            texture: NONE,
+            flags: 0,
+            _pad: [0; 2],
+        }
+    }
 }
 
 pub const TEXTURE_BITMAP: u32 = 0;

@@ -285,3 +285,41 @@ fn cone_of_a_tiny_sphere_keeps_its_solid_angle() {
     assert!(((omc as f64 - exact) / exact).abs() < 1e-5, "{omc} vs {exact}");
     assert_eq!(1.0 - (1.0 - sin2).sqrt(), 0.0, "(the naive form really does cancel here)");
 }
+
+/// A projector's emission directions (`light::projector::direction`, uniform over the image) against
+/// the density it reports, `1 / (area · cos³θ)` inside the image's pyramid, for a square image, a wide
+/// one and a narrow one.
+#[test]
+fn projector_directions() {
+    for (tan_x, tan_y) in [(0.5f32, 0.5f32), (0.7, 0.35), (0.1, 0.15)] {
+        let area = 4.0 * tan_x * tan_y;
+        let rows = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]];
+        let l = Light {
+            kind: LIGHT_PROJECTOR,
+            pmf: 1.0,
+            params: [tan_x, tan_y, 0.0, area],
+            to_local: rows,
+            ..Default::default()
+        };
+        chi2_directions(
+            &format!("projector tan {tan_x}×{tan_y}"),
+            |_, u| {
+                let (d, density) = light::projector::direction(&l, u);
+                let expected = light::projector::density(d.z, area);
+                assert!(
+                    (density - expected).abs() <= 1e-4 * expected,
+                    "reported density {density} for {expected}"
+                );
+                Some(d)
+            },
+            |d| {
+                let inside = d.z > 0.0 && (d.x / d.z).abs() <= tan_x && (d.y / d.z).abs() <= tan_y;
+                if inside {
+                    1.0 / (area as f64 * (d.z as f64).powi(3))
+                } else {
+                    0.0
+                }
+            },
+        );
+    }
+}

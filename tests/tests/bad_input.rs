@@ -88,7 +88,7 @@ fn undefined_parameter_is_named() {
 fn unsupported_elements_warn_and_the_rest_loads() {
     let path = write_scene(
         "unsupported.xml",
-        &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<emitter type=\"projector\"/>\n<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n<shape type=\"teapot\"/>\n</scene>\n"),
+        &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<emitter type=\"sunsky\"/>\n<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n<shape type=\"teapot\"/>\n</scene>\n"),
     );
     let scene = caustic::load_scene(&path, &[]).expect("loads with warnings");
     assert_eq!(scene.shapes.len(), 1, "the supported sphere is kept");
@@ -108,7 +108,7 @@ fn deviations_warn_once_per_kind_and_strict_refuses_them() {
     let path = write_scene(
         "deviations.xml",
         &format!(
-            "<scene version=\"3.0.0\">\n{SENSOR}\n{hair}\n{hair}\n{hair}\n<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n<emitter type=\"projector\"/>\n</scene>\n"
+            "<scene version=\"3.0.0\">\n{SENSOR}\n{hair}\n{hair}\n{hair}\n<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n<emitter type=\"sunsky\"/>\n</scene>\n"
         ),
     );
     let scene = caustic::load_scene(&path, &[]).expect("loads without --strict");
@@ -130,7 +130,7 @@ fn deviations_warn_once_per_kind_and_strict_refuses_them() {
             && summary.contains("--strict"),
         "{summary}"
     );
-    assert_eq!(scene.warnings.len(), 4, "hair, wobble, projector and the summary: {:?}", scene.warnings);
+    assert_eq!(scene.warnings.len(), 4, "hair, wobble, sunsky and the summary: {:?}", scene.warnings);
 
     let strict = caustic::LoadOptions { strict: true };
     let e = format!("{:#}", caustic::load_scene_with(&path, &[], strict).expect_err("--strict refuses it"));
@@ -141,7 +141,7 @@ fn deviations_warn_once_per_kind_and_strict_refuses_them() {
         "deviations.xml:6",
         "wobble",
         "deviations.xml:7",
-        "projector",
+        "sunsky",
     ] {
         assert!(e.contains(needle), "{needle} not in: {e}");
     }

@@ -35,6 +35,8 @@ fn furnace(inner: Material) -> Scene {
                 geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 1.0 },
                 material: 0,
                 emission: None,
+                emission_texture: None,
+                emission_directional: false,
                 flip_normals: false,
             },
             Shape {
@@ -42,6 +44,8 @@ fn furnace(inner: Material) -> Scene {
                 geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 10.0 },
                 material: 1,
                 emission: Some([1.0; 3]),
+                emission_texture: None,
+                emission_directional: false,
                 flip_normals: true,
             },
         ],

@@ -121,7 +121,7 @@ fn emitter_values(scene: &Scene) -> Vec<(&'static str, Vec<f64>)> {
         Emitter::Point { position, intensity } => {
             vec![("position", v3(*position)), ("intensity", rgb(intensity))]
         }
-        Emitter::Spot { to_world, intensity, cutoff_angle, beam_width } => vec![
+        Emitter::Spot { to_world, intensity, cutoff_angle, beam_width, .. } => vec![
             ("intensity", rgb(intensity)),
             ("cutoff_angle", vec![*cutoff_angle as f64]),
             ("beam_width", vec![*beam_width as f64]),
@@ -132,6 +132,9 @@ fn emitter_values(scene: &Scene) -> Vec<(&'static str, Vec<f64>)> {
         }
         Emitter::Constant { radiance } => vec![("radiance", rgb(radiance))],
         Emitter::Envmap { scale, .. } => vec![("scale", vec![*scale as f64])],
+        Emitter::Projector { irradiance, fov_x, .. } => {
+            vec![("irradiance", rgb(irradiance)), ("fov_x", vec![*fov_x as f64])]
+        }
     }
 }
 

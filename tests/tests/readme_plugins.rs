@@ -41,7 +41,9 @@ fn scene_using(family: &str, plugin: &str) -> Option<String> {
             r#"<shape type="sphere"><bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>"#.into()
         }
         ("bsdf", _) => format!(r#"<shape type="sphere"><bsdf type="{plugin}"/></shape>"#),
-        ("emitter", "area") => r#"<shape type="sphere"><emitter type="area"/></shape>"#.into(),
+        ("emitter", "area" | "directionalarea") => {
+            format!(r#"<shape type="sphere"><emitter type="{plugin}"/></shape>"#)
+        }
         ("emitter", _) => format!(r#"<emitter type="{plugin}"/>"#),
         ("film", _) => format!(r#"<sensor type="perspective"><film type="{plugin}"/></sensor>"#),
         ("integrator", "moment") => {

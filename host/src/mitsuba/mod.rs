@@ -49,7 +49,7 @@ pub(crate) struct Loader {
     emitters: Vec<crate::scene::Emitter>,
     textures: Vec<crate::scene::SceneTexture>,
     /// Named area emitters (`id`) defined at the top level, for shapes that `<ref>` them.
-    named_area_emitters: HashMap<String, [f32; 3]>,
+    named_area_emitters: HashMap<String, emitters::AreaEmission>,
     /// `shapegroup`s by id: their shapes in the group's space, for `instance`s to place.
     shape_groups: HashMap<String, Vec<crate::scene::Shape>>,
     /// Named textures (`id`), as indices into `textures`.
@@ -218,7 +218,8 @@ impl Loader {
                 }
                 "emitter" => {
                     let props = self.props(src, node)?;
-                    if !(props.kind == "area" && node.attribute("id").is_some()) {
+                    let surface = matches!(props.kind.as_str(), "area" | "directionalarea");
+                    if !(surface && node.attribute("id").is_some()) {
                         self.load_emitter(&props)?;
                     }
                 }
@@ -247,7 +248,9 @@ impl Loader {
     /// resolves references across the whole file, so a shape may name an emitter defined below it.
     fn register_named_area_emitters(&mut self, src: &Source, root: roxmltree::Node) -> Result<()> {
         let named = root.children().filter(|n| {
-            n.is_element() && n.tag_name().name() == "emitter" && n.attribute("type") == Some("area")
+            n.is_element()
+                && n.tag_name().name() == "emitter"
+                && matches!(n.attribute("type"), Some("area" | "directionalarea"))
         });
         for node in named {
             if let Some(id) = node.attribute("id") {

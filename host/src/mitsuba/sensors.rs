@@ -44,7 +44,7 @@ pub fn default_sensor() -> Sensor {
 /// `aspect` = width / height: from `fov` along `fov_axis` (x, y, diagonal, smaller, larger; default x,
 /// case-insensitive), or, without `fov`, from `focal_length` (default "50mm", a 35 mm-equivalent focal
 /// length on the 36×24 mm frame's diagonal; `fov_axis` is then not read). Mitsuba refuses both at once.
-fn horizontal_fov(props: &Props, aspect: f64) -> Result<f32> {
+pub(crate) fn horizontal_fov(props: &Props, aspect: f64) -> Result<f32> {
     let has_fov = props.has("fov");
     let has_focal = props.has("focal_length");
     if has_fov && has_focal {

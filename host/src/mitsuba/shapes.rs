@@ -4,6 +4,7 @@
 //! `shapegroup` and `instance` (flattened) and `merge` hold other shapes.
 //! `flip_normals` travels to the kernel as a flag of the shape, which turns both the geometric and
 //! the shading normal around, as Mitsuba does.
+use super::emitters::AreaEmission;
 use super::props::Props;
 use super::xml::Loc;
 use super::Loader;
@@ -76,7 +77,18 @@ impl Loader {
         }
         let (material, emission) = self.shape_bsdf_and_emitter(props)?;
         self.warn_unused(props);
-        self.shapes.push(Shape { origin: props.loc.to_string(), geometry, material, emission, flip_normals });
+        let emission_directional = emission.is_some_and(|e| e.directional);
+        let (emission, emission_texture) = (emission.map(|e| e.radiance), emission.and_then(|e| e.texture));
+        let origin = props.loc.to_string();
+        self.shapes.push(Shape {
+            origin,
+            geometry,
+            material,
+            emission,
+            emission_texture,
+            emission_directional,
+            flip_normals,
+        });
         Ok(())
     }
 
@@ -187,9 +199,9 @@ impl Loader {
     /// The shape's BSDF and area emission, nested or referenced (`<ref>` may name either). Mitsuba's
     /// default BSDF is diffuse: grey for ordinary shapes, black for emitters. As in Mitsuba, a shape
     /// takes one BSDF and one area emitter: a second of either is an error, not a silent choice.
-    fn shape_bsdf_and_emitter(&mut self, props: &Props) -> Result<(u32, Option<[f32; 3]>)> {
+    fn shape_bsdf_and_emitter(&mut self, props: &Props) -> Result<(u32, Option<AreaEmission>)> {
         let mut material: Option<(u32, Loc)> = None;
-        let mut emission: Option<([f32; 3], Loc)> = None;
+        let mut emission: Option<(AreaEmission, Loc)> = None;
         // Marks them used; they are then taken in document order, so that the second is the one named.
         let (bsdfs, emitters, refs) = (props.nested("bsdf"), props.nested("emitter"), props.nested("ref"));
         let mut children: Vec<_> = bsdfs.iter().chain(&emitters).chain(&refs).collect();

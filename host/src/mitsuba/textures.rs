@@ -149,11 +149,6 @@ impl Loader {
 
     /// The mean colour of a texture (checkerboard: of its two colours).
     pub(crate) fn texture_mean(&self, index: u32) -> [f32; 3] {
-        let t = &self.textures[index as usize];
-        if t.record.kind == TEXTURE_CHECKERBOARD {
-            return [0, 1, 2].map(|c| 0.5 * (t.record.color0[c] + t.record.color1[c]));
-        }
-        let n = (t.texels.len() / 3).max(1) as f64;
-        [0, 1, 2].map(|c| (t.texels.iter().skip(c).step_by(3).map(|&v| v as f64).sum::<f64>() / n) as f32)
+        self.textures[index as usize].mean()
     }
 }

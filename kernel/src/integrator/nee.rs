@@ -129,7 +129,7 @@ pub fn area_emission(
     counts: StrategyCounts,
 ) -> Rgb {
     let emitter = scene.lights[prim.light as usize];
-    let le = light::emitted(&emitter, sp.ns, -dir);
+    let le = light::emitted_at(scene, &emitter, sp.ns, -dir, sp.uv);
     let weight = if prev.lt > 0.0 {
         // IBPT: against light sampling and against the light path that starts at this point.
         let r_nee = if prev.delta { 0.0 } else { light::pdf(&emitter, prim, prev.p, sp.p, sp.ng) / prev.pdf };

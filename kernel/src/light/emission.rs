@@ -3,17 +3,20 @@
 //! `Le·|cos| / (pmf · p(point) · p(direction))` that the light path starts with.
 //!
 //! Supported: area emitters on triangles, disks and spheres (uniform by area, cosine-weighted
-//! directions), point lights (uniform directions) and spots (uniform inside the cutoff cone); for
+//! directions; a textured one's texture weights the point it draws; a `directionalarea` emits along
+//! the normal alone), point lights (uniform
+//! directions), spots (uniform inside the cutoff cone) and projectors (uniform over the image); for
 //! plain light tracing also the infinite emitters (directional, constant, envmap), as Mitsuba's
 //! `ptracer` traces them: a direction drawn as next-event estimation draws it towards the emitter, and
 //! a start uniformly on the disk of the scene's bounding sphere that faces it. (Under IBPT the camera
 //! paths alone carry infinite emitters' light: no light path starts there.)
-use super::{area, directional, infinite, point, radiance, to_world, LightSample};
+use super::{area, directional, infinite, point, projector, radiance, textured, to_world, LightSample};
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::{
     FrameParams, Light, SceneView, INTEGRATOR_PTRACER, LIGHT_AREA, LIGHT_CONSTANT, LIGHT_DIRECTIONAL,
-    LIGHT_ENVMAP, LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, NONE, PRIM_DISK, PRIM_FLAG_FLIP,
+    LIGHT_ENVMAP, LIGHT_FLAG_DIRECTIONAL_AREA, LIGHT_POINT, LIGHT_PROJECTOR, LIGHT_SPHERE, LIGHT_SPOT, NONE,
+    PRIM_DISK, PRIM_FLAG_FLIP,
 };
 use crate::math::{vec3, PI};
 use crate::sampling::{
@@ -40,7 +43,8 @@ pub struct EmissionSample {
     /// `Le` toward any direction is `radiance · area / pmf` per unit `cos`: what connecting the emitter
     /// point itself to the camera carries, `position_weight · Le(ω)·cos θ` (area emitters only).
     pub position_weight: f32,
-    /// The emitter is a point (point, spot) or at infinity: the camera cannot see the sampled point.
+    /// The emitter is a point (point, spot, projector), at infinity, or emits along one direction
+    /// (`directionalarea`): the camera cannot see the sampled point.
     pub delta_position: bool,
     /// The emitter is at infinity (directional, constant, envmap; `visible_infinite` shows it).
     pub infinite: bool,
@@ -120,7 +124,6 @@ pub fn sample(
     if !(light.pmf > 0.0) {
         return EmissionSample::none();
     }
-    let le = radiance(&light);
     let mut s = EmissionSample::none();
     s.light = chosen.index;
     if light.kind == LIGHT_AREA || light.kind == LIGHT_SPHERE {
@@ -140,11 +143,27 @@ pub fn sample(
             let (n, area) = area::normal_and_area(&prim);
             (q, n, area, 0.0)
         };
+        if light.flags & LIGHT_FLAG_DIRECTIONAL_AREA != 0 {
+            // Mitsuba's `directionalarea`: along the normal, Le·A / pmf; no camera ray can meet that
+            // direction, so the point itself is not connected to the camera.
+            if !(area > 0.0) {
+                return EmissionSample::none();
+            }
+            s.p = p;
+            s.origin = p + n * (offset_scale(p, scale, prim.offset_floor) * RAY_EPSILON);
+            s.n = n;
+            s.dir = n;
+            s.weight = textured::at_surface_point(scene, &light, light.prim, p) * (area / light.pmf);
+            s.delta_position = true;
+            s.prim = light.prim;
+            return s;
+        }
         // Cosine-weighted about the emitting side: Le·cos / (pmf · (1/A) · cos/π) = Le·A·π / pmf.
         let local = square_to_cosine_hemisphere(u_dir);
         if !(local.z > 0.0) || !(area > 0.0) {
             return EmissionSample::none();
         }
+        let le = textured::at_surface_point(scene, &light, light.prim, p);
         s.p = p;
         s.origin = p + n * (offset_scale(p, scale, prim.offset_floor) * RAY_EPSILON);
         s.n = n;
@@ -176,20 +195,29 @@ pub fn sample(
         s.infinite = true;
         return s;
     }
-    if light.kind == LIGHT_POINT || light.kind == LIGHT_SPOT {
+    if light.kind == LIGHT_POINT || light.kind == LIGHT_SPOT || light.kind == LIGHT_PROJECTOR {
         s.p = vec3([light.position[0], light.position[1], light.position[2]]);
         s.origin = s.p;
         s.delta_position = true;
         if light.kind == LIGHT_POINT {
             s.dir = square_to_uniform_sphere(u_dir);
-            s.weight = le * (4.0 * PI / light.pmf);
-        } else {
-            // Uniform inside the cutoff cone, weighted by the spot's profile.
+            s.weight = radiance(&light) * (4.0 * PI / light.pmf);
+        } else if light.kind == LIGHT_SPOT {
+            // Uniform inside the cutoff cone, weighted by the spot's profile (and image).
             let one_minus_cos_max = 1.0 - light.params[0];
             let local = square_to_uniform_cone(u_dir, one_minus_cos_max);
-            let falloff = point::spot_falloff(&light, local);
             s.dir = to_world(&light, local);
-            s.weight = le * (falloff * 2.0 * PI * one_minus_cos_max / light.pmf);
+            s.weight =
+                point::spot_intensity(scene, &light, local) * (2.0 * PI * one_minus_cos_max / light.pmf);
+        } else {
+            // Uniform over the image: I(ω) / p(ω) = π·value(uv)·area.
+            let (dir, density) = projector::direction(&light, u_dir);
+            s.dir = dir;
+            s.weight = if density > 0.0 {
+                projector::intensity(scene, &light, dir) / (density * light.pmf)
+            } else {
+                Rgb::ZERO
+            };
         }
         return s;
     }
@@ -198,21 +226,23 @@ pub fn sample(
 
 /// What the emitter of `s` sends towards `dir` from its sampled point, per unit of the connection's
 /// geometry: `Le(dir)·|cos θ| / (pmf · p(point))` for area emitters (one-sided), `I(dir) / pmf` for
-/// point and spot lights.
+/// point, spot and projector lights.
 pub fn emitted_towards(scene: &SceneView, s: &EmissionSample, dir: Vec3) -> Rgb {
     let light = scene.lights[s.light as usize];
-    let le = radiance(&light);
     if light.kind == LIGHT_POINT {
-        return le / light.pmf;
+        return radiance(&light) / light.pmf;
     }
     if light.kind == LIGHT_SPOT {
-        return le * (point::spot_falloff(&light, super::to_local(&light, dir)) / light.pmf);
+        return point::spot_intensity(scene, &light, super::to_local(&light, dir)) / light.pmf;
+    }
+    if light.kind == LIGHT_PROJECTOR {
+        return projector::intensity(scene, &light, dir) / light.pmf;
     }
     let cos = s.n.dot(dir);
     if cos <= 0.0 {
         return Rgb::ZERO;
     }
-    le * (s.position_weight * cos)
+    textured::at_surface_point(scene, &light, light.prim, s.p) * (s.position_weight * cos)
 }
 
 /// The area of an emitting primitive (what emission samples uniformly).
@@ -244,7 +274,8 @@ pub fn hit_density(scene: &SceneView, light: u32) -> f32 {
 /// For MIS against light tracing at a light sample `ls` taken from `p` for next-event estimation: the
 /// emission density of the sampled point and of the direction towards `p`, over the light sample's own
 /// density, with the geometry of the connection: `p_E(x) p_E(ω) / (p_L(ω)·|cos θx|)` for area emitters
-/// (`p_L` in solid angle), `p_E(ω) / d²` for point and spot lights (their choice and position cancel).
+/// (`p_L` in solid angle), `p_E(ω) / d²` for point, spot and projector lights (their choice and
+/// position cancel).
 pub fn nee_ratio(scene: &SceneView, ls: &LightSample) -> f32 {
     let l = scene.lights[ls.light as usize];
     if l.kind == LIGHT_POINT {
@@ -252,6 +283,10 @@ pub fn nee_ratio(scene: &SceneView, ls: &LightSample) -> f32 {
     }
     if l.kind == LIGHT_SPOT {
         return 1.0 / (2.0 * PI * (1.0 - l.params[0]) * ls.dist * ls.dist);
+    }
+    if l.kind == LIGHT_PROJECTOR {
+        let cos = super::to_local(&l, -ls.wi).z;
+        return projector::density(cos, l.params[3]) / (ls.dist * ls.dist);
     }
     // Cosine-weighted emission: p_E(ω) / |cos θx| = 1/π whatever the direction.
     let density = hit_density(scene, ls.light);

@@ -8,14 +8,17 @@ pub mod directional;
 pub mod emission;
 pub mod infinite;
 pub mod point;
+pub mod projector;
 pub mod sphere;
+pub mod textured;
 
 use crate::features;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::{
     FrameParams, Light, Primitive, SceneView, LIGHT_AREA, LIGHT_CONSTANT, LIGHT_DIRECTIONAL, LIGHT_ENVMAP,
-    LIGHT_POINT, LIGHT_SPHERE, LIGHT_SPOT, NONE,
+    LIGHT_POINT, LIGHT_PROJECTOR, LIGHT_SPHERE, LIGHT_SPOT, NONE,
 };
+use crate::math::max_component;
 use crate::math::vec3;
 use crate::sampling::sample_cdf;
 use crate::spectrum::Rgb;
@@ -65,6 +68,17 @@ pub fn radiance(light: &Light) -> Rgb {
 pub fn emitted(light: &Light, n: Vec3, w: Vec3) -> Rgb {
     if n.dot(w) > 0.0 {
         radiance(light)
+    } else {
+        Rgb::ZERO
+    }
+}
+
+/// Radiance leaving the surface point of texture coordinates `uv` (normal `n`) of area emitter
+/// `light` in direction `w` (one-sided; textured where the emitter is).
+#[inline]
+pub fn emitted_at(scene: &SceneView, light: &Light, n: Vec3, w: Vec3, uv: Vec2) -> Rgb {
+    if n.dot(w) > 0.0 {
+        textured::value(scene, light, uv)
     } else {
         Rgb::ZERO
     }
@@ -172,7 +186,7 @@ pub fn sample(scene: &SceneView, params: &FrameParams, p: Vec3, u_select: f32, u
         }
         LIGHT_POINT | LIGHT_SPOT => {
             if uses(LIGHT_POINT) || uses(LIGHT_SPOT) {
-                point::sample(&light, p)
+                point::sample(scene, &light, p)
             } else {
                 LightSample::none()
             }
@@ -198,8 +212,22 @@ pub fn sample(scene: &SceneView, params: &FrameParams, p: Vec3, u_select: f32, u
                 LightSample::none()
             }
         }
+        LIGHT_PROJECTOR => {
+            if uses(LIGHT_PROJECTOR) {
+                projector::sample(scene, &light, p)
+            } else {
+                LightSample::none()
+            }
+        }
         _ => LightSample::none(),
     };
+    // A textured area emitter: the texture at the sampled point (sampling stays uniform by area).
+    if (light.kind == LIGHT_AREA || light.kind == LIGHT_SPHERE)
+        && textured::is_textured(scene, &light)
+        && max_component(s.radiance) > 0.0
+    {
+        s.radiance = textured::at_surface_point(scene, &light, light.prim, p + s.wi * s.dist);
+    }
     s.pdf *= light.pmf;
     s.light = chosen.index;
     s

@@ -1,12 +1,14 @@
 //! Point and spot lights (Mitsuba `point`, `spot`): radiant intensity from one point, falling off with
-//! the squared distance; the spot's intensity ramps linearly in angle from the beam width to the cutoff.
+//! the squared distance; the spot's intensity ramps linearly in angle from the beam width to the cutoff,
+//! times its image (`texture`) where it has one (`textured::spot_uv`).
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
-use super::{radiance, to_local, LightSample};
+use super::{radiance, textured, to_local, LightSample};
 use crate::glam::Vec3;
-use crate::layout::{Light, LIGHT_SPOT, NONE};
+use crate::layout::{Light, SceneView, LIGHT_SPOT, NONE};
 use crate::math::vec3;
+use crate::spectrum::Rgb;
 
 /// Mitsuba's spot profile for a unit direction in the light's frame (beam along +z).
 pub fn spot_falloff(light: &Light, local: Vec3) -> f32 {
@@ -21,7 +23,17 @@ pub fn spot_falloff(light: &Light, local: Vec3) -> f32 {
     }
 }
 
-pub fn sample(light: &Light, p: Vec3) -> LightSample {
+/// A spot's intensity towards `local` (unit, in its frame): intensity · falloff · image, the image
+/// looked up only inside the cone (where its coordinates are finite).
+pub fn spot_intensity(scene: &SceneView, light: &Light, local: Vec3) -> Rgb {
+    let falloff = spot_falloff(light, local);
+    if falloff <= 0.0 {
+        return Rgb::ZERO;
+    }
+    textured::value(scene, light, textured::spot_uv(light, local)) * falloff
+}
+
+pub fn sample(scene: &SceneView, light: &Light, p: Vec3) -> LightSample {
     let d = vec3([light.position[0], light.position[1], light.position[2]]) - p;
     let dist2 = d.length_squared();
     if dist2 <= 0.0 {
@@ -29,17 +41,10 @@ pub fn sample(light: &Light, p: Vec3) -> LightSample {
     }
     let dist = dist2.sqrt();
     let wi = d / dist;
-    let falloff = if light.kind == LIGHT_SPOT { spot_falloff(light, to_local(light, -wi)) } else { 1.0 };
-    if falloff <= 0.0 {
-        return LightSample::none();
-    }
-    LightSample {
-        wi,
-        dist,
-        radiance: radiance(light) * (falloff / dist2),
-        pdf: 1.0,
-        delta: true,
-        prim: NONE,
-        light: NONE,
-    }
+    let intensity = if light.kind == LIGHT_SPOT {
+        spot_intensity(scene, light, to_local(light, -wi))
+    } else {
+        radiance(light)
+    };
+    LightSample { wi, dist, radiance: intensity / dist2, pdf: 1.0, delta: true, prim: NONE, light: NONE }
 }

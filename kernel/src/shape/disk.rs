@@ -36,6 +36,12 @@ fn local(centre: Vec3, u: Vec3, v: Vec3, n: Vec3, p: Vec3) -> Vec2 {
     Vec2::new(q.cross(v).dot(n) * inv, u.cross(q).dot(n) * inv)
 }
 
+/// The disk coordinates `(a, b)` of a point `p` on the disk's plane.
+#[inline]
+pub fn coordinates(centre: Vec3, u: Vec3, v: Vec3, p: Vec3) -> Vec2 {
+    local(centre, u, v, u.cross(v), p)
+}
+
 /// The point with disk coordinates `ab`: exactly on the plane, without the error of `o + t·d`.
 #[inline]
 pub fn point(centre: Vec3, u: Vec3, v: Vec3, ab: Vec2) -> Vec3 {
