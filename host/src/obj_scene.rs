@@ -200,6 +200,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
         integrator: Integrator::default(),
         materials,
         shapes,
+        instancing: Default::default(),
         emitters: vec![],
         textures: vec![],
         warnings,

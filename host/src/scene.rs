@@ -279,6 +279,8 @@ pub struct Scene {
     pub integrator: Integrator,
     pub materials: Vec<Material>,
     pub shapes: Vec<Shape>,
+    /// Shapegroups stored once and the instances placing them (besides `shapes`).
+    pub instancing: crate::instancing::Instancing,
     pub emitters: Vec<Emitter>,
     pub textures: Vec<SceneTexture>,
     /// Non-fatal problems found while loading (unsupported elements, clamped values), already printed.

@@ -45,6 +45,7 @@ fn furnace(inner: Material) -> Scene {
                 flip_normals: true,
             },
         ],
+        instancing: Default::default(),
         emitters: vec![],
         textures: vec![],
         warnings: vec![],

@@ -1,4 +1,4 @@
-//! Mitsuba's `shapegroup` and `instance` (flattened: each instance's geometry is stored) and
+//! Mitsuba's `shapegroup` and `instance` (a group stored once, placed by ray transformation) and
 //! `merge`. Against Mitsuba 3.9.1 on a group of a mesh, a sphere and a disk placed three times
 //! (rotated and scaled, and mirrored: Mitsuba keeps a mirrored instance's normals facing out), on
 //! both backends, with a negative control; and what Mitsuba refuses, refused with file and line.
@@ -80,4 +80,165 @@ fn instancing_refuses_what_mitsuba_refuses() {
         assert!(error.contains(expected), "case {i}: {error}");
         assert!(error.contains(".xml:2"), "case {i} names no file and line: {error}");
     }
+}
+
+/// A group of a smooth mesh (a cylinder), a checkered rectangle (uvs) and a disk (no sphere: spheres
+/// refuse uneven scales) placed four times: translated, rotated and scaled unevenly, mirrored, and
+/// both.
+fn placed_scene() -> String {
+    let place = |t: &str| {
+        format!(r#"<shape type="instance"><ref id="g"/><transform name="to_world">{t}</transform></shape>"#)
+    };
+    let instances = [
+        place(r#"<translate x="-1.8"/>"#),
+        place(r#"<rotate z="1" angle="35"/><scale x="1.6" y="0.5" z="1.3"/><rotate x="1" angle="20"/><translate x="-0.4" y="0.6"/>"#),
+        place(r#"<scale x="-1" y="1" z="1"/><rotate z="1" angle="-25"/><translate x="1.0" y="-0.3"/>"#),
+        place(r#"<rotate y="1" angle="15"/><scale x="0.7" y="-1.3" z="0.9"/><translate x="2.1" y="0.8" z="0.1"/>"#),
+    ]
+    .join("\n");
+    format!(
+        r#"<scene version="3.0.0">
+    <integrator type="path"><integer name="max_depth" value="4"/></integrator>
+    <sensor type="perspective"><float name="fov" value="50"/>
+        <transform name="to_world"><lookat origin="0, -6, 3" target="0, 0, 0.4" up="0, 0, 1"/></transform>
+        <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="24"/><rfilter type="box"/></film></sensor>
+    <shape type="shapegroup" id="g">
+        <shape type="cylinder"><float name="radius" value="0.3"/><point name="p0" x="0" y="0" z="0"/><point name="p1" x="0.2" y="0" z="0.9"/>
+            <bsdf type="roughconductor"><float name="alpha" value="0.25"/></bsdf></shape>
+        <shape type="rectangle"><transform name="to_world"><scale x="0.4" y="0.3"/><rotate x="1" angle="70"/><translate x="0.5" z="0.4"/></transform>
+            <bsdf type="diffuse"><texture type="checkerboard" name="reflectance"><transform name="to_uv"><scale value="4"/></transform></texture></bsdf></shape>
+        <shape type="disk"><transform name="to_world"><scale value="0.25"/><rotate y="1" angle="-50"/><translate x="-0.5" z="0.5"/></transform>
+            <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.6, 0.3"/></bsdf></shape>
+    </shape>
+    {instances}
+    <shape type="rectangle"><transform name="to_world"><scale value="6"/></transform></shape>
+    <shape type="rectangle"><transform name="to_world"><scale value="1.5"/><rotate x="1" angle="180"/><translate z="4"/></transform>
+        <emitter type="area"><rgb name="radiance" value="6"/></emitter></shape>
+    <emitter type="constant"><rgb name="radiance" value="0.15"/></emitter>
+</scene>"#
+    )
+}
+
+/// Instances under rotation, uneven scale and mirrors (normals through the inverse transpose, a
+/// mirror keeping them outward) render as their flattened copies, on both backends; with a negative
+/// control (the mirrored instance unmirrored) that the comparison must catch.
+#[test]
+fn instances_render_as_their_flattened_copies() {
+    let instanced = load_xml(&placed_scene(), "instanced");
+    assert_eq!(instanced.instancing.instances.len(), 4, "the group stays stored once");
+    let b = caustic::buffers::build(&instanced).expect("builds");
+    assert!(b.features & caustic_kernel::features::INSTANCING != 0, "instancing's traversal is on");
+    let mut flattened = instanced.clone();
+    flattened.flatten_instances(usize::MAX).unwrap();
+    assert!(flattened.instancing.instances.is_empty());
+    let compare = |a: &caustic::film::Film, b: &caustic::film::Film| {
+        let c = caustic::compare::compare(a, b, 1.0).expect("same size");
+        (c.pass_fraction.unwrap(), c.luminance_z.unwrap())
+    };
+    for (choice, spp) in [(BackendChoice::Cpu, 512), (BackendChoice::Gpu, 128)] {
+        let a = render_scene(&instanced, choice, spp, 1);
+        let f = render_scene(&flattened, choice, spp, 2);
+        let (pass, z) = compare(&a, &f);
+        println!("{choice:?} {spp} spp: instanced against flattened: pass {pass:.4}, z {z:+.2}");
+        assert!(pass >= 0.99 && z.abs() < 4.0, "{choice:?}: pass {pass:.4}, z {z:+.2}");
+    }
+    // Negative control: the mirrored instance unmirrored must be caught.
+    let mut moved = load_xml(&placed_scene().replace(r#"<scale x="-1" y="1" z="1"/>"#, ""), "unmirrored");
+    moved.flatten_instances(usize::MAX).unwrap();
+    let a = render_scene(&instanced, BackendChoice::Cpu, 512, 3);
+    let m = render_scene(&moved, BackendChoice::Cpu, 512, 4);
+    let (pass, z) = compare(&a, &m);
+    assert!(
+        pass < 0.99 || z.abs() >= 4.0,
+        "an unmirrored instance went unnoticed (pass {pass:.4}, z {z:+.2})"
+    );
+}
+
+/// Memory stays flat in the number of instances: 1000 instances of the tessellated cylinder store its
+/// triangles once, plus one primitive (and about two BVH nodes) per instance.
+#[test]
+fn instances_store_their_group_once() {
+    let scene = |n: usize| {
+        let instances: String = (0..n)
+            .map(|i| {
+                format!(
+                    r#"<shape type="instance"><ref id="c"/><transform name="to_world"><rotate z="1" angle="{}"/><translate x="{}" y="{}"/></transform></shape>"#,
+                    i * 7,
+                    (i % 40) as f32 * 1.5,
+                    (i / 40) as f32 * 1.5
+                )
+            })
+            .collect();
+        let xml = format!(
+            r#"<scene version="3.0.0"><shape type="shapegroup" id="c"><shape type="cylinder"/></shape>{instances}
+            <emitter type="constant"/></scene>"#
+        );
+        let s = load_xml(&xml, &format!("flat-memory-{n}"));
+        (caustic::buffers::build(&s).expect("builds"), s)
+    };
+    let (ten, s10) = scene(10);
+    let (thousand, s1000) = scene(1000);
+    let group = s1000.instancing.group_primitives()[0];
+    assert!(group >= 1024, "the cylinder has {group} triangles");
+    assert_eq!(s10.instancing.instances.len(), 10);
+    assert_eq!(s1000.instancing.instances.len(), 1000);
+    // Stored: the group once and one record per instance, placed: the group per instance.
+    assert_eq!(ten.prims.len(), group + 10);
+    assert_eq!(thousand.prims.len(), group + 1000);
+    assert_eq!(thousand.attributes.len(), thousand.prims.len());
+    assert_eq!(thousand.placed_prims, 1000 * group as u64);
+    // A BVH2 over n leaves has at most 2n − 1 nodes: the group's (at most ten's) and the instances'.
+    assert!(thousand.nodes.len() < ten.nodes.len() + 2 * 1000, "{} BVH nodes", thousand.nodes.len());
+    // Each instance's two maps, 24 floats.
+    assert!(thousand.tables.len() - ten.tables.len() == 990 * 24);
+    let bytes = caustic::memory::scene_bytes(&thousand) as f64;
+    let flattened_triangles = 1000.0 * group as f64 * 48.0;
+    println!("1000 instances: {:.2} MiB of scene buffers", bytes / (1 << 20) as f64);
+    assert!(bytes < 0.01 * flattened_triangles, "{bytes} bytes");
+}
+
+/// Without instances the scene's traversal is the one-level walk: the bit is off and no instance
+/// primitive is stored; a group placed once is flattened (stored once either way). With the bit
+/// forced on, the two-level walk renders such a scene as the one-level walk does.
+#[test]
+fn scenes_without_instances_keep_the_one_level_walk() {
+    use caustic_kernel::features::INSTANCING;
+    use caustic_kernel::layout::PRIM_INSTANCE;
+    let once = placed_scene();
+    // Keep only the first instance: the group is placed once.
+    let first_only: String = {
+        let mut out = String::new();
+        let mut seen = false;
+        for line in once.lines() {
+            if line.contains(r#"<shape type="instance""#) {
+                if seen {
+                    continue;
+                }
+                seen = true;
+            }
+            out.push_str(line);
+            out.push('\n');
+        }
+        out
+    };
+    let scene = load_xml(&first_only, "placed-once");
+    assert!(scene.instancing.instances.is_empty(), "a group placed once is flattened");
+    let b = caustic::buffers::build(&scene).expect("builds");
+    assert_eq!(b.features & INSTANCING, 0);
+    assert!(b.prims.iter().all(|p| p.kind != PRIM_INSTANCE));
+    assert_eq!(b.placed_prims, 0);
+    let mut forced = b.clone();
+    forced.features |= INSTANCING;
+    let (one, two) =
+        (render_buffers(&b, BackendChoice::Cpu, 16, 5), render_buffers(&forced, BackendChoice::Cpu, 16, 5));
+    assert!(caustic_tests::replicas::image_mean(&one) > 0.0);
+    // The same paths; only the grouping of samples into passes may differ (f32 rounding).
+    let worst = one
+        .rgb
+        .iter()
+        .flatten()
+        .zip(two.rgb.iter().flatten())
+        .map(|(a, b)| (a - b).abs() / a.abs().max(1e-3))
+        .fold(0.0f32, f32::max);
+    assert!(worst < 1e-4, "the two-level walk renders a plain scene differently: {worst}");
 }

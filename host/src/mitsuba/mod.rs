@@ -50,8 +50,11 @@ pub(crate) struct Loader {
     textures: Vec<crate::scene::SceneTexture>,
     /// Named area emitters (`id`) defined at the top level, for shapes that `<ref>` them.
     named_area_emitters: HashMap<String, [f32; 3]>,
-    /// `shapegroup`s by id: their shapes in the group's space, for `instance`s to place.
-    shape_groups: HashMap<String, Vec<crate::scene::Shape>>,
+    /// `shapegroup`s by id, as indices into `instancing.groups` (their triangles and disks, in the
+    /// group's space) and `group_spheres` (their spheres), for `instance`s to place.
+    shape_groups: HashMap<String, usize>,
+    group_spheres: Vec<Vec<crate::scene::Shape>>,
+    instancing: crate::instancing::Instancing,
     /// Named textures (`id`), as indices into `textures`.
     named_textures: HashMap<String, u32>,
     sensor: Option<crate::scene::Sensor>,
@@ -84,6 +87,8 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         named_textures: HashMap::new(),
         named_area_emitters: HashMap::new(),
         shape_groups: HashMap::new(),
+        group_spheres: Vec::new(),
+        instancing: Default::default(),
         sensor: None,
         integrator: None,
         warnings: Vec::new(),
@@ -111,15 +116,18 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
     for line in loader.deviations.report(path) {
         loader.warn(&line);
     }
-    Ok(Scene {
+    let mut scene = Scene {
         sensor,
         integrator: loader.integrator.take().unwrap_or_default(),
         materials: loader.materials,
         shapes: loader.shapes,
+        instancing: loader.instancing,
         emitters: loader.emitters,
         textures: loader.textures,
         warnings: loader.warnings,
-    })
+    };
+    scene.flatten_instances(crate::instancing::MIN_PLACEMENTS)?;
+    Ok(scene)
 }
 
 impl Loader {
