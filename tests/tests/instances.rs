@@ -135,7 +135,7 @@ fn instances_render_as_their_flattened_copies() {
         let c = caustic::compare::compare(a, b, 1.0).expect("same size");
         (c.pass_fraction.unwrap(), c.luminance_z.unwrap())
     };
-    for (choice, spp) in [(BackendChoice::Cpu, 512), (BackendChoice::Gpu, 128)] {
+    for (choice, spp) in [(BackendChoice::Cpu, 512), (BackendChoice::Gpu, 64)] {
         let a = render_scene(&instanced, choice, spp, 1);
         let f = render_scene(&flattened, choice, spp, 2);
         let (pass, z) = compare(&a, &f);
