@@ -498,12 +498,6 @@ fn place_textures(scene: &Scene, tables: &mut Vec<f32>) -> Vec<Texture> {
 pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let mut light_list = LightList::default();
     let (mut prims, mut attributes) = primitives(&scene.shapes, &mut light_list);
-    // Instances are primitives of the scene's BVH; their groups' BVHs follow its nodes.
-    let groups = crate::instance_buffers::build_groups(&scene.instancing)?;
-    let proxies = crate::instance_buffers::proxies(&scene.instancing, &groups);
-    let instanced = !proxies.is_empty();
-    attributes.extend(proxies.iter().map(|_| TriangleAttributes::default()));
-    prims.extend(proxies);
     let has_prims = !prims.is_empty();
     let mut nodes = if has_prims {
         build_bvh(&mut prims, &mut attributes, &mut light_list.lights)?
@@ -513,7 +507,10 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         // box is [-1, 1]³ to it, and traversal read children that do not exist (CPU panic, GPU garbage).
         vec![BvhNode { min: [0.0; 3], prim_count: 1, max: [0.0; 3], first: 0 }]
     };
-    crate::instance_buffers::append_groups(&mut nodes, &mut prims, &mut attributes, &groups);
+    // With instances, that BVH becomes one group under a BVH over the instances
+    // (`crate::instance_buffers`).
+    let instanced = crate::instance_buffers::two_level(&mut nodes, &mut prims, &mut attributes, scene)?;
+    let has_prims = !prims.is_empty();
     // The ray offset's absolute part (`caustic_kernel::shape::offset_origin`): Mitsuba's 1, or the
     // scene's half-diagonal where smaller, so that a scene scaled down keeps its image.
     let offset_floor = if has_prims {
@@ -604,6 +601,9 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         ..Default::default()
     };
     let mut features = scene_features(&materials, &lights, !textures.is_empty(), integrator_kind);
+    // Not a path to specialize but how the buffers are laid out: set exactly when they are two-level
+    // (also under `CAUSTIC_SPECIALIZE=0`).
+    features &= !features::INSTANCING;
     if instanced {
         features |= features::INSTANCING;
     }

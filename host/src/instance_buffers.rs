@@ -1,14 +1,67 @@
-//! `Instancing` → the kernel's buffers (read by `caustic_kernel::instancing`): each group's
-//! primitives and BVH (a BLAS) once, after the scene's own nodes and primitives; one `PRIM_INSTANCE`
-//! primitive per instance among the scene's primitives (bounded by its group's box moved to the
-//! world), so that the scene's BVH is built over ordinary shapes and instances alike; and each
-//! instance's world→object and object→world maps in `tables`.
+//! `Instancing` → the kernel's buffers (read by `caustic_kernel::instancing`). A BVH over
+//! `PRIM_INSTANCE` primitives (the TLAS, from node 0) whose leaves name a group's BVH (a BLAS) and
+//! its transforms: each instance, bounded by its group's box moved to the world, and one for the
+//! scene's own shapes, without a transform, whose BVH is the one-level scene's. So the kernel's
+//! instance leaves only move rays and every primitive is met in a BLAS (one copy of the
+//! intersection code). Buffers: primitives `[scene's | instances' | each group's]`, nodes
+//! `[TLAS | scene's BVH | each group's BVH]`; each instance's world→object and object→world maps in
+//! `tables`. The scene's primitives keep their indices, so lights still name theirs.
 use crate::buffers::{build_bvh, primitives, LightList};
 use crate::instancing::Instancing;
+use crate::scene::Scene;
 use anyhow::Result;
 use caustic_kernel::instancing::INSTANCE_FLOATS;
 use caustic_kernel::layout::{BvhNode, Primitive, TriangleAttributes, NONE, PRIM_INSTANCE};
 use glam::{Mat4, Vec3};
+
+/// Turns the one-level scene (`nodes` over `prims`) into the two-level one when `scene` has
+/// instances; returns whether it did (the kernel's `features::INSTANCING`).
+pub(crate) fn two_level(
+    nodes: &mut Vec<BvhNode>,
+    prims: &mut Vec<Primitive>,
+    attributes: &mut Vec<TriangleAttributes>,
+    scene: &Scene,
+) -> Result<bool> {
+    let groups = build_groups(&scene.instancing)?;
+    let mut tops = proxies(&scene.instancing, &groups);
+    if tops.is_empty() {
+        return Ok(false);
+    }
+    let world = !prims.is_empty();
+    if world {
+        tops.push(Primitive {
+            p0: nodes[0].min,
+            kind: PRIM_INSTANCE,
+            material: NONE,
+            p2: nodes[0].max,
+            light: NONE,
+            flags: NONE,
+            ..Default::default()
+        });
+    } else {
+        nodes.clear();
+    }
+    let mut top_attributes = vec![TriangleAttributes::default(); tops.len()];
+    let mut tlas = build_bvh(&mut tops, &mut top_attributes, &mut [])?;
+    let tops_base = prims.len() as u32;
+    for n in tlas.iter_mut().filter(|n| n.prim_count > 0) {
+        n.first += tops_base;
+    }
+    // The scene's BVH follows the TLAS: its inner nodes' children move, its leaves' primitives do not.
+    let world_root = tlas.len() as u32;
+    for n in nodes.iter_mut().filter(|n| n.prim_count == 0) {
+        n.first += world_root;
+    }
+    for p in tops.iter_mut().filter(|p| p.flags == NONE) {
+        p.material = world_root;
+    }
+    tlas.append(nodes);
+    *nodes = tlas;
+    prims.append(&mut tops);
+    attributes.append(&mut top_attributes);
+    append_groups(nodes, prims, attributes, &groups);
+    Ok(true)
+}
 
 /// One group's primitives in BVH order and its BVH (leaf and child indices local to the group).
 pub(crate) struct Blas {
@@ -19,7 +72,7 @@ pub(crate) struct Blas {
 
 /// The BLAS of every group that holds anything (`None` for an empty one, whose instances are left
 /// out: they place nothing).
-pub(crate) fn build_groups(instancing: &Instancing) -> Result<Vec<Option<Blas>>> {
+fn build_groups(instancing: &Instancing) -> Result<Vec<Option<Blas>>> {
     let mut used = vec![false; instancing.groups.len()];
     for i in &instancing.instances {
         used[i.group] = true;
@@ -43,7 +96,7 @@ pub(crate) fn build_groups(instancing: &Instancing) -> Result<Vec<Option<Blas>>>
 
 /// The instances as primitives of the scene's BVH: bounds in `p0` and `p2`, the instance's index in
 /// `flags` and its group in `material` until `append_groups` and `place_transforms` replace them.
-pub(crate) fn proxies(instancing: &Instancing, blases: &[Option<Blas>]) -> Vec<Primitive> {
+fn proxies(instancing: &Instancing, blases: &[Option<Blas>]) -> Vec<Primitive> {
     let mut out = Vec::new();
     for (index, instance) in instancing.instances.iter().enumerate() {
         let Some(blas) = &blases[instance.group] else { continue };
@@ -83,7 +136,7 @@ fn world_bounds(root: &BvhNode, m: Mat4) -> (Vec3, Vec3) {
 
 /// Appends every BLAS after the scene's nodes and primitives (rebasing its indices) and points each
 /// instance primitive at its group's root.
-pub(crate) fn append_groups(
+fn append_groups(
     nodes: &mut Vec<BvhNode>,
     prims: &mut Vec<Primitive>,
     attributes: &mut Vec<TriangleAttributes>,
@@ -101,15 +154,15 @@ pub(crate) fn append_groups(
         prims.extend_from_slice(&blas.prims);
         attributes.extend_from_slice(&blas.attributes);
     }
-    for p in prims.iter_mut().filter(|p| p.kind == PRIM_INSTANCE) {
+    for p in prims.iter_mut().filter(|p| p.kind == PRIM_INSTANCE && p.flags != NONE) {
         p.material = roots[p.material as usize];
     }
 }
 
 /// Writes each instance's maps into `tables` (rows of world→object, then of object→world) and
-/// points its primitive at them.
+/// points its primitive at them (the scene's own shapes' stays `NONE`: no transform).
 pub(crate) fn place_transforms(prims: &mut [Primitive], tables: &mut Vec<f32>, instancing: &Instancing) {
-    for p in prims.iter_mut().filter(|p| p.kind == PRIM_INSTANCE) {
+    for p in prims.iter_mut().filter(|p| p.kind == PRIM_INSTANCE && p.flags != NONE) {
         let to_world = instancing.instances[p.flags as usize].to_world;
         p.flags = tables.len() as u32;
         for m in [to_world.as_dmat4().inverse().as_mat4(), to_world] {

@@ -52,8 +52,10 @@ pub const NORMAL_MAPPING: u32 = 1 << 25;
 pub const BLEND: u32 = 1 << 26;
 /// Mitsuba's `pplastic` (`bsdf::pplastic`), whose kind lies past the models' bits.
 pub const PPLASTIC: u32 = 1 << 27;
-/// Shapegroups stored once and placed by instances: traversal descends into `PRIM_INSTANCE`
-/// primitives (`instancing`). Without it, the one-level walk of `bvh` runs as it always did.
+/// Shapegroups stored once and placed by instances: traversal starts at a BVH over `PRIM_INSTANCE`
+/// primitives (`instancing`). Without it, the one-level walk of `bvh` runs as it always did. Unlike
+/// the other bits this one says how the buffers are laid out: the host sets it exactly when they are
+/// two-level.
 pub const INSTANCING: u32 = 1 << 29;
 
 // The kinds must fit their bit ranges.

@@ -1,7 +1,9 @@
 //! Two-level traversal for Mitsuba's `shapegroup` + `instance` (`features::INSTANCING`): a
 //! shapegroup's primitives are stored once, under their own BVH (a BLAS, nodes and primitives after
-//! the scene's own in the same buffers), and each instance is a `PRIM_INSTANCE` primitive of the
-//! scene's BVH that names the BLAS root and its transforms in `tables` (`layout::Primitive`).
+//! the scene's own in the same buffers), and a BVH over instances (the TLAS, from node 0) has
+//! `PRIM_INSTANCE` leaves that name a BLAS root and their transforms in `tables`
+//! (`layout::Primitive`); the scene's own shapes are one more BLAS, placed without a transform, so
+//! that the intersection code is inlined once (`host/src/instance_buffers.rs` lays them out).
 //! At an instance, the ray moves into the group's space and the BLAS is walked; the direction is
 //! transformed but not renormalized, so that `t` means the same point in both spaces (also under a
 //! non-uniform scale) and hits compare with the world's directly. Hits in an instance carry its
@@ -11,7 +13,7 @@
 use crate::bvh::{intersect_aabb, Accel, MISS, STACK_SIZE};
 use crate::camera::Ray;
 use crate::glam::{Vec2, Vec3, Vec4};
-use crate::layout::{Primitive, SceneView, NONE, PRIM_INSTANCE};
+use crate::layout::{Primitive, SceneView, NONE};
 use crate::shape::{self, Hit, SurfacePoint};
 
 /// Floats of one instance's record in `tables`: the rows of its world→object and object→world
@@ -94,8 +96,8 @@ fn descend(accel: &Accel, node: u32, ray: &Ray, inv_dir: Vec3, best_t: f32) -> (
 }
 
 /// The closest hit (or, with `any_hit`, any hit) closer than `t_max` in the BLAS rooted at `root`,
-/// for a ray already in the group's space.
-fn trace_blas(accel: &Accel, root: u32, ray: &Ray, any_hit: bool, t_max: f32) -> Option<Hit> {
+/// for a ray already in the group's space; primitive `skip` is ignored.
+fn trace_blas(accel: &Accel, root: u32, ray: &Ray, any_hit: bool, skip: u32, t_max: f32) -> Option<Hit> {
     let inv_dir = Vec3::ONE / ray.dir;
     let mut stack = [0u32; STACK_SIZE];
     let mut top = 0usize;
@@ -109,69 +111,8 @@ fn trace_blas(accel: &Accel, root: u32, ray: &Ray, any_hit: bool, t_max: f32) ->
         if node.prim_count > 0 {
             let mut i = node.first;
             while i < node.first + node.prim_count {
-                if let Some((t, uv)) = shape::intersect(&accel.prims[i as usize], ray, best.t) {
-                    best = Hit { t, prim: i, uv, instance: NONE };
-                    if any_hit {
-                        return Some(best);
-                    }
-                }
-                i += 1;
-            }
-        } else {
-            let (next, later) = descend(accel, node_index, ray, inv_dir, best.t);
-            if later != NONE && top < STACK_SIZE {
-                stack[top] = later;
-                top += 1;
-            }
-            if next != NONE {
-                node_index = next;
-                continue;
-            }
-        }
-        if top == 0 {
-            break;
-        }
-        top -= 1;
-        node_index = stack[top];
-    }
-    if best.prim == NONE {
-        None
-    } else {
-        Some(best)
-    }
-}
-
-/// `Accel::trace` in a scene with instances: the scene's BVH, whose `PRIM_INSTANCE` leaves are
-/// walked in their group's space.
-pub fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> {
-    let inv_dir = Vec3::ONE / ray.dir;
-    let mut stack = [0u32; STACK_SIZE];
-    let mut top = 0usize;
-    let mut best = Hit { t: ray.t_max, prim: NONE, uv: Vec2::ZERO, instance: NONE };
-    #[allow(clippy::len_zero)]
-    if accel.nodes.len() == 0
-        || intersect_aabb(&accel.nodes[0], ray.origin, inv_dir, ray.t_min, best.t) == MISS
-    {
-        return None;
-    }
-    let mut node_index = 0u32;
-    loop {
-        let node = accel.nodes[node_index as usize];
-        if node.prim_count > 0 {
-            let mut i = node.first;
-            while i < node.first + node.prim_count {
-                let prim: Primitive = accel.prims[i as usize];
-                if prim.kind == PRIM_INSTANCE {
-                    let x = Transforms::load(accel.tables, prim.flags);
-                    let local = ray_to_object(&x, ray);
-                    if let Some(h) = trace_blas(accel, prim.material, &local, any_hit, best.t) {
-                        best = Hit { instance: prim.flags, ..h };
-                        if any_hit {
-                            return Some(best);
-                        }
-                    }
-                } else if i != skip {
-                    if let Some((t, uv)) = shape::intersect(&prim, ray, best.t) {
+                if i != skip {
+                    if let Some((t, uv)) = shape::intersect(&accel.prims[i as usize], ray, best.t) {
                         best = Hit { t, prim: i, uv, instance: NONE };
                         if any_hit {
                             return Some(best);
@@ -204,14 +145,73 @@ pub fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> 
     }
 }
 
+/// `Accel::trace` in a scene with instances: the TLAS, whose leaves are all `PRIM_INSTANCE`s, each
+/// walked in its group's space (the scene's own shapes' as they are: `flags` is `NONE`).
+pub fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> {
+    let inv_dir = Vec3::ONE / ray.dir;
+    let mut stack = [0u32; STACK_SIZE];
+    let mut top = 0usize;
+    let mut best = Hit { t: ray.t_max, prim: NONE, uv: Vec2::ZERO, instance: NONE };
+    if intersect_aabb(&accel.nodes[0], ray.origin, inv_dir, ray.t_min, best.t) == MISS {
+        return None;
+    }
+    let mut node_index = 0u32;
+    loop {
+        let node = accel.nodes[node_index as usize];
+        if node.prim_count > 0 {
+            let mut i = node.first;
+            while i < node.first + node.prim_count {
+                let instance: Primitive = accel.prims[i as usize];
+                let mut local = *ray;
+                if instance.flags != NONE {
+                    local = ray_to_object(&Transforms::load(accel.tables, instance.flags), ray);
+                }
+                if let Some(h) = trace_blas(accel, instance.material, &local, any_hit, skip, best.t) {
+                    best = Hit { instance: instance.flags, ..h };
+                    if any_hit {
+                        return Some(best);
+                    }
+                }
+                i += 1;
+            }
+        } else {
+            let (next, later) = descend(accel, node_index, ray, inv_dir, best.t);
+            if later != NONE && top < STACK_SIZE {
+                stack[top] = later;
+                top += 1;
+            }
+            if next != NONE {
+                node_index = next;
+                continue;
+            }
+        }
+        if top == 0 {
+            break;
+        }
+        top -= 1;
+        node_index = stack[top];
+    }
+    if best.prim == NONE {
+        None
+    } else {
+        Some(best)
+    }
+}
+
 /// `shape::surface_point` of any hit: one in an instance is reconstructed in the group's space and
 /// moved to the world (point, normals; the rounding size grows with the map's scale and offset).
 pub fn surface_point(scene: &SceneView, prim: &Primitive, hit: &Hit, ray: &Ray) -> SurfacePoint {
-    if !(crate::features::has(scene.features, crate::features::INSTANCING) && hit.instance != NONE) {
-        return shape::surface_point(prim, scene.attributes, hit, ray);
+    let instanced = crate::features::has(scene.features, crate::features::INSTANCING) && hit.instance != NONE;
+    // One call of `shape::surface_point` for both cases (each call inlines all of it in SPIR-V).
+    let mut local_ray = *ray;
+    if instanced {
+        local_ray = ray_to_object(&Transforms::load(scene.tables, hit.instance), ray);
+    }
+    let local = shape::surface_point(prim, scene.attributes, hit, &local_ray);
+    if !instanced {
+        return local;
     }
     let x = Transforms::load(scene.tables, hit.instance);
-    let local = shape::surface_point(prim, scene.attributes, hit, &ray_to_object(&x, ray));
     let w = &x.to_world;
     let scale = w[0]
         .truncate()

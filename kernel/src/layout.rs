@@ -26,7 +26,8 @@ pub const PRIM_SPHERE: u32 = 1;
 pub const PRIM_DISK: u32 = 2;
 /// An instance of a shapegroup (`instancing`; only with `features::INSTANCING`): `p0` and `p2` are
 /// its world bounds' min and max (for the host), `material` the root of the group's BVH in the node
-/// buffer, `flags` where its transforms start in `tables` (`instancing::INSTANCE_FLOATS` floats).
+/// buffer, `flags` where its transforms start in `tables` (`instancing::INSTANCE_FLOATS` floats), or
+/// `NONE` for the scene's own shapes, which need none.
 pub const PRIM_INSTANCE: u32 = 3;
 
 /// Primitive flag: interpolate the per-vertex normals in `ShadingNormals`.
