@@ -71,8 +71,8 @@ fn ray_to_object(x: &Transforms, ray: &Ray) -> Ray {
 }
 
 /// The children of inner node `node` to visit: the nearer hit one, and the farther when both boxes
-/// are hit (else `NONE`); `(NONE, NONE)` when neither is. (Returned, not pushed here: a stack
-/// borrowed by a callee was a pointer rust-gpu's SPIR-V does not allow, measured.)
+/// are hit (else `NONE`); `(NONE, NONE)` when neither is. (Returned, not pushed here: each walk
+/// keeps its stack to itself.)
 #[inline]
 fn descend(accel: &Accel, node: u32, ray: &Ray, inv_dir: Vec3, best_t: f32) -> (u32, u32) {
     let left = accel.nodes[node as usize].first;

@@ -2,6 +2,9 @@
 //! `merge`. Against Mitsuba 3.9.1 on a group of a mesh, a sphere and a disk placed three times
 //! (rotated and scaled, and mirrored: Mitsuba keeps a mirrored instance's normals facing out), on
 //! both backends, with a negative control; and what Mitsuba refuses, refused with file and line.
+//! Instances stored once (`caustic::instancing`): against their flattened copies image by image
+//! (rotation, uneven scale, mirrors, normal maps; both backends) and hit by hit (CPU); memory flat
+//! in the number of instances; scenes without instances on the one-level walk.
 use caustic::backend::BackendChoice;
 use caustic_tests::*;
 
