@@ -6,8 +6,8 @@
 //! A cleared bit only ever removes a path the scene cannot reach.
 use crate::layout::{BSDF_BLEND, BSDF_PPLASTIC, BSDF_PRINCIPLED_THIN, LIGHT_ENVMAP};
 
-/// Every path compiled in: the specialization constant's default.
-pub const ALL: u32 = u32::MAX;
+/// Every path compiled in (every bit but `INSTANCING`, which says how the buffers are laid out).
+pub const ALL: u32 = !INSTANCING;
 
 /// The bit of BSDF model `kind` (`BSDF_*`, bits 0–11).
 #[inline]
