@@ -3,9 +3,11 @@
 a copy of one bumpy icosphere mesh (20 480 triangles) placed as its own `ply` shape with its own
 transform, so both caustic and Mitsuba hold every triangle (no instancing). Plain Python, deterministic.
 
-    python3 scenes/generate_large.py OUT_DIR [TRIANGLES ...]      # default: 1e6 1e7 5e7
+    python3 scenes/generate_large.py [--instanced] OUT_DIR [TRIANGLES ...]      # default: 1e6 1e7 5e7
 
 writes OUT_DIR/blob.ply and OUT_DIR/large-<n>.xml for each triangle count n (rounded up to whole copies).
+With `--instanced`, the same field as `instance`s of three shapegroups (the mesh once per colour), in
+OUT_DIR/large-<n>-instanced.xml: the same image, with the mesh stored once per group.
 The scenes take `-D spp=...` and `-D res=...` (defaults 16 and 512); lit by a constant sky and a
 rectangle light, path tracer at depth 6, three diffuse colours.
 """
@@ -68,7 +70,7 @@ def write_ply(path, verts, faces):
             f.write(struct.pack("<B3i", 3, a, b, c))
 
 
-def write_scene(path, copies, seed=7):
+def write_scene(path, copies, seed=7, instanced=False):
     rng = random.Random(seed)
     side = math.ceil(math.sqrt(copies))
     spacing = 2.6
@@ -79,9 +81,11 @@ def write_scene(path, copies, seed=7):
         x = (gx - (side - 1) / 2) * spacing + rng.uniform(-0.4, 0.4)
         z = (gz - (side - 1) / 2) * spacing + rng.uniform(-0.4, 0.4)
         s = rng.uniform(0.8, 1.1)
+        placed = (f'    <shape type="instance">\n        <ref id="g{i % 3}"/>\n' if instanced else
+                  f'    <shape type="ply">\n        <string name="filename" value="blob.ply"/>\n'
+                  f'        <ref id="m{i % 3}"/>\n')
         shapes.append(
-            f'    <shape type="ply">\n        <string name="filename" value="blob.ply"/>\n'
-            f'        <ref id="m{i % 3}"/>\n        <transform name="to_world">\n'
+            placed + f'        <transform name="to_world">\n'
             f'            <rotate y="1" angle="{rng.uniform(0, 360):.3f}"/>\n'
             f'            <scale value="{s:.4f}"/>\n'
             f'            <translate x="{x:.4f}" y="{s:.4f}" z="{z:.4f}"/>\n'
@@ -100,6 +104,9 @@ def write_scene(path, copies, seed=7):
                 f'<integer name="height" value="$res"/><rfilter type="box"/></film>\n    </sensor>\n')
         for k, c in enumerate(colours):
             f.write(f'    <bsdf type="diffuse" id="m{k}"><rgb name="reflectance" value="{c[0]}, {c[1]}, {c[2]}"/></bsdf>\n')
+            if instanced:
+                f.write(f'    <shape type="shapegroup" id="g{k}"><shape type="ply">'
+                        f'<string name="filename" value="blob.ply"/><ref id="m{k}"/></shape></shape>\n')
         f.write(f'    <emitter type="constant"><rgb name="radiance" value="0.4, 0.45, 0.5"/></emitter>\n'
                 f'    <shape type="rectangle">\n        <transform name="to_world">'
                 f'<scale value="{extent / 4:.3f}"/><rotate x="1" angle="90"/>'
@@ -111,7 +118,7 @@ def write_scene(path, copies, seed=7):
         f.write("</scene>\n")
 
 
-def write(out, targets):
+def write(out, targets, instanced=False):
     """Writes blob.ply and one scene per triangle count into `out`; returns [(path, triangles)]."""
     os.makedirs(out, exist_ok=True)
     verts, faces = icosphere(LEVELS)
@@ -119,17 +126,21 @@ def write(out, targets):
     written = []
     for t in targets:
         copies = -(-t // len(faces))
-        name = os.path.join(out, f"large-{t:.0e}".replace("+0", "").replace("+", "") + ".xml")
-        write_scene(name, copies)
+        suffix = "-instanced.xml" if instanced else ".xml"
+        name = os.path.join(out, f"large-{t:.0e}".replace("+0", "").replace("+", "") + suffix)
+        write_scene(name, copies, instanced=instanced)
         written.append((name, copies * len(faces)))
     return written
 
 
 def main():
-    if len(sys.argv) < 2:
+    args = sys.argv[1:]
+    instanced = "--instanced" in args
+    args = [a for a in args if a != "--instanced"]
+    if not args:
         sys.exit(__doc__)
-    targets = [int(float(t)) for t in sys.argv[2:]] or [10**6, 10**7, 5 * 10**7]
-    for name, triangles in write(sys.argv[1], targets):
+    targets = [int(float(t)) for t in args[1:]] or [10**6, 10**7, 5 * 10**7]
+    for name, triangles in write(args[0], targets, instanced):
         print(f"{name}: {triangles} triangles")
 
 

@@ -1,7 +1,7 @@
 //! Scene description → the kernel's buffers: primitives in BVH order, BVH2 nodes (built by `obvhs`),
 //! per-triangle attributes, materials, textures, lights with power-proportional selection, and the
 //! table buffer (sampling distributions, texels, precomputed BSDF tables).
-use crate::scene::{Emitter, Geometry, IntegratorKind, Projection, SamplerKind, Scene};
+use crate::scene::{Emitter, Geometry, IntegratorKind, Projection, SamplerKind, Scene, Shape};
 use anyhow::{bail, Result};
 use caustic_kernel::bvh::STACK_SIZE;
 use caustic_kernel::camera::{Camera, CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, CAMERA_THIN_LENS};
@@ -36,6 +36,9 @@ pub struct SceneBuffers {
     /// Host only, for AOVs (empty without): per primitive (BVH order), Mitsuba's shape index
     /// (`aov::pass::shape_indices`) and its index within the shape.
     pub prim_origins: Vec<[u32; 2]>,
+    /// Primitives the scene's instances place, each group's counted once per instance (stored once
+    /// each, in `prims`; `crate::instancing`). 0 without instances.
+    pub placed_prims: u64,
 }
 
 impl SceneBuffers {
@@ -59,8 +62,8 @@ fn arr(v: Vec3) -> [f32; 3] {
 
 /// Lights with their power and the emitter (shape or emitter element) each belongs to, for selection.
 #[derive(Default)]
-struct LightList {
-    lights: Vec<Light>,
+pub(crate) struct LightList {
+    pub(crate) lights: Vec<Light>,
     powers: Vec<f32>,
     emitters: Vec<u32>,
     emitter_count: u32,
@@ -113,11 +116,14 @@ impl LightList {
 const DEFAULT_UVS: [Vec2; 3] = [Vec2::ZERO, Vec2::X, Vec2::Y];
 
 /// Primitive records and their attributes in scene order, and the area lights on them.
-fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<TriangleAttributes>) {
-    let light_tracing = scene.integrator.kind == IntegratorKind::Ptracer;
+pub(crate) fn primitives(
+    shapes: &[Shape],
+    light_tracing: bool,
+    lights: &mut LightList,
+) -> (Vec<Primitive>, Vec<TriangleAttributes>) {
     let mut prims = Vec::new();
     let mut attributes = Vec::new();
-    for shape in &scene.shapes {
+    for shape in shapes {
         // Mitsuba's `directionalarea` lights nothing that path tracing finds (its `eval` and light
         // samples are zero): outside light tracing its shape is an ordinary (black) surface.
         let emission = shape.emission.filter(|_| !shape.emission_directional || light_tracing);
@@ -215,7 +221,9 @@ fn primitives(scene: &Scene, lights: &mut LightList) -> (Vec<Primitive>, Vec<Tri
 }
 
 fn bounds(p: &Primitive) -> Aabb {
-    if p.kind == PRIM_SPHERE {
+    if p.kind == PRIM_INSTANCE {
+        Aabb::new(Vec3A::from(p.p0), Vec3A::from(p.p2))
+    } else if p.kind == PRIM_SPHERE {
         let c = Vec3A::from(p.p0);
         let r = Vec3A::splat(p.p1[0]);
         Aabb::new(c - r, c + r)
@@ -245,7 +253,7 @@ fn bvh_build_params() -> obvhs::BvhBuildParams {
 }
 
 /// Builds the BVH and reorders primitives (and what refers to them) into leaf order.
-fn build_bvh(
+pub(crate) fn build_bvh(
     prims: &mut Vec<Primitive>,
     attributes: &mut Vec<TriangleAttributes>,
     origins: &mut Vec<[u32; 2]>,
@@ -524,10 +532,11 @@ fn place_textures(scene: &Scene, tables: &mut Vec<f32>) -> Vec<Texture> {
 
 pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let mut light_list = LightList::default();
-    let (mut prims, mut attributes) = primitives(scene, &mut light_list);
+    let light_tracing = scene.integrator.kind == IntegratorKind::Ptracer;
+    let (mut prims, mut attributes) = primitives(&scene.shapes, light_tracing, &mut light_list);
     let mut prim_origins = if scene.aovs.is_some() { prim_origins(scene) } else { Vec::new() };
     let has_prims = !prims.is_empty();
-    let nodes = if has_prims {
+    let mut nodes = if has_prims {
         build_bvh(&mut prims, &mut attributes, &mut prim_origins, &mut light_list.lights)?
     } else {
         // A leaf holding only the placeholder primitive pushed below (a triangle of zero area that no
@@ -535,6 +544,10 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         // box is [-1, 1]³ to it, and traversal read children that do not exist (CPU panic, GPU garbage).
         vec![BvhNode { min: [0.0; 3], prim_count: 1, max: [0.0; 3], first: 0 }]
     };
+    // With instances, that BVH becomes one group under a BVH over the instances
+    // (`crate::instance_buffers`).
+    let instanced = crate::instance_buffers::two_level(&mut nodes, &mut prims, &mut attributes, scene)?;
+    let has_prims = !prims.is_empty();
     // The ray offset's absolute part (`caustic_kernel::shape::offset_origin`): Mitsuba's 1, or the
     // scene's half-diagonal where smaller, so that a scene scaled down keeps its image.
     let offset_floor = if has_prims {
@@ -547,6 +560,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     }
     let (mut tables, filter_signed) = crate::filter_table::filter_tables(&scene.sensor.filter, FILTER_BINS)?;
     let filter_cdf_offset = 0;
+    crate::instance_buffers::place_transforms(&mut prims, &mut tables, &scene.instancing);
     let mut textures = place_textures(scene, &mut tables);
     let env_light =
         emitter_lights(scene, &textures, &mut tables, &mut light_list, bounding_sphere(&nodes, has_prims));
@@ -630,7 +644,13 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         camera: camera(scene),
         ..Default::default()
     };
-    let features = scene_features(&materials, &lights, !textures.is_empty(), integrator_kind);
+    let mut features = scene_features(&materials, &lights, !textures.is_empty(), integrator_kind);
+    // Not a path to specialize but how the buffers are laid out: set exactly when they are two-level
+    // (also under `CAUSTIC_SPECIALIZE=0`).
+    features &= !features::INSTANCING;
+    if instanced {
+        features |= features::INSTANCING;
+    }
     if materials.is_empty() {
         materials.push(Material::default());
     }
@@ -646,6 +666,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         textures.push(Texture::default());
     }
     let aovs = scene.aovs.clone();
+    let placed_prims = crate::instance_buffers::placed_primitives(&scene.instancing);
     Ok(SceneBuffers {
         nodes,
         prims,
@@ -658,6 +679,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         features,
         aovs,
         prim_origins,
+        placed_prims,
     })
 }
 

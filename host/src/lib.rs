@@ -11,6 +11,8 @@ pub mod convergence;
 pub mod film;
 pub mod filter_table;
 pub mod image_io;
+pub mod instance_buffers;
+pub mod instancing;
 pub mod interrupt;
 pub mod memory;
 pub mod mesh;

@@ -454,8 +454,14 @@ fn bench_buffers(
     let buffers = buffers::build(&scene)?;
     // What a large scene costs before its first sample (the large-scene table in BENCHMARKS.md).
     let scene_bytes = caustic::memory::scene_bytes(&buffers);
+    // With instances: the primitives stored (each group's once, and the instances themselves) and
+    // the ones the instances place.
+    let placed = match buffers.placed_prims {
+        0 => String::new(),
+        n => format!(" stored, {n} placed by {} instances", scene.instancing.instances.len()),
+    };
     say!(
-        "scene: {} primitives | load {loaded:.2} s | buffers and BVH {:.2} s | {:.1} MiB of scene buffers",
+        "scene: {} primitives{placed} | load {loaded:.2} s | buffers and BVH {:.2} s | {:.1} MiB of scene buffers",
         buffers.prims.len(),
         start.elapsed().as_secs_f64() - loaded,
         scene_bytes as f64 / (1u64 << 20) as f64

@@ -204,6 +204,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
         integrator: Integrator::default(),
         materials,
         shapes,
+        instancing: Default::default(),
         emitters: vec![],
         textures: vec![],
         aovs: None,

@@ -309,6 +309,8 @@ pub struct Scene {
     pub integrator: Integrator,
     pub materials: Vec<Material>,
     pub shapes: Vec<Shape>,
+    /// Shapegroups stored once and the instances placing them (besides `shapes`).
+    pub instancing: crate::instancing::Instancing,
     pub emitters: Vec<Emitter>,
     pub textures: Vec<SceneTexture>,
     /// Mitsuba's `aov` or `depth` integrator: what is rendered beside (or instead of) the image.

@@ -437,7 +437,12 @@ fn disk_hits_uvs_and_normals_follow_mitsuba() {
             assert_eq!(hit.is_some(), r <= 1.0, "disk {k}: ({x}, {y}) at r = {r}");
             let Some((t, ab)) = hit else { continue };
             assert!((t - 1.0).abs() < 1e-6);
-            let sp = surface_point(prim, &buffers.attributes, &Hit { t, prim: 0, uv: ab }, &ray);
+            let sp = surface_point(
+                prim,
+                &buffers.attributes,
+                &Hit { t, prim: 0, uv: ab, instance: caustic_kernel::layout::NONE },
+                &ray,
+            );
             assert!((sp.p - Vec3::new(x, y, z)).length() < 1e-6, "hit point {}", sp.p);
             assert!((sp.ng - Vec3::Z).length() < 1e-6, "disk {k} faces {}", sp.ng);
             // φ runs from the disk's local x axis, which the mirror sends to −x.

@@ -2,19 +2,19 @@
 
 use crate::camera::Ray;
 use crate::glam::{Vec2, Vec3};
-use crate::layout::{BvhNode, Primitive};
+use crate::layout::{BvhNode, Primitive, SceneView, NONE};
 use crate::math::vec3;
 use crate::shape::{self, Hit};
 
 /// Distance reported for a missed box. (naga rejects infinite float literals, so no `f32::INFINITY`.)
-const MISS: f32 = f32::MAX;
+pub(crate) const MISS: f32 = f32::MAX;
 
 /// Depth of the traversal stack. The host rejects BVHs deeper than this, so it never overflows.
 pub const STACK_SIZE: usize = 48;
 
 /// Slab test; returns the entry distance, or `MISS` when the box is missed.
 #[inline]
-fn intersect_aabb(node: &BvhNode, origin: Vec3, inv_dir: Vec3, t_min: f32, t_max: f32) -> f32 {
+pub(crate) fn intersect_aabb(node: &BvhNode, origin: Vec3, inv_dir: Vec3, t_min: f32, t_max: f32) -> f32 {
     let t0 = (vec3(node.min) - origin) * inv_dir;
     let t1 = (vec3(node.max) - origin) * inv_dir;
     let near = t0.min(t1).max_element().max(t_min);
@@ -27,17 +27,29 @@ fn intersect_aabb(node: &BvhNode, origin: Vec3, inv_dir: Vec3, t_min: f32, t_max
     }
 }
 
-/// The BVH and primitive buffers of a scene.
+/// The BVH and primitive buffers of a scene, with the instances' transforms (in `tables`) and the
+/// scene's feature bits (`features::INSTANCING` picks the two-level traversal).
 #[derive(Clone, Copy)]
 pub struct Accel<'a> {
     pub nodes: &'a [BvhNode],
     pub prims: &'a [Primitive],
+    pub tables: &'a [f32],
+    pub features: u32,
 }
 
 impl<'a> Accel<'a> {
+    #[inline]
+    pub fn of(scene: &SceneView<'a>) -> Self {
+        Accel { nodes: scene.nodes, prims: scene.prims, tables: scene.tables, features: scene.features }
+    }
+
     /// Closest hit along the ray, or `None`. With `any_hit`, returns the first hit found (shadow rays).
-    /// Primitive `skip` (or none, with `NONE`) is ignored.
+    /// Primitive `skip` (or none, with `NONE`) is ignored. Scenes with instances take
+    /// `instancing::trace`; the rest, this one-level walk.
     pub fn trace(&self, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> {
+        if crate::features::has(self.features, crate::features::INSTANCING) {
+            return crate::instancing::trace(self, ray, any_hit, skip);
+        }
         let inv_dir = Vec3::ONE / ray.dir;
         let mut stack = [0u32; STACK_SIZE];
         let mut top = 0usize;
@@ -67,7 +79,7 @@ impl<'a> Accel<'a> {
                         best_prim = i;
                         best_uv = uv;
                         if any_hit {
-                            return Some(Hit { t, prim: i, uv });
+                            return Some(Hit { t, prim: i, uv, instance: NONE });
                         }
                     }
                     i += 1;
@@ -107,7 +119,7 @@ impl<'a> Accel<'a> {
         if best_prim == u32::MAX {
             None
         } else {
-            Some(Hit { t: best_t, prim: best_prim, uv: best_uv })
+            Some(Hit { t: best_t, prim: best_prim, uv: best_uv, instance: NONE })
         }
     }
 

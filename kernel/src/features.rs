@@ -6,8 +6,8 @@
 //! A cleared bit only ever removes a path the scene cannot reach.
 use crate::layout::{BSDF_BLEND, BSDF_PPLASTIC, BSDF_PRINCIPLED_THIN, LIGHT_ENVMAP, LIGHT_PROJECTOR};
 
-/// Every path compiled in: the specialization constant's default.
-pub const ALL: u32 = u32::MAX;
+/// Every path compiled in (every bit but `INSTANCING`, which says how the buffers are laid out).
+pub const ALL: u32 = !INSTANCING;
 
 /// The bit of BSDF model `kind` (`BSDF_*`, bits 0–11).
 #[inline]
@@ -55,6 +55,11 @@ pub const PPLASTIC: u32 = 1 << 27;
 /// Emitters whose emission a texture modulates (`Light::texture`: textured area lights, spots with
 /// an image, projectors' irradiance; `light::textured`).
 pub const TEXTURED_EMISSION: u32 = 1 << 28;
+/// Shapegroups stored once and placed by instances: traversal starts at a BVH over `PRIM_INSTANCE`
+/// primitives (`instancing`). Without it, the one-level walk of `bvh` runs as it always did. Unlike
+/// the other bits this one says how the buffers are laid out: the host sets it exactly when they are
+/// two-level.
+pub const INSTANCING: u32 = 1 << 29;
 
 // The kinds must fit their bit ranges.
 const _: () = assert!(

@@ -24,6 +24,11 @@ pub const PRIM_TRIANGLE: u32 = 0;
 pub const PRIM_SPHERE: u32 = 1;
 /// An analytic disk: centre `p0`, axes `p1` (u) and `p2` (v); it faces `u × v` (flipped by `PRIM_FLAG_FLIP`).
 pub const PRIM_DISK: u32 = 2;
+/// An instance of a shapegroup (`instancing`; only with `features::INSTANCING`): `p0` and `p2` are
+/// its world bounds' min and max (for the host), `material` the root of the group's BVH in the node
+/// buffer, `flags` where its transforms start in `tables` (`instancing::INSTANCE_FLOATS` floats), or
+/// `NONE` for the scene's own shapes, which need none.
+pub const PRIM_INSTANCE: u32 = 3;
 
 /// Primitive flag: interpolate the per-vertex normals in `ShadingNormals`.
 pub const PRIM_FLAG_SMOOTH: u32 = 1;

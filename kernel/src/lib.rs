@@ -17,6 +17,7 @@ pub mod camera;
 pub mod features;
 pub mod film;
 pub mod frame;
+pub mod instancing;
 pub mod integrator;
 pub mod layout;
 pub mod light;

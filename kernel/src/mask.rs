@@ -15,8 +15,8 @@ use crate::bvh::Accel;
 use crate::camera::Ray;
 use crate::features;
 use crate::glam::Vec2;
+use crate::instancing::surface_point;
 use crate::layout::{Material, SceneView, MATERIAL_MASK, NONE};
-use crate::shape::surface_point;
 use crate::spectrum::luminance;
 
 /// Most masks one path or shadow ray passes through: bounds the loops on the GPU. A path that meets
@@ -58,7 +58,7 @@ pub fn transmittance(scene: &SceneView, accel: &Accel, shadow: &Ray, target: u32
         if m.flags & MATERIAL_MASK == 0 {
             return 0.0;
         }
-        let sp = surface_point(&prim, scene.attributes, &hit, &r);
+        let sp = surface_point(scene, &prim, &hit, &r);
         t *= 1.0 - opacity(scene, &m, sp.uv);
         if t <= 0.0 {
             return 0.0;

@@ -49,6 +49,7 @@ fn furnace(inner: Material) -> Scene {
                 flip_normals: true,
             },
         ],
+        instancing: Default::default(),
         emitters: vec![],
         textures: vec![],
         aovs: None,

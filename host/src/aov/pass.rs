@@ -84,7 +84,7 @@ fn sample(
     let u_lens = sampler.next_2d();
     let ray = params.camera.generate_ray(film.pos, u_lens);
     let weight = if params.filter_signed != 0 { film.weight } else { 1.0 };
-    let accel = Accel { nodes: scene.nodes, prims: scene.prims };
+    let accel = Accel::of(&scene);
     values.fill(0.0);
     let found = accel.trace(&ray, false, NONE);
     let mut i = 0;

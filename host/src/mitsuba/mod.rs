@@ -50,8 +50,11 @@ pub(crate) struct Loader {
     textures: Vec<crate::scene::SceneTexture>,
     /// Named area emitters (`id`) defined at the top level, for shapes that `<ref>` them.
     named_area_emitters: HashMap<String, emitters::AreaEmission>,
-    /// `shapegroup`s by id: their shapes in the group's space, for `instance`s to place.
-    shape_groups: HashMap<String, Vec<crate::scene::Shape>>,
+    /// `shapegroup`s by id, as indices into `instancing.groups` (their triangles and disks, in the
+    /// group's space) and `group_spheres` (their spheres), for `instance`s to place.
+    shape_groups: HashMap<String, usize>,
+    group_spheres: Vec<Vec<crate::scene::Shape>>,
+    instancing: crate::instancing::Instancing,
     /// Named textures (`id`), as indices into `textures`.
     named_textures: HashMap<String, u32>,
     sensor: Option<crate::scene::Sensor>,
@@ -86,6 +89,8 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         named_textures: HashMap::new(),
         named_area_emitters: HashMap::new(),
         shape_groups: HashMap::new(),
+        group_spheres: Vec::new(),
+        instancing: Default::default(),
         sensor: None,
         integrator: None,
         aovs: None,
@@ -114,16 +119,22 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
     for line in loader.deviations.report(path) {
         loader.warn(&line);
     }
-    Ok(Scene {
+    let mut scene = Scene {
         sensor,
         integrator: loader.integrator.take().unwrap_or_default(),
         materials: loader.materials,
         shapes: loader.shapes,
+        instancing: loader.instancing,
         emitters: loader.emitters,
         textures: loader.textures,
         aovs: loader.aovs.take(),
         warnings: loader.warnings,
-    })
+    };
+    // The AOV pass reads a primitive's shape from the one-level list (`buffers::prim_origins`):
+    // with AOVs every instance is flattened.
+    let min_placements = if scene.aovs.is_some() { usize::MAX } else { crate::instancing::MIN_PLACEMENTS };
+    scene.flatten_instances(min_placements)?;
+    Ok(scene)
 }
 
 impl Loader {

@@ -1,13 +1,14 @@
 //! Shape plugins: `obj`, `ply`, `serialized` (meshes from files), `rectangle`, `cube`, `disk`,
 //! `cylinder` (tessellated; see `mesh::primitives`) and `sphere` (analytic); each with `to_world`,
 //! `flip_normals`, `face_normals`, a nested or referenced BSDF and an optional area emitter.
-//! `shapegroup` and `instance` (flattened) and `merge` hold other shapes.
+//! `shapegroup` and `instance` (stored once: `crate::instancing`) and `merge` hold other shapes.
 //! `flip_normals` travels to the kernel as a flag of the shape, which turns both the geometric and
 //! the shading normal around, as Mitsuba does.
 use super::emitters::AreaEmission;
 use super::props::Props;
 use super::xml::Loc;
 use super::Loader;
+use crate::instancing::{self, Instance};
 use crate::mesh::{self, primitives, Mesh};
 use crate::scene::{Geometry, Shape};
 use anyhow::{anyhow, bail, Result};
@@ -118,13 +119,18 @@ impl Loader {
             self.warn(&format!("{}: shapegroup '{id}' holds no shape", props.loc));
         }
         self.warn_unused(props);
-        self.shape_groups.insert(id, group);
+        // Spheres are placed as spheres (`load_instance`); the rest is stored once.
+        let (spheres, rest) = group.into_iter().partition(|s| matches!(s.geometry, Geometry::Sphere { .. }));
+        self.shape_groups.insert(id, self.instancing.groups.len());
+        self.instancing.groups.push(rest);
+        self.group_spheres.push(spheres);
         Ok(())
     }
 
     /// Mitsuba's `instance`: the shapes of the `shapegroup` it names by `<ref>`, placed by its
-    /// `to_world`. Instances are flattened: each one's geometry is transformed and stored, so memory
-    /// grows with their number (Mitsuba keeps one copy and transforms rays).
+    /// `to_world`. Its triangles and disks stay in the group, stored once (`crate::instancing`; the
+    /// loader flattens groups placed only once at the end); its spheres are placed as spheres (one
+    /// primitive each, no larger than an instance), and so is everything under a singular `to_world`.
     fn load_instance(&mut self, props: &Props) -> Result<()> {
         let to_world = props.transform("to_world")?;
         let refs = props.nested("ref");
@@ -132,25 +138,20 @@ impl Loader {
             bail!("{}: an instance names one shapegroup, by <ref id=\"...\"/>", props.loc)
         };
         let id = self.props(props.src, r.node)?.doc_attr_id()?;
-        let Some(group) = self.shape_groups.get(&id) else {
+        let Some(&group) = self.shape_groups.get(&id) else {
             bail!("{}: no shapegroup '{id}' is defined before this instance", r.loc)
         };
-        let mirrors = Mat3::from_mat4(to_world).determinant() < 0.0;
-        let mut placed = Vec::with_capacity(group.len());
-        for shape in group {
-            let geometry =
-                transformed(&shape.geometry, to_world).map_err(|e| anyhow!("{}: {e}", props.loc))?;
-            // Mitsuba moves an instance's normals by the inverse transpose, which keeps them facing
-            // out under a mirror; the moved vertices of a mesh and axes of a disk face in instead
-            // (measured against Mitsuba: 1% dark with a mirrored instance). So a mirror reverses a
-            // mesh's winding (`transformed`) and flips a disk.
-            let flip = mirrors && matches!(geometry, Geometry::Disk { .. });
-            placed.push(Shape {
-                origin: format!("{} (instanced at {})", shape.origin, props.loc),
-                geometry,
-                flip_normals: shape.flip_normals ^ flip,
-                ..shape.clone()
-            });
+        let origin = props.loc.to_string();
+        let mut placed = Vec::new();
+        for shape in &self.group_spheres[group] {
+            placed.push(instancing::placed(shape, to_world, &origin)?);
+        }
+        if instancing::invertible(to_world) {
+            self.instancing.instances.push(Instance { group, to_world, origin });
+        } else {
+            for shape in &self.instancing.groups[group] {
+                placed.push(instancing::placed(shape, to_world, &origin)?);
+            }
         }
         self.shapes.extend(placed);
         self.warn_unused(props);
@@ -284,39 +285,6 @@ fn tessellated_geometry(mut mesh: Mesh, to_world: Mat4) -> Geometry {
         mesh.reverse_winding();
     }
     triangle_geometry(mesh.transformed(to_world))
-}
-
-/// World-space geometry moved by `m` (an instance's `to_world`): vertices as points, shading normals
-/// by the inverse transpose, a mesh's winding reversed under a mirror; a sphere only under a uniform
-/// scale (as `load_shape` requires).
-fn transformed(geometry: &Geometry, m: Mat4) -> Result<Geometry> {
-    Ok(match geometry {
-        Geometry::Triangles { triangles, normals, uvs } => {
-            let normal_matrix = Mat3::from_mat4(m).inverse().transpose();
-            // Under a mirror, corners 1 and 2 trade places (with their normals and uvs).
-            let order = if Mat3::from_mat4(m).determinant() < 0.0 { [0, 2, 1] } else { [0, 1, 2] };
-            Geometry::Triangles {
-                triangles: triangles.iter().map(|t| order.map(|i| m.transform_point3(t[i]))).collect(),
-                normals: normals.as_ref().map(|ns| {
-                    ns.iter().map(|t| order.map(|i| (normal_matrix * t[i]).normalize_or_zero())).collect()
-                }),
-                uvs: uvs.as_ref().map(|us| us.iter().map(|t| order.map(|i| t[i])).collect()),
-            }
-        }
-        Geometry::Sphere { center, radius } => {
-            // A mirror keeps a sphere a sphere: compare the scales' magnitudes.
-            let scale = m.to_scale_rotation_translation().0.abs();
-            if (scale.x - scale.y).abs() > 1e-4 * scale.x || (scale.x - scale.z).abs() > 1e-4 * scale.x {
-                bail!("an instanced sphere may only be scaled uniformly");
-            }
-            Geometry::Sphere { center: m.transform_point3(*center), radius: radius * scale.x }
-        }
-        Geometry::Disk { center, u, v } => Geometry::Disk {
-            center: m.transform_point3(*center),
-            u: m.transform_vector3(*u),
-            v: m.transform_vector3(*v),
-        },
-    })
 }
 
 fn triangle_geometry(t: mesh::Triangles) -> Geometry {

@@ -10,9 +10,10 @@ use super::{disperse, shading_frame, NO_WAVELENGTH};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
+use crate::instancing::surface_point;
 use crate::layout::{FrameParams, SceneView, NONE};
 use crate::rng::Sampler;
-use crate::shape::{offset_origin, surface_point};
+use crate::shape::offset_origin;
 use crate::spectrum::Rgb;
 
 /// The dimension from which a dispersive surface draws its wavelength (past any sample's).
@@ -20,7 +21,7 @@ const DIM_WAVELENGTH: u32 = u32::MAX - 2;
 
 /// Radiance arriving along `camera_ray` after at most one bounce.
 pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mut Sampler) -> Rgb {
-    let accel = Accel { nodes: scene.nodes, prims: scene.prims };
+    let accel = Accel::of(scene);
     let counts = StrategyCounts { light: params.emitter_samples as f32, bsdf: params.bsdf_samples as f32 };
     let camera = PreviousVertex::camera(camera_ray.origin);
     sampler.set_dimension(DIM_FIRST_BOUNCE);
@@ -37,7 +38,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         None => return environment(scene, params, camera_ray.dir, &camera, counts),
     };
     let prim = scene.prims[hit.prim as usize];
-    let sp = surface_point(&prim, scene.attributes, &hit, &camera_ray);
+    let sp = surface_point(scene, &prim, &hit, &camera_ray);
     let mut emitted = Rgb::ZERO;
     if prim.light != NONE {
         emitted = area_emission(scene, &prim, &sp, camera_ray.dir, &camera, counts);
@@ -101,14 +102,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
                 if lit.light == NONE {
                     continue;
                 }
-                area_emission(
-                    scene,
-                    &lit,
-                    &surface_point(&lit, scene.attributes, &h, &ray),
-                    wi,
-                    &from,
-                    counts,
-                )
+                area_emission(scene, &lit, &surface_point(scene, &lit, &h, &ray), wi, &from, counts)
             }
         };
         result += bs.weight * le / counts.bsdf;

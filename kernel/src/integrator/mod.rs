@@ -172,7 +172,7 @@ pub fn shading_frame(
 ) -> Shading {
     let two_sided = material.flags & MATERIAL_TWO_SIDED != 0;
     if features::has(scene.features, features::NORMAL_MAPPING) && material.perturb != 0 {
-        let (dp_du, dp_dv) = crate::shape::tangents(prim, scene.attributes, hit, sp);
+        let (dp_du, dp_dv) = crate::instancing::tangents(scene, prim, hit, sp);
         let map = perturb::MapContext { textures: scene.textures, tables: scene.tables, dp_du, dp_dv };
         return perturb::shading_frame(material, &map, sp, dir);
     }

@@ -12,11 +12,12 @@ use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
 use crate::features;
+use crate::instancing::surface_point;
 use crate::layout::{FrameParams, SceneView, INTEGRATOR_IBPT, NONE};
 use crate::mask;
 use crate::math::{max_abs_component, max_component};
 use crate::rng::Sampler;
-use crate::shape::{offset_origin, surface_point};
+use crate::shape::offset_origin;
 use crate::spectrum::Rgb;
 
 const ONE_EACH: StrategyCounts = StrategyCounts::ONE_EACH;
@@ -40,7 +41,7 @@ pub fn li(
     sampler: &mut Sampler,
     pixel_density: f32,
 ) -> Rgb {
-    let accel = Accel { nodes: scene.nodes, prims: scene.prims };
+    let accel = Accel::of(scene);
     let mut ray = camera_ray;
     let mut throughput = Rgb::ONE;
     let mut result = Rgb::ZERO;
@@ -75,7 +76,7 @@ pub fn li(
             }
         };
         let prim = scene.prims[hit.prim as usize];
-        let sp = surface_point(&prim, scene.attributes, &hit, &ray);
+        let sp = surface_point(scene, &prim, &hit, &ray);
         if ibpt && depth == 0 {
             // Light tracing reaches the first vertex by connecting it to the camera.
             // Through the aperture point this camera ray left from (thin lens).

@@ -21,11 +21,12 @@ use crate::bvh::Accel;
 use crate::camera::{CameraConnection, Ray};
 use crate::film;
 use crate::glam::{Vec2, Vec3};
+use crate::instancing::surface_point;
 use crate::layout::{FrameParams, SceneView, INTEGRATOR_IBPT, NONE};
 use crate::light::emission;
 use crate::math::{max_abs_component, max_component, vec3};
 use crate::rng::Sampler;
-use crate::shape::{offset_origin, surface_point};
+use crate::shape::offset_origin;
 use crate::spectrum::Rgb;
 use crate::splat::{splat, AtomicWords};
 
@@ -173,7 +174,7 @@ fn lens_sample(sampler: &Sampler, dim: u32) -> Vec2 {
 /// the camera strategies under IBPT).
 pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &mut Sampler, words: &mut W) {
     let ibpt = params.integrator == INTEGRATOR_IBPT;
-    let accel = Accel { nodes: scene.nodes, prims: scene.prims };
+    let accel = Accel::of(scene);
     let camera = params.camera;
     let u_select = sampler.next_1d();
     let u_pos = sampler.next_2d();
@@ -227,7 +228,7 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
             None => break,
         };
         let prim = scene.prims[hit.prim as usize];
-        let sp = surface_point(&prim, scene.attributes, &hit, &ray);
+        let sp = surface_point(scene, &prim, &hit, &ray);
         let mut material = scene.materials[prim.material as usize];
         let dim_wavelength = bounce_dims + DIM_WAVELENGTH;
         beta *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);

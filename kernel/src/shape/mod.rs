@@ -11,12 +11,14 @@ use crate::layout::{
 use crate::math::vec3;
 
 /// The nearest hit found so far: distance, primitive and its parametric coordinates
-/// (barycentrics b1, b2 for triangles; unused for spheres).
+/// (barycentrics b1, b2 for triangles; unused for spheres), and the instance it lies in (where its
+/// transforms start in `tables`; `NONE` outside instances: `instancing`).
 #[derive(Clone, Copy)]
 pub struct Hit {
     pub t: f32,
     pub prim: u32,
     pub uv: Vec2,
+    pub instance: u32,
 }
 
 /// Intersects one primitive, returning `(t, uv)` inside the ray's interval.
