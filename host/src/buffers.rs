@@ -645,11 +645,15 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         ..Default::default()
     };
     let mut features = scene_features(&materials, &lights, !textures.is_empty(), integrator_kind);
-    // Not a path to specialize but how the buffers are laid out: set exactly when they are two-level
-    // (also under `CAUSTIC_SPECIALIZE=0`).
-    features &= !features::INSTANCING;
+    // Not paths to specialize but how the buffers are laid out and which per-pixel loop runs: set
+    // exactly when they are two-level and when the integrator is `direct` (also under
+    // `CAUSTIC_SPECIALIZE=0`).
+    features &= !(features::INSTANCING | features::DIRECT_INTEGRATOR);
     if instanced {
         features |= features::INSTANCING;
+    }
+    if integrator_kind == INTEGRATOR_DIRECT {
+        features |= features::DIRECT_INTEGRATOR;
     }
     if materials.is_empty() {
         materials.push(Material::default());
@@ -748,9 +752,6 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     }
     if textures {
         f |= features::TEXTURES;
-    }
-    if integrator == INTEGRATOR_DIRECT {
-        f |= features::DIRECT_INTEGRATOR;
     }
     if caustic_kernel::integrator::splats(integrator) {
         f |= features::LIGHT_TRACER;

@@ -6,8 +6,9 @@
 //! A cleared bit only ever removes a path the scene cannot reach.
 use crate::layout::{BSDF_BLEND, BSDF_PPLASTIC, BSDF_PRINCIPLED_THIN, LIGHT_ENVMAP, LIGHT_PROJECTOR};
 
-/// Every path compiled in (every bit but `INSTANCING`, which says how the buffers are laid out).
-pub const ALL: u32 = !INSTANCING;
+/// Every path compiled in: every bit but `INSTANCING` and `DIRECT_INTEGRATOR`, which say how the
+/// buffers are laid out and which per-pixel loop runs.
+pub const ALL: u32 = !(INSTANCING | DIRECT_INTEGRATOR);
 
 /// The bit of BSDF model `kind` (`BSDF_*`, bits 0–11).
 #[inline]
@@ -36,7 +37,10 @@ pub const fn light(kind: u32) -> u32 {
 
 /// Bitmap and checkerboard textures on BSDF parameters.
 pub const TEXTURES: u32 = 1 << 20;
-/// Mitsuba's `direct` integrator.
+/// Mitsuba's `direct` integrator. Set exactly when the scene's integrator is `direct`, also under
+/// `CAUSTIC_SPECIALIZE=0`: `render_pixel` chooses its loop by this bit alone, so that a kernel
+/// specialised for `direct` leaves out the path tracer's loop, and one for `path` the direct one (the
+/// regenerating path loop's registers cost `integrator_direct_both` 23% on the H100, session 9).
 pub const DIRECT_INTEGRATOR: u32 = 1 << 21;
 /// Light tracing (`ptracer`).
 pub const LIGHT_TRACER: u32 = 1 << 22;

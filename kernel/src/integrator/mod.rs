@@ -13,8 +13,7 @@ use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
 pub use crate::layout::SceneView;
 use crate::layout::{
-    FrameParams, Material, PixelAccum, Primitive, INTEGRATOR_DIRECT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER,
-    MATERIAL_TWO_SIDED,
+    FrameParams, Material, PixelAccum, Primitive, INTEGRATOR_IBPT, INTEGRATOR_PTRACER, MATERIAL_TWO_SIDED,
 };
 use crate::math::is_finite3;
 use crate::rng::Sampler;
@@ -53,31 +52,54 @@ fn camera_sample(
 /// Renders `params.sample_count` samples of one pixel (row-major index).
 pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> PixelSums {
     let mut sums = PixelSums { sum: Rgb::ZERO, sum_sq: Rgb::ZERO, invalid: 0 };
-    let k = crate::layout::square_scale(params);
+    if params.sample_count == 0 {
+        return sums;
+    }
+    // The bit, not `params.integrator`: it is set exactly for `direct` (`features::DIRECT_INTEGRATOR`).
+    if features::has(scene.features, features::DIRECT_INTEGRATOR) {
+        let mut s = 0;
+        while s < params.sample_count {
+            let (mut sampler, film_sample, ray) =
+                camera_sample(params, scene.tables, pixel, params.sample_base + s);
+            let l = direct::li(scene, params, ray, &mut sampler);
+            add_sample(&mut sums, params, l, film_sample.weight);
+            s += 1;
+        }
+        return sums;
+    }
+    // One loop of bounces over all the pixel's samples rather than a loop of paths: a path that ends
+    // hands its lane the next sample at once (`path::CameraPath`). Each sample draws the random
+    // numbers it drew as a path of its own, and the sums add in the same order.
     let mut s = 0;
-    while s < params.sample_count {
-        let (mut sampler, film_sample, ray) =
-            camera_sample(params, scene.tables, pixel, params.sample_base + s);
-        let mut l = if params.integrator == INTEGRATOR_DIRECT
-            && features::has(scene.features, features::DIRECT_INTEGRATOR)
-        {
-            direct::li(scene, params, ray, &mut sampler)
-        } else {
-            path::li(scene, params, ray, &mut sampler, 1.0)
-        };
-        if params.filter_signed != 0 {
-            l *= film_sample.weight;
+    let (mut sampler, mut film_sample, ray) = camera_sample(params, scene.tables, pixel, params.sample_base);
+    let mut path = path::CameraPath::new(ray, 1.0);
+    loop {
+        if !path.bounce(scene, params, &mut sampler) {
+            add_sample(&mut sums, params, path.result, film_sample.weight);
+            s += 1;
+            if s >= params.sample_count {
+                break;
+            }
+            let ray;
+            (sampler, film_sample, ray) = camera_sample(params, scene.tables, pixel, params.sample_base + s);
+            path = path::CameraPath::new(ray, 1.0);
         }
-        if is_finite3(l) {
-            sums.sum += l;
-            let scaled = l * k;
-            sums.sum_sq += scaled * scaled;
-        } else {
-            sums.invalid += 1;
-        }
-        s += 1;
     }
     sums
+}
+
+/// Adds one sample's estimate (times its filter weight under a signed filter) to the sums, or counts
+/// it as invalid.
+#[inline]
+fn add_sample(sums: &mut PixelSums, params: &FrameParams, l: Rgb, filter_weight: f32) {
+    let l = if params.filter_signed != 0 { l * filter_weight } else { l };
+    if is_finite3(l) {
+        sums.sum += l;
+        let scaled = l * crate::layout::square_scale(params);
+        sums.sum_sq += scaled * scaled;
+    } else {
+        sums.invalid += 1;
+    }
 }
 
 /// Light paths draw their random numbers from a stream of their own, so that under IBPT the camera

@@ -12,6 +12,7 @@ use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
 use crate::features;
+use crate::glam::Vec3;
 use crate::instancing::surface_point;
 use crate::layout::{FrameParams, SceneView, INTEGRATOR_IBPT, NONE};
 use crate::mask;
@@ -41,24 +42,62 @@ pub fn li(
     sampler: &mut Sampler,
     pixel_density: f32,
 ) -> Rgb {
-    let accel = Accel::of(scene);
-    let mut ray = camera_ray;
-    let mut throughput = Rgb::ONE;
-    let mut result = Rgb::ZERO;
-    let mut eta_scale = 1.0f32;
-    let mut depth = 0u32;
-    let mut prev = PreviousVertex::camera(ray.origin);
-    // IBPT: MIS against the light path that connects to the camera (`LightTracingMis`).
-    let ibpt = params.integrator == INTEGRATOR_IBPT && features::has(scene.features, features::LIGHT_TRACER);
-    let mut lt_scale = 0.0f32;
-    let mut lambda = NO_WAVELENGTH;
-    // Throughputs only turn negative in a channel in scenes with dispersion (`wavelength`); the others
-    // keep the plain maximum: they run the instructions they ran before dispersion existed.
-    let dispersion = features::has(scene.features, features::DISPERSION);
-    let magnitude = |t: Rgb| if dispersion { max_abs_component(t) } else { max_component(t) };
-    let mut mask_passes = 0u32;
+    let mut path = CameraPath::new(camera_ray, pixel_density);
+    while path.bounce(scene, params, sampler) {}
+    path.result
+}
 
-    loop {
+/// A camera path in flight: what one vertex hands the next. `li` follows one to its end;
+/// `render_pixel` runs a pixel's samples as one loop of bounces, so that on the GPU a lane whose
+/// path ended starts its next sample at once instead of idling until the longest path of its warp
+/// ends (path regeneration).
+#[derive(Clone, Copy)]
+pub struct CameraPath {
+    ray: Ray,
+    /// Where the camera ray left the lens (IBPT connects the first vertex through it).
+    lens_origin: Vec3,
+    pixel_density: f32,
+    throughput: Rgb,
+    /// The radiance gathered so far: the path's estimate once `bounce` returns false.
+    pub result: Rgb,
+    eta_scale: f32,
+    depth: u32,
+    prev: PreviousVertex,
+    /// IBPT: MIS against the light path that connects to the camera (`LightTracingMis`).
+    lt_scale: f32,
+    lambda: f32,
+    mask_passes: u32,
+}
+
+impl CameraPath {
+    pub fn new(camera_ray: Ray, pixel_density: f32) -> Self {
+        CameraPath {
+            ray: camera_ray,
+            lens_origin: camera_ray.origin,
+            pixel_density,
+            throughput: Rgb::ONE,
+            result: Rgb::ZERO,
+            eta_scale: 1.0,
+            depth: 0,
+            prev: PreviousVertex::camera(camera_ray.origin),
+            lt_scale: 0.0,
+            lambda: NO_WAVELENGTH,
+            mask_passes: 0,
+        }
+    }
+
+    /// Follows the path to its next vertex and scatters there; false once the path has ended.
+    pub fn bounce(&mut self, scene: &SceneView, params: &FrameParams, sampler: &mut Sampler) -> bool {
+        let accel = Accel::of(scene);
+        let ibpt =
+            params.integrator == INTEGRATOR_IBPT && features::has(scene.features, features::LIGHT_TRACER);
+        // Throughputs only turn negative in a channel in scenes with dispersion (`wavelength`); the
+        // others keep the plain maximum: they run the instructions they ran before dispersion existed.
+        let dispersion = features::has(scene.features, features::DISPERSION);
+        let magnitude = |t: Rgb| if dispersion { max_abs_component(t) } else { max_component(t) };
+        let depth = self.depth;
+        let ray = self.ray;
+
         sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
         let visible_emitter = !(depth == 0 && params.hide_emitters != 0);
         let found = if visible_emitter {
@@ -70,9 +109,10 @@ pub fn li(
             Some(h) => h,
             None => {
                 if visible_emitter {
-                    result += throughput * environment(scene, params, ray.dir, &prev, ONE_EACH);
+                    self.result +=
+                        self.throughput * environment(scene, params, ray.dir, &self.prev, ONE_EACH);
                 }
-                break;
+                return false;
             }
         };
         let prim = scene.prims[hit.prim as usize];
@@ -80,43 +120,43 @@ pub fn li(
         if ibpt && depth == 0 {
             // Light tracing reaches the first vertex by connecting it to the camera.
             // Through the aperture point this camera ray left from (thin lens).
-            let lens = params.camera.lens_point_of(camera_ray.origin);
-            lt_scale = match params.camera.connect_through(sp.p, lens) {
+            let lens = params.camera.lens_point_of(self.lens_origin);
+            self.lt_scale = match params.camera.connect_through(sp.p, lens) {
                 Some(c) => {
-                    mis::camera_scale_at_first_vertex(c.importance * pixel_density, film_scale(params))
+                    mis::camera_scale_at_first_vertex(c.importance * self.pixel_density, film_scale(params))
                 }
                 None => 0.0,
             };
-            prev.lt = lt_scale;
+            self.prev.lt = self.lt_scale;
         }
 
         if prim.light != NONE {
-            result += throughput * area_emission(scene, &prim, &sp, ray.dir, &prev, ONE_EACH);
+            self.result += self.throughput * area_emission(scene, &prim, &sp, ray.dir, &self.prev, ONE_EACH);
         }
 
         // A mask lets the path through with probability 1 − opacity: straight on, no bounce (`mask`).
         let mut material = scene.materials[prim.material as usize];
         if mask::is_mask(scene, &material) {
-            sampler.set_dimension(DIM_MASK + mask_passes);
+            sampler.set_dimension(DIM_MASK + self.mask_passes);
             let u_mask = sampler.next_1d();
             sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
-            mask_passes += 1;
+            self.mask_passes += 1;
             if u_mask >= mask::opacity(scene, &material, sp.uv) {
-                if mask_passes >= mask::MAX_PASSES {
-                    break;
+                if self.mask_passes >= mask::MAX_PASSES {
+                    return false;
                 }
                 let origin = offset_origin(&sp, sp.ng, ray.dir);
-                ray = Ray { origin, dir: ray.dir, t_min: 0.0, t_max: f32::MAX };
-                continue;
+                self.ray = Ray { origin, dir: ray.dir, t_min: 0.0, t_max: f32::MAX };
+                return true;
             }
         }
 
         if params.max_depth != NONE && depth + 1 >= params.max_depth {
-            break;
+            return false;
         }
 
         let dim_wavelength = DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE + DIM_WAVELENGTH;
-        throughput *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);
+        self.throughput *= disperse(scene, params, &mut material, &mut self.lambda, sampler, dim_wavelength);
         let shading = shading_frame(scene, &material, &prim, &hit, &sp, ray.dir);
         let (frame, ng, wo) = (shading.frame(), shading.ng, shading.wo);
         let bsdf = Bsdf::new(
@@ -132,7 +172,7 @@ pub fn li(
         let u_select = sampler.next_1d();
         let u_light = sampler.next_2d();
         if bsdf.flags().has_smooth() {
-            result += throughput
+            self.result += self.throughput
                 * next_event(
                     scene,
                     params,
@@ -145,7 +185,7 @@ pub fn li(
                     u_select,
                     u_light,
                     ONE_EACH,
-                    LightTracingMis { scale: lt_scale, first_vertex: depth == 0 },
+                    LightTracingMis { scale: self.lt_scale, first_vertex: depth == 0 },
                 );
         }
 
@@ -154,13 +194,13 @@ pub fn li(
         let u_dir = sampler.next_2d();
         let bs = bsdf.sample(wo, u_lobe, u_dir, TransportMode::Radiance);
         if bs.pdf <= 0.0 {
-            break;
+            return false;
         }
         // No test of `wi` against the geometric normal: Mitsuba's integrators have none, and the
         // images must agree (the ray offset below still starts on the side `wi` leaves by).
         let wi = frame.to_world(bs.wi);
-        throughput *= bs.weight;
-        eta_scale *= bs.eta * bs.eta;
+        self.throughput *= bs.weight;
+        self.eta_scale *= bs.eta * bs.eta;
         if ibpt {
             // Light tracing samples this vertex's direction back towards the camera (not at the first
             // vertex, which it connects); a Dirac lobe has the same probability both ways, and at the
@@ -168,23 +208,24 @@ pub fn li(
             let first = depth == 0;
             let reverse =
                 if bs.delta || first { 1.0 } else { bsdf.pdf(bs.wi, wo, TransportMode::Importance) };
-            lt_scale = mis::camera_scale_after(lt_scale, first, bs.delta, bs.pdf, reverse);
+            self.lt_scale = mis::camera_scale_after(self.lt_scale, first, bs.delta, bs.pdf, reverse);
         }
-        prev = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta, lt: lt_scale };
-        ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
-        depth += 1;
+        self.prev = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta, lt: self.lt_scale };
+        self.ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
+        self.depth = depth + 1;
 
         let u_rr = sampler.next_1d();
-        if depth >= params.rr_depth {
-            let q = (magnitude(throughput) * eta_scale).min(0.95);
+        if self.depth >= params.rr_depth {
+            let q = (magnitude(self.throughput) * self.eta_scale).min(0.95);
             if u_rr >= q {
-                break;
+                return false;
             }
-            throughput /= q;
+            self.throughput /= q;
         }
-        if magnitude(throughput) <= 0.0 {
-            break;
+        // (Not `> 0.0`: a NaN throughput goes on, as it always has, and is counted invalid at the end.)
+        if magnitude(self.throughput) <= 0.0 {
+            return false;
         }
+        true
     }
-    result
 }
