@@ -153,7 +153,7 @@ pub(crate) fn primitives(
             attributes.push(attr);
         };
         match &shape.geometry {
-            Geometry::Triangles { triangles, normals, uvs } => {
+            Geometry::Triangles { triangles, normals, uvs, .. } => {
                 for (i, t) in triangles.iter().enumerate() {
                     // In f64: squaring an f32 cross product overflows for edges over about 1e9.5.
                     let area = crate::mesh::triangle_area(*t) as f32;

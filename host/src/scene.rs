@@ -207,6 +207,9 @@ pub enum Geometry {
         triangles: Vec<[Vec3; 3]>,
         normals: Option<Vec<[Vec3; 3]>>,
         uvs: Option<Vec<[Vec2; 3]>>,
+        /// Named attributes at the corners (`mesh_attribute` textures read them): only those the
+        /// shape's textures use are kept, so most shapes have none.
+        attributes: Vec<crate::mesh::CornerAttribute>,
     },
     Sphere {
         center: Vec3,
