@@ -292,12 +292,27 @@ pub enum Emitter {
 pub struct SceneTexture {
     pub record: Texture,
     pub texels: Vec<f32>,
+    /// A `mesh_attribute` texture's attribute name and where it was defined.
+    pub mesh_attribute: Option<MeshAttributeRef>,
+}
+
+/// What a `mesh_attribute` texture reads: the attribute `name` of the shape it is on; `origin` is
+/// the texture's file and line.
+#[derive(Clone, Debug)]
+pub struct MeshAttributeRef {
+    pub name: String,
+    pub origin: String,
 }
 
 impl SceneTexture {
-    /// The mean colour (a checkerboard's: of its two colours).
+    /// The mean colour (a checkerboard's: of its two colours). A mesh attribute's values are the
+    /// shape's, unknown to the texture: its `scale` times a grey ½ stands in, which only sets sampling
+    /// weights (the loader refuses it wherever a mean would replace the texture).
     pub fn mean(&self) -> [f32; 3] {
         let r = &self.record;
+        if self.mesh_attribute.is_some() {
+            return [0.5 * r.color0[0]; 3];
+        }
         if r.kind == caustic_kernel::layout::TEXTURE_CHECKERBOARD {
             return [0, 1, 2].map(|c| 0.5 * (r.color0[c] + r.color1[c]));
         }

@@ -78,9 +78,7 @@ impl Loader {
         }
         let (material, emission) = self.shape_bsdf_and_emitter(props)?;
         // A mesh keeps only the attributes its textures read: most scenes store and upload none.
-        if let Geometry::Triangles { attributes, .. } = &mut geometry {
-            attributes.clear();
-        }
+        self.keep_read_attributes(props, &mut geometry, material)?;
         self.warn_unused(props);
         let emission_directional = emission.is_some_and(|e| e.directional);
         let (emission, emission_texture) = (emission.map(|e| e.radiance), emission.and_then(|e| e.texture));

@@ -124,7 +124,7 @@ pub fn li(
             scene.materials,
             scene.textures,
             scene.tables,
-            sp.uv,
+            sp.lookup(),
             scene.features,
             shading.tilt,
         );
