@@ -1,5 +1,6 @@
 //! Texture plugins: `bitmap` (image files, sRGB-decoded unless `raw`, bilinear or nearest, wrap modes)
-//! and `checkerboard`; both with `to_uv`. Also colour and scalar parameters that may be a texture.
+//! and `checkerboard`, both with `to_uv`, and `mesh_attribute` (where it may be read:
+//! `mesh_attributes`). Also colour and scalar parameters that may be a texture.
 use super::props::{Entry, Props};
 use super::spectrum::SpectrumUse;
 use super::Loader;
