@@ -63,11 +63,18 @@ fn mesh_attribute(t: &Texture, tables: &[f32], at: Lookup) -> Rgb {
         return Vec3::ZERO;
     }
     let base = (at.mesh_attributes + t.offset) as usize;
-    let corner =
-        |k: usize| Vec3::new(tables[base + 3 * k], tables[base + 3 * k + 1], tables[base + 3 * k + 2]);
     let b0 = 1.0 - at.bary.x - at.bary.y;
-    let value = corner(0) * b0 + corner(1) * at.bary.x + corner(2) * at.bary.y;
+    let value = rgb_at(tables, base) * b0
+        + rgb_at(tables, base + 3) * at.bary.x
+        + rgb_at(tables, base + 6) * at.bary.y;
     value * vec3([t.color0[0], t.color0[1], t.color0[2]])
+}
+
+/// Three floats of `tables` from `i`. (A function, not a closure: naga rejected the SPIR-V of a
+/// closure capturing `tables`, "Type '&[f32]' is invalid".)
+#[inline]
+fn rgb_at(tables: &[f32], i: usize) -> Rgb {
+    Vec3::new(tables[i], tables[i + 1], tables[i + 2])
 }
 
 /// A texture's value at texture coordinates `uv` (a `mesh_attribute` has none: black; the host
