@@ -120,6 +120,7 @@ pub(crate) fn primitives(
     shapes: &[Shape],
     light_tracing: bool,
     lights: &mut LightList,
+    blocks: &mut crate::attribute_buffers::AttributeBlocks,
 ) -> (Vec<Primitive>, Vec<TriangleAttributes>) {
     let mut prims = Vec::new();
     let mut attributes = Vec::new();
@@ -153,7 +154,7 @@ pub(crate) fn primitives(
             attributes.push(attr);
         };
         match &shape.geometry {
-            Geometry::Triangles { triangles, normals, uvs } => {
+            Geometry::Triangles { triangles, normals, uvs, attributes: corner_attributes } => {
                 for (i, t) in triangles.iter().enumerate() {
                     // In f64: squaring an f32 cross product overflows for edges over about 1e9.5.
                     let area = crate::mesh::triangle_area(*t) as f32;
@@ -163,6 +164,7 @@ pub(crate) fn primitives(
                         uv0: uv[0].to_array(),
                         uv1: uv[1].to_array(),
                         uv2: uv[2].to_array(),
+                        mesh_attributes: blocks.push_triangle(corner_attributes, i),
                         ..Default::default()
                     };
                     if let Some(c) = normals {
@@ -517,13 +519,20 @@ pub fn camera(scene: &Scene) -> Camera {
 }
 
 /// Places each texture's texels in the table buffer.
-fn place_textures(scene: &Scene, tables: &mut Vec<f32>) -> Vec<Texture> {
+fn place_textures(
+    scene: &Scene,
+    tables: &mut Vec<f32>,
+    blocks: &crate::attribute_buffers::AttributeBlocks,
+) -> Vec<Texture> {
     scene
         .textures
         .iter()
         .map(|t| {
             let mut record = t.record;
-            record.offset = tables.len() as u32;
+            record.offset = match &t.mesh_attribute {
+                Some(a) => blocks.slot_offset(&a.name),
+                None => tables.len() as u32,
+            };
             tables.extend_from_slice(&t.texels);
             record
         })
@@ -533,7 +542,8 @@ fn place_textures(scene: &Scene, tables: &mut Vec<f32>) -> Vec<Texture> {
 pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let mut light_list = LightList::default();
     let light_tracing = scene.integrator.kind == IntegratorKind::Ptracer;
-    let (mut prims, mut attributes) = primitives(&scene.shapes, light_tracing, &mut light_list);
+    let mut blocks = crate::attribute_buffers::AttributeBlocks::of(scene);
+    let (mut prims, mut attributes) = primitives(&scene.shapes, light_tracing, &mut light_list, &mut blocks);
     let mut prim_origins = if scene.aovs.is_some() { prim_origins(scene) } else { Vec::new() };
     let has_prims = !prims.is_empty();
     let mut nodes = if has_prims {
@@ -546,7 +556,8 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     };
     // With instances, that BVH becomes one group under a BVH over the instances
     // (`crate::instance_buffers`).
-    let instanced = crate::instance_buffers::two_level(&mut nodes, &mut prims, &mut attributes, scene)?;
+    let instanced =
+        crate::instance_buffers::two_level(&mut nodes, &mut prims, &mut attributes, scene, &mut blocks)?;
     let has_prims = !prims.is_empty();
     // The ray offset's absolute part (`caustic_kernel::shape::offset_origin`): Mitsuba's 1, or the
     // scene's half-diagonal where smaller, so that a scene scaled down keeps its image.
@@ -561,7 +572,8 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let (mut tables, filter_signed) = crate::filter_table::filter_tables(&scene.sensor.filter, FILTER_BINS)?;
     let filter_cdf_offset = 0;
     crate::instance_buffers::place_transforms(&mut prims, &mut tables, &scene.instancing);
-    let mut textures = place_textures(scene, &mut tables);
+    let mut textures = place_textures(scene, &mut tables, &blocks);
+    blocks.place(&mut tables, &mut attributes);
     let env_light =
         emitter_lights(scene, &textures, &mut tables, &mut light_list, bounding_sphere(&nodes, has_prims));
 
@@ -645,6 +657,9 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         ..Default::default()
     };
     let mut features = scene_features(&materials, &lights, !textures.is_empty(), integrator_kind);
+    if crate::attribute_buffers::used(scene) {
+        features |= features::MESH_ATTRIBUTES;
+    }
     // Not paths to specialize but how the buffers are laid out and which per-pixel loop runs: set
     // exactly when they are two-level and when the integrator is `direct` (also under
     // `CAUSTIC_SPECIALIZE=0`).

@@ -21,8 +21,9 @@ pub(crate) fn two_level(
     prims: &mut Vec<Primitive>,
     attributes: &mut Vec<TriangleAttributes>,
     scene: &Scene,
+    blocks: &mut crate::attribute_buffers::AttributeBlocks,
 ) -> Result<bool> {
-    let groups = build_groups(&scene.instancing)?;
+    let groups = build_groups(&scene.instancing, blocks)?;
     let mut tops = proxies(&scene.instancing, &groups);
     if tops.is_empty() {
         return Ok(false);
@@ -72,7 +73,10 @@ pub(crate) struct Blas {
 
 /// The BLAS of every group that holds anything (`None` for an empty one, whose instances are left
 /// out: they place nothing).
-fn build_groups(instancing: &Instancing) -> Result<Vec<Option<Blas>>> {
+fn build_groups(
+    instancing: &Instancing,
+    blocks: &mut crate::attribute_buffers::AttributeBlocks,
+) -> Result<Vec<Option<Blas>>> {
     let mut used = vec![false; instancing.groups.len()];
     for i in &instancing.instances {
         used[i.group] = true;
@@ -87,7 +91,7 @@ fn build_groups(instancing: &Instancing) -> Result<Vec<Option<Blas>>> {
             }
             // Groups hold no emitters (the loader refuses them), so no light refers to these.
             let mut lights = LightList::default();
-            let (mut prims, mut attributes) = primitives(shapes, false, &mut lights);
+            let (mut prims, mut attributes) = primitives(shapes, false, &mut lights, blocks);
             let nodes = build_bvh(&mut prims, &mut attributes, &mut Vec::new(), &mut lights.lights)?;
             Ok(Some(Blas { nodes, prims, attributes }))
         })

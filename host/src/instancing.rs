@@ -93,7 +93,7 @@ pub fn placed(shape: &Shape, to_world: Mat4, origin: &str) -> Result<Shape> {
 /// scale (as `load_shape` requires).
 pub fn transformed(geometry: &Geometry, m: Mat4) -> Result<Geometry> {
     Ok(match geometry {
-        Geometry::Triangles { triangles, normals, uvs } => {
+        Geometry::Triangles { triangles, normals, uvs, attributes } => {
             let normal_matrix = Mat3::from_mat4(m).inverse().transpose();
             // Under a mirror, corners 1 and 2 trade places (with their normals and uvs).
             let order = if Mat3::from_mat4(m).determinant() < 0.0 { [0, 2, 1] } else { [0, 1, 2] };
@@ -103,6 +103,13 @@ pub fn transformed(geometry: &Geometry, m: Mat4) -> Result<Geometry> {
                     ns.iter().map(|t| order.map(|i| (normal_matrix * t[i]).normalize_or_zero())).collect()
                 }),
                 uvs: uvs.as_ref().map(|us| us.iter().map(|t| order.map(|i| t[i])).collect()),
+                attributes: attributes
+                    .iter()
+                    .map(|a| crate::mesh::CornerAttribute {
+                        corners: a.corners.iter().map(|t| order.map(|i| t[i])).collect(),
+                        ..a.clone()
+                    })
+                    .collect(),
             }
         }
         Geometry::Sphere { center, radius } => {

@@ -2,6 +2,7 @@
 //! backends, render sessions, progressive rendering, image output, comparison and error-against-time
 //! curves. No shading code lives here: all of it is in `caustic-kernel`.
 pub mod aov;
+mod attribute_buffers;
 pub mod backend;
 pub mod batch;
 pub mod buffers;

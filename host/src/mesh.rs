@@ -5,11 +5,14 @@ use anyhow::{bail, Result};
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use std::path::Path;
 
+mod attributes;
 mod obj;
 mod ply;
+mod ply_attributes;
 pub mod primitives;
 mod serialized;
 
+pub use attributes::{Attribute, CornerAttribute};
 pub use obj::load_obj;
 pub use ply::load_ply;
 pub use serialized::load_serialized;
@@ -28,6 +31,8 @@ pub struct Mesh {
     pub uvs: Option<Vec<Vec2>>,
     /// MTL material of each triangle (index into the loader's materials); empty when not loaded.
     pub triangle_materials: Vec<Option<usize>>,
+    /// Named per-vertex and per-face attributes (`vertex_color`, `face_<name>`...; PLY files only).
+    pub attributes: Vec<Attribute>,
 }
 
 /// A mesh flattened into independent triangles, ready for `scene::Geometry::Triangles`. All three
@@ -37,6 +42,8 @@ pub struct Triangles {
     pub triangles: Vec<[Vec3; 3]>,
     pub normals: Option<Vec<[Vec3; 3]>>,
     pub uvs: Option<Vec<[Vec2; 3]>>,
+    /// The mesh's attributes at each triangle's corners (empty for most meshes).
+    pub attributes: Vec<CornerAttribute>,
 }
 
 impl Mesh {
@@ -66,6 +73,21 @@ impl Mesh {
                 "{}: the texture coordinate list does not match the {vertex_count} vertices",
                 path.display()
             );
+        }
+        for a in &self.attributes {
+            let count = if a.per_face() { self.triangle_count() } else { vertex_count };
+            if a.values.len() != count * a.dim {
+                bail!(
+                    "{}: attribute '{}' does not have {} values of {} channels",
+                    path.display(),
+                    a.name,
+                    count,
+                    a.dim
+                );
+            }
+            if let Some(v) = a.values.iter().find(|v| !v.is_finite()) {
+                bail!("{}: attribute '{}' has a non-finite value {v}", path.display(), a.name);
+            }
         }
         if let Some(p) = self.positions.iter().find(|p| !p.is_finite()) {
             bail!("{}: the mesh has a non-finite vertex position {p}", path.display());
@@ -131,8 +153,13 @@ impl Mesh {
             triangles: Vec::with_capacity(self.triangle_count()),
             normals: self.normals.as_ref().map(|_| Vec::with_capacity(self.triangle_count())),
             uvs: self.uvs.as_ref().map(|_| Vec::with_capacity(self.triangle_count())),
+            attributes: self
+                .attributes
+                .iter()
+                .map(|a| CornerAttribute { name: a.name.clone(), dim: a.dim, corners: Vec::new() })
+                .collect(),
         };
-        for tri in self.indices.chunks_exact(3) {
+        for (k, tri) in self.indices.chunks_exact(3).enumerate() {
             let corner = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
             let p = corner.map(|i| self.positions[i]);
             let Some(face_normal) = face_normal(p) else { continue };
@@ -150,6 +177,9 @@ impl Mesh {
             }
             if let (Some(out), Some(uvs)) = (out.uvs.as_mut(), self.uvs.as_ref()) {
                 out.push(corner.map(|i| uvs[i]));
+            }
+            for (out, a) in out.attributes.iter_mut().zip(&self.attributes) {
+                out.corners.push(if a.per_face() { [a.value(k); 3] } else { corner.map(|i| a.value(i)) });
             }
         }
         out

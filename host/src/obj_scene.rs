@@ -117,7 +117,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
     }
     let mut with_normals = mesh.clone();
     with_normals.ensure_normals();
-    let mesh::Triangles { triangles, normals, uvs } = with_normals.transformed(glam::Mat4::IDENTITY);
+    let mesh::Triangles { triangles, normals, uvs, .. } = with_normals.transformed(glam::Mat4::IDENTITY);
     // One shape per material, so that emission stays per shape.
     let mut shapes = Vec::new();
     // The triangles `transformed` keeps, by the same test, to index its output.
@@ -139,6 +139,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
                 triangles: select.iter().map(|&i| triangles[i]).collect(),
                 normals: normals.as_ref().map(|n| select.iter().map(|&i| n[i]).collect()),
                 uvs: uvs.as_ref().map(|u| select.iter().map(|&i| u[i]).collect()),
+                attributes: Vec::new(),
             },
             material: slot as u32,
             emission: *emission,

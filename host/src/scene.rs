@@ -207,6 +207,9 @@ pub enum Geometry {
         triangles: Vec<[Vec3; 3]>,
         normals: Option<Vec<[Vec3; 3]>>,
         uvs: Option<Vec<[Vec2; 3]>>,
+        /// Named attributes at the corners (`mesh_attribute` textures read them): only those the
+        /// shape's textures use are kept, so most shapes have none.
+        attributes: Vec<crate::mesh::CornerAttribute>,
     },
     Sphere {
         center: Vec3,
@@ -289,12 +292,27 @@ pub enum Emitter {
 pub struct SceneTexture {
     pub record: Texture,
     pub texels: Vec<f32>,
+    /// A `mesh_attribute` texture's attribute name and where it was defined.
+    pub mesh_attribute: Option<MeshAttributeRef>,
+}
+
+/// What a `mesh_attribute` texture reads: the attribute `name` of the shape it is on; `origin` is
+/// the texture's file and line.
+#[derive(Clone, Debug)]
+pub struct MeshAttributeRef {
+    pub name: String,
+    pub origin: String,
 }
 
 impl SceneTexture {
-    /// The mean colour (a checkerboard's: of its two colours).
+    /// The mean colour (a checkerboard's: of its two colours). A mesh attribute's values are the
+    /// shape's, unknown to the texture: its `scale` times a grey ½ stands in, which only sets sampling
+    /// weights (the loader refuses it wherever a mean would replace the texture).
     pub fn mean(&self) -> [f32; 3] {
         let r = &self.record;
+        if self.mesh_attribute.is_some() {
+            return [0.5 * r.color0[0]; 3];
+        }
         if r.kind == caustic_kernel::layout::TEXTURE_CHECKERBOARD {
             return [0, 1, 2].map(|c| 0.5 * (r.color0[c] + r.color1[c]));
         }

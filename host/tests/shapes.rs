@@ -43,7 +43,7 @@ struct Soup<'a> {
 
 fn soup(shape: &Shape) -> Soup<'_> {
     match &shape.geometry {
-        Geometry::Triangles { triangles, normals, uvs } => {
+        Geometry::Triangles { triangles, normals, uvs, .. } => {
             Soup { triangles, normals: normals.as_deref(), uvs: uvs.as_deref() }
         }
         other => panic!("expected triangles, got {other:?}"),
@@ -151,7 +151,7 @@ fn header_count(path: &Path, element: &str) -> usize {
 #[test]
 fn ply_bunny_matches_its_header() {
     let Some(path) = shared_mesh("bunny.ply") else { return };
-    let mesh = mesh::load_ply(&path).unwrap();
+    let mesh = mesh::load_ply(&path).unwrap().0;
     assert_eq!(mesh.positions.len(), header_count(&path, "vertex"));
     // Every face of the bunny is a triangle.
     assert_eq!(mesh.triangle_count(), header_count(&path, "face"));
@@ -164,7 +164,7 @@ fn ply_bunny_matches_its_header() {
 fn ascii_ply_meshes_load() {
     for name in ["sphere.ply", "teapot.ply"] {
         let Some(path) = shared_mesh(name) else { return };
-        let mesh = mesh::load_ply(&path).unwrap();
+        let mesh = mesh::load_ply(&path).unwrap().0;
         assert_eq!(mesh.positions.len(), header_count(&path, "vertex"), "{name}");
         assert_eq!(mesh.triangle_count(), header_count(&path, "face"), "{name}");
     }
@@ -257,7 +257,7 @@ fn ascii_and_binary_ply_give_identical_meshes() {
     ] {
         let path = dir.join(name);
         std::fs::write(&path, bytes).unwrap();
-        meshes.push((name, mesh::load_ply(&path).unwrap_or_else(|e| panic!("{e:#}"))));
+        meshes.push((name, mesh::load_ply(&path).unwrap_or_else(|e| panic!("{e:#}")).0));
     }
     let (_, ascii) = &meshes[0];
     assert_eq!(ascii.positions.len(), 5);

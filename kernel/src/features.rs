@@ -64,6 +64,9 @@ pub const TEXTURED_EMISSION: u32 = 1 << 28;
 /// the other bits this one says how the buffers are laid out: the host sets it exactly when they are
 /// two-level.
 pub const INSTANCING: u32 = 1 << 29;
+/// `mesh_attribute` textures on BSDF parameters: lookups read the hit triangle's attributes
+/// (`texture::eval_at`).
+pub const MESH_ATTRIBUTES: u32 = 1 << 30;
 
 // The kinds must fit their bit ranges.
 const _: () = assert!(

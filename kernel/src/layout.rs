@@ -70,8 +70,16 @@ pub struct TriangleAttributes {
     pub uv0: [f32; 2],
     pub uv1: [f32; 2],
     pub uv2: [f32; 2],
-    pub _p3: [f32; 2],
+    /// Where the triangle's mesh attributes start in `tables` (`MESH_ATTRIBUTE_FLOATS` per attribute
+    /// the scene's `mesh_attribute` textures read), `NONE` where it has none; read only with
+    /// `features::MESH_ATTRIBUTES`.
+    pub mesh_attributes: u32,
+    pub _p3: u32,
 }
+
+/// Floats of one mesh attribute of one triangle in `tables`: linear RGB at corners 0, 1, 2 (a
+/// one-channel attribute repeated as a grey; a face attribute the same at all three).
+pub const MESH_ATTRIBUTE_FLOATS: u32 = 9;
 
 pub const BSDF_DIFFUSE: u32 = 0;
 pub const BSDF_PHONG: u32 = 1;
@@ -269,6 +277,10 @@ impl Default for Light {
 
 pub const TEXTURE_BITMAP: u32 = 0;
 pub const TEXTURE_CHECKERBOARD: u32 = 1;
+/// Mitsuba's `mesh_attribute`: the hit triangle's attribute, interpolated by the hit's barycentrics;
+/// `offset` is the attribute's place in each triangle's block (`TriangleAttributes::mesh_attributes`),
+/// `color0` the `scale`.
+pub const TEXTURE_MESH_ATTRIBUTE: u32 = 2;
 
 /// Texture flag: nearest-neighbour lookups (bilinear otherwise).
 pub const TEXTURE_NEAREST: u32 = 1;

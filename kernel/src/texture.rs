@@ -1,26 +1,88 @@
-//! Textures (Mitsuba `bitmap` and `checkerboard`), evaluated at a surface's texture coordinates.
+//! Textures (Mitsuba `bitmap` and `checkerboard`), evaluated at a surface's texture coordinates, and
+//! `mesh_attribute`, interpolated over the hit triangle (`eval_at`, behind `features::MESH_ATTRIBUTES`).
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
+use crate::features;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::{
-    Texture, NONE, TEXTURE_CHECKERBOARD, TEXTURE_NEAREST, TEXTURE_WRAP_CLAMP, TEXTURE_WRAP_MIRROR,
-    TEXTURE_WRAP_SHIFT,
+    Texture, NONE, TEXTURE_BITMAP, TEXTURE_CHECKERBOARD, TEXTURE_MESH_ATTRIBUTE, TEXTURE_NEAREST,
+    TEXTURE_WRAP_CLAMP, TEXTURE_WRAP_MIRROR, TEXTURE_WRAP_SHIFT,
 };
 use crate::math::vec3;
 use crate::spectrum::{luminance, Rgb};
 
-/// `constant` where `texture` is `NONE`, else the texture's value at `uv`.
-#[inline]
-pub fn eval_or(textures: &[Texture], tables: &[f32], texture: u32, constant: Rgb, uv: Vec2) -> Rgb {
-    if texture == NONE {
-        constant
-    } else {
-        eval(&textures[texture as usize], tables, uv)
+/// Where a texture is looked up: the surface's uv and, on a triangle, its mesh attributes' place in
+/// `tables` (`NONE` without) and the hit's barycentrics b1, b2 (`SurfacePoint::lookup`).
+#[derive(Clone, Copy)]
+pub struct Lookup {
+    pub uv: Vec2,
+    pub mesh_attributes: u32,
+    pub bary: Vec2,
+}
+
+impl Lookup {
+    /// A lookup by uv alone (no mesh attributes).
+    pub fn uv(uv: Vec2) -> Lookup {
+        Lookup { uv, mesh_attributes: NONE, bary: Vec2::ZERO }
     }
 }
 
+/// `constant` where `texture` is `NONE`, else the texture's value at `at` (`eval_at`).
+#[inline]
+pub fn eval_or_at(
+    textures: &[Texture],
+    tables: &[f32],
+    texture: u32,
+    constant: Rgb,
+    at: Lookup,
+    features: u32,
+) -> Rgb {
+    if texture == NONE {
+        constant
+    } else {
+        eval_at(&textures[texture as usize], tables, at, features)
+    }
+}
+
+/// A texture's value at `at`: a `mesh_attribute` reads the hit triangle's attribute (in a scene
+/// with `features::MESH_ATTRIBUTES`), any other texture its uv (`eval`).
+#[inline]
+pub fn eval_at(t: &Texture, tables: &[f32], at: Lookup, features: u32) -> Rgb {
+    if features::has(features, features::MESH_ATTRIBUTES) && t.kind == TEXTURE_MESH_ATTRIBUTE {
+        mesh_attribute(t, tables, at)
+    } else {
+        eval(t, tables, at.uv)
+    }
+}
+
+/// Mitsuba's `mesh_attribute`: the corners' values blended by the barycentrics, times `scale`; black
+/// off a triangle with attributes (the host refuses such scenes, so this is never reached there).
+fn mesh_attribute(t: &Texture, tables: &[f32], at: Lookup) -> Rgb {
+    if at.mesh_attributes == NONE {
+        return Vec3::ZERO;
+    }
+    let base = (at.mesh_attributes + t.offset) as usize;
+    let b0 = 1.0 - at.bary.x - at.bary.y;
+    let value = rgb_at(tables, base) * b0
+        + rgb_at(tables, base + 3) * at.bary.x
+        + rgb_at(tables, base + 6) * at.bary.y;
+    value * vec3([t.color0[0], t.color0[1], t.color0[2]])
+}
+
+/// Three floats of `tables` from `i`. (A function, not a closure: naga rejected the SPIR-V of a
+/// closure capturing `tables`, "Type '&[f32]' is invalid".)
+#[inline]
+fn rgb_at(tables: &[f32], i: usize) -> Rgb {
+    Vec3::new(tables[i], tables[i + 1], tables[i + 2])
+}
+
+/// A texture's value at texture coordinates `uv` (a `mesh_attribute` has none: black; the host
+/// allows it only where `eval_at` looks it up).
 pub fn eval(t: &Texture, tables: &[f32], uv: Vec2) -> Rgb {
+    if t.kind == TEXTURE_MESH_ATTRIBUTE {
+        return Vec3::ZERO;
+    }
     let uv = apply_to_uv(t, uv);
     if t.kind == TEXTURE_CHECKERBOARD {
         checkerboard(t, uv)
@@ -102,7 +164,7 @@ fn bitmap_bilinear(t: &Texture, tables: &[f32], uv: Vec2) -> Rgb {
 /// the gradient back to the surface's uv). Nearest filtering and checkerboards are piecewise constant:
 /// zero (Mitsuba's nearest lookup returns zero; its checkerboard has no gradient at all).
 pub fn luminance_gradient(t: &Texture, tables: &[f32], uv: Vec2) -> Vec2 {
-    if t.kind == TEXTURE_CHECKERBOARD || t.flags & TEXTURE_NEAREST != 0 {
+    if t.kind != TEXTURE_BITMAP || t.flags & TEXTURE_NEAREST != 0 {
         return Vec2::ZERO;
     }
     let st = apply_to_uv(t, uv);

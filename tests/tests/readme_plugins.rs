@@ -25,7 +25,8 @@ fn readme_rows() -> Vec<(String, String, String)> {
 /// without files.
 fn scene_using(family: &str, plugin: &str) -> Option<String> {
     Some(match (family, plugin) {
-        (_, "obj" | "ply" | "serialized" | "envmap" | "bitmap") => return None,
+        // (`mesh_attribute` reads a mesh file's attributes: `mesh_attribute.rs`.)
+        (_, "obj" | "ply" | "serialized" | "envmap" | "bitmap" | "mesh_attribute") => return None,
         ("spectrum", _) if plugin != "regular" && plugin != "blackbody" && plugin != "rawconstant" => {
             return None
         }

@@ -647,7 +647,8 @@ fn box_with_meshed_floor(triangles: usize) -> Scene {
     }
     let floor = &mut scene.shapes[0];
     assert!(!matches!(floor.geometry, Geometry::Sphere { .. }), "the first shape is the floor");
-    floor.geometry = Geometry::Triangles { triangles: grid, normals: None, uvs: None };
+    floor.geometry =
+        Geometry::Triangles { triangles: grid, normals: None, uvs: None, attributes: Vec::new() };
     scene
 }
 

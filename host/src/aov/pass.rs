@@ -182,7 +182,7 @@ fn albedo(
         scene.materials,
         scene.textures,
         scene.tables,
-        sp.uv,
+        sp.lookup(),
         scene.features,
         caustic_kernel::bsdf::perturb::Perturbation::NONE,
     );

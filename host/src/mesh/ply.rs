@@ -1,23 +1,28 @@
 //! Stanford PLY (ASCII and binary of either byte order) through `ply-rs-bw`, read as Mitsuba's `ply`
 //! plugin reads it: positions `x y z`, normals `nx ny nz` when all three are present, texture
 //! coordinates from the first complete pair of `u v`, `texture_u texture_v` or `s t` (not flipped),
-//! faces from a `vertex_indices` or `vertex_index` list. Other elements and properties are skipped.
-use super::Mesh;
+//! faces from a `vertex_indices` or `vertex_index` list; other properties of vertices and faces
+//! become named attributes as Mitsuba names them (`ply_attributes`). Other elements are skipped.
+use super::ply_attributes::{self, Field, Group};
+use super::{Attribute, Mesh};
 use anyhow::{anyhow, bail, Context, Result};
 use glam::{Vec2, Vec3};
 use ply_rs_bw::parser::{Parser, Reader};
-use ply_rs_bw::ply::{ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult};
+use ply_rs_bw::ply::{
+    ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult, PropertyType, ScalarType,
+};
 use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 
-/// Loads a PLY mesh; every failure names the file.
-pub fn load_ply(path: &Path) -> Result<Mesh> {
+/// Loads a PLY mesh and the warnings its attributes raised; every failure and warning names the file.
+pub fn load_ply(path: &Path) -> Result<(Mesh, Vec<String>)> {
     let file = File::open(path).with_context(|| format!("cannot open PLY mesh {}", path.display()))?;
-    let mesh =
-        read_ply(BufReader::new(file)).map_err(|e| anyhow!("{}: invalid PLY file: {e:#}", path.display()))?;
+    let mut warnings = Vec::new();
+    let mesh = read_ply(BufReader::new(file), &mut warnings)
+        .map_err(|e| anyhow!("{}: invalid PLY file: {e:#}", path.display()))?;
     mesh.validate(path)?;
-    Ok(mesh)
+    Ok((mesh, warnings.into_iter().map(|w| format!("{}: {w}", path.display())).collect()))
 }
 
 /// Where each vertex property we read is kept in `PlyVertex::values`.
@@ -27,19 +32,22 @@ const NORMAL_SLOT: usize = 3;
 /// First slot of each texture coordinate naming, in Mitsuba's order of preference.
 const UV_SLOTS: [usize; 3] = [6, 8, 10];
 
-/// One vertex as read: the properties named in `VERTEX_SLOTS`, missing ones left at zero.
+/// One vertex as read: the properties named in `VERTEX_SLOTS`, missing ones left at zero, and the
+/// others in header order (lists as NaN: they are never attributes).
 struct PlyVertex {
     values: [f32; VERTEX_SLOTS.len()],
+    extras: Vec<f32>,
 }
 
 impl PropertyAccess for PlyVertex {
     fn new() -> Self {
-        PlyVertex { values: [0.0; VERTEX_SLOTS.len()] }
+        PlyVertex { values: [0.0; VERTEX_SLOTS.len()], extras: Vec::new() }
     }
 
     fn set_property(&mut self, name: &str, property: Property) -> PropertyAccessResult {
         let Some(slot) = VERTEX_SLOTS.iter().position(|&s| s == name) else {
-            return PropertyAccessResult::Ignored;
+            self.extras.push(scalar(&property).map_or(f32::NAN, |v| v as f32));
+            return PropertyAccessResult::Set;
         };
         match scalar(&property) {
             Some(value) => {
@@ -51,19 +59,22 @@ impl PropertyAccess for PlyVertex {
     }
 }
 
-/// One face: its corner indices (a negative index becomes `NEGATIVE_INDEX`).
+/// One face: its corner indices (a negative index becomes `NEGATIVE_INDEX`) and its other
+/// properties in header order (as `PlyVertex::extras`).
 struct PlyFace {
     corners: Vec<u32>,
+    extras: Vec<f32>,
 }
 
 impl PropertyAccess for PlyFace {
     fn new() -> Self {
-        PlyFace { corners: Vec::new() }
+        PlyFace { corners: Vec::new(), extras: Vec::new() }
     }
 
     fn set_property(&mut self, name: &str, property: Property) -> PropertyAccessResult {
-        if name != "vertex_indices" && name != "vertex_index" {
-            return PropertyAccessResult::Ignored;
+        if !FACE_INDICES.contains(&name) {
+            self.extras.push(scalar(&property).map_or(f32::NAN, |v| v as f32));
+            return PropertyAccessResult::Set;
         }
         match index_list(property) {
             Some(corners) => {
@@ -73,6 +84,21 @@ impl PropertyAccess for PlyFace {
             None => PropertyAccessResult::UnsupportedType,
         }
     }
+}
+
+const FACE_INDICES: [&str; 2] = ["vertex_indices", "vertex_index"];
+
+/// The properties of `def` other than `known`, in header order (what `extras` holds).
+fn extra_fields(def: &ElementDef, known: &[&str]) -> Vec<Field> {
+    let integer = |t: &ScalarType| !matches!(t, ScalarType::Float | ScalarType::Double);
+    def.properties
+        .values()
+        .filter(|p| !known.contains(&p.name.as_str()))
+        .map(|p| match &p.data_type {
+            PropertyType::Scalar(t) => Field { name: p.name.clone(), integer: integer(t), list: false },
+            PropertyType::List(_, t) => Field { name: p.name.clone(), integer: integer(t), list: true },
+        })
+        .collect()
 }
 
 /// An element we do not use, parsed only to move past it.
@@ -136,7 +162,7 @@ impl VertexLayout {
     }
 }
 
-fn read_ply<R: BufRead>(input: R) -> Result<Mesh> {
+fn read_ply<R: BufRead>(input: R, warnings: &mut Vec<String>) -> Result<Mesh> {
     let mut reader = Reader::new(input);
     let header = Parser::<Skipped>::new().read_header(&mut reader)?;
     let Some(vertex_def) = header.elements.get("vertex") else { bail!("no 'vertex' element") };
@@ -147,6 +173,10 @@ fn read_ply<R: BufRead>(input: R) -> Result<Mesh> {
     {
         bail!("the face element has neither a 'vertex_indices' nor a 'vertex_index' list");
     }
+    let vertex_fields = extra_fields(vertex_def, &VERTEX_SLOTS);
+    let face_fields = extra_fields(face_def, &FACE_INDICES);
+    let vertex_groups = ply_attributes::groups("vertex_", &vertex_fields, warnings)?;
+    let face_groups = ply_attributes::groups("face_", &face_fields, warnings)?;
     // Elements follow in header order, each through the parser of its own element type.
     let (mut vertices, mut faces) = (Vec::new(), Vec::new());
     for (name, def) in &header.elements {
@@ -164,7 +194,31 @@ fn read_ply<R: BufRead>(input: R) -> Result<Mesh> {
     if let Some(k) = faces.iter().position(|f| f.corners.contains(&NEGATIVE_INDEX)) {
         bail!("face {k} has a negative vertex index");
     }
-    Ok(assemble(&vertices, &faces, &layout))
+    let mut mesh = assemble(&vertices, &faces, &layout);
+    let extras = |e: &[f32], expected: usize| e.len() == expected;
+    if !vertices.iter().all(|v| extras(&v.extras, vertex_fields.len()))
+        || !faces.iter().all(|f| extras(&f.extras, face_fields.len()))
+    {
+        bail!("an element's properties were not all read");
+    }
+    for g in vertex_groups {
+        mesh.attributes.push(attribute(g, vertices.iter().map(|v| v.extras.as_slice())));
+    }
+    // A polygon's value goes to each triangle of its fan (as many as `assemble` made).
+    let fanned = faces
+        .iter()
+        .filter(|f| f.corners.len() >= 3)
+        .flat_map(|f| std::iter::repeat_n(f.extras.as_slice(), f.corners.len() - 2));
+    for g in face_groups {
+        mesh.attributes.push(attribute(g, fanned.clone()));
+    }
+    Ok(mesh)
+}
+
+/// The values of attribute `group` from each record's `extras`.
+fn attribute<'a>(group: Group, records: impl Iterator<Item = &'a [f32]>) -> Attribute {
+    let values = records.flat_map(|e| group.fields.iter().map(move |&i| e[i])).collect();
+    Attribute { name: group.name, dim: group.fields.len(), values }
 }
 
 /// Data after the last element means the header's counts do not describe the file (Mitsuba
@@ -213,7 +267,7 @@ mod tests {
                     property uchar red\nproperty float s\nproperty float t\nelement face 1\nproperty uchar flags\n\
                     property list uchar int vertex_index\nend_header\n\
                     0 0 0 255 0 0\n1 0 0 255 1 0\n1 1 0 255 1 1\n0 1 0 255 0 1\n7 4 0 1 2 3\n";
-        let mesh = read_ply(text.as_bytes()).unwrap();
+        let mesh = read_ply(text.as_bytes(), &mut Vec::new()).unwrap();
         assert_eq!(mesh.indices, vec![0, 1, 2, 0, 2, 3]);
         assert!(mesh.normals.is_none());
         assert_eq!(mesh.uvs.unwrap()[2], Vec2::new(1.0, 1.0));
@@ -225,6 +279,92 @@ mod tests {
                           property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n"
             .to_vec();
         bytes.extend([0u8; 12 + 3]);
-        assert!(read_ply(bytes.as_slice()).unwrap_err().to_string().contains("after the last element"));
+        assert!(read_ply(bytes.as_slice(), &mut Vec::new())
+            .unwrap_err()
+            .to_string()
+            .contains("after the last element"));
+    }
+
+    fn attribute<'a>(mesh: &'a Mesh, name: &str) -> &'a Attribute {
+        mesh.attributes.iter().find(|a| a.name == name).unwrap_or_else(|| panic!("no {name}"))
+    }
+
+    #[test]
+    fn uchar_colours_are_read_as_numbers_and_float_ones_as_they_are() {
+        // Mitsuba 3.9.1 reads uchar 255 as 255.0 (its `attribute_buffer`), and warns.
+        let header = |ty: &str| {
+            format!(
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+                 property {ty} red\nproperty {ty} green\nproperty {ty} blue\nelement face 1\n\
+                 property list uchar int vertex_indices\nend_header\n"
+            )
+        };
+        let mut warnings = Vec::new();
+        let text = header("uchar") + "0 0 0 255 128 0\n1 0 0 0 255 64\n0 1 0 10 20 30\n3 0 1 2\n";
+        let mesh = read_ply(text.as_bytes(), &mut warnings).unwrap();
+        let color = attribute(&mesh, "vertex_color");
+        assert_eq!(
+            (color.dim, color.values.as_slice()),
+            (3, &[255.0, 128.0, 0.0, 0.0, 255.0, 64.0, 10.0, 20.0, 30.0][..])
+        );
+        assert!(warnings.iter().any(|w| w.contains("integer")), "{warnings:?}");
+        let mut warnings = Vec::new();
+        let text = header("float") + "0 0 0 1 0.5 0\n1 0 0 0 1 0.25\n0 1 0 0.1 0.2 0.3\n3 0 1 2\n";
+        let mesh = read_ply(text.as_bytes(), &mut warnings).unwrap();
+        assert_eq!(attribute(&mesh, "vertex_color").values[..3], [1.0, 0.5, 0.0]);
+        assert!(warnings.is_empty(), "{warnings:?}");
+    }
+
+    #[test]
+    fn alpha_makes_four_channels_and_face_attributes_follow_the_fan() {
+        let text =
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+                    property float r\nproperty float g\nproperty float b\nproperty float a\nelement face 2\n\
+                    property list uchar int vertex_indices\nproperty float wear_x\nproperty float tint_r\n\
+                    property float tint_g\nproperty float tint_b\nend_header\n\
+                    0 0 0 1 0 0 1\n1 0 0 0 1 0 1\n1 1 0 0 0 1 1\n0 1 0 1 1 1 0.5\n\
+                    4 0 1 2 3 0.25 1 2 3\n3 0 2 3 0.75 4 5 6\n";
+        let mesh = read_ply(text.as_bytes(), &mut Vec::new()).unwrap();
+        assert_eq!(mesh.triangle_count(), 3);
+        assert_eq!(attribute(&mesh, "vertex_color").dim, 4);
+        assert_eq!(attribute(&mesh, "vertex_color").values[12..], [1.0, 1.0, 1.0, 0.5]);
+        // The quad's value on both triangles of its fan, then the triangle's.
+        assert_eq!(attribute(&mesh, "face_wear").values, [0.25, 0.25, 0.75]);
+        assert_eq!(attribute(&mesh, "face_tint_color").values, [1.0, 2.0, 3.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+        // Spread over the corners: the face value at all three, the vertex values per corner.
+        let t = mesh.triangles();
+        let wear = t.attributes.iter().find(|a| a.name == "face_wear").unwrap();
+        assert_eq!(wear.corners[2], [[0.75, 0.0, 0.0, 0.0]; 3]);
+        let color = t.attributes.iter().find(|a| a.name == "vertex_color").unwrap();
+        assert_eq!(color.corners[1], [[1.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0], [1.0, 1.0, 1.0, 0.5]]);
+    }
+
+    #[test]
+    fn a_mesh_without_extra_properties_has_no_attributes() {
+        let text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+                    property float nx\nproperty float ny\nproperty float nz\nproperty float u\nproperty float v\n\
+                    element face 1\nproperty list uchar int vertex_indices\nend_header\n\
+                    0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n0 1 0 0 0 1 0 1\n3 0 1 2\n";
+        let mesh = read_ply(text.as_bytes(), &mut Vec::new()).unwrap();
+        assert!(mesh.attributes.is_empty());
+        assert!(mesh.triangles().attributes.is_empty());
+    }
+
+    #[test]
+    fn binary_attributes_are_read() {
+        let mut bytes = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+                          property float z\nproperty uchar w_0\nelement face 1\nproperty list uchar int vertex_indices\n\
+                          property uchar k_0\nend_header\n"
+            .to_vec();
+        for (p, w) in [([0f32, 0.0, 0.0], 64u8), ([1.0, 0.0, 0.0], 128), ([0.0, 1.0, 0.0], 255)] {
+            p.iter().for_each(|c| bytes.extend(c.to_le_bytes()));
+            bytes.push(w);
+        }
+        bytes.push(3);
+        [0i32, 1, 2].iter().for_each(|i| bytes.extend(i.to_le_bytes()));
+        bytes.push(128);
+        let mesh = read_ply(bytes.as_slice(), &mut Vec::new()).unwrap();
+        assert_eq!(attribute(&mesh, "vertex_w").values, [64.0, 128.0, 255.0]);
+        assert_eq!(attribute(&mesh, "face_k").values, [128.0]);
     }
 }

@@ -29,7 +29,7 @@ pub fn rectangle() -> Mesh {
         indices: vec![1, 2, 0, 1, 3, 2],
         normals: None,
         uvs: Some(uvs),
-        triangle_materials: Vec::new(),
+        ..Default::default()
     }
 }
 

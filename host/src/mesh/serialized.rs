@@ -173,7 +173,7 @@ fn read_mesh_stream(stream: &mut impl Read, version: u16, max_unpacked: u64) -> 
     // Reading on to the end of the stream lets zlib check its checksum, which catches damage that
     // still happens to decompress.
     std::io::copy(stream, &mut std::io::sink())?;
-    Ok(Mesh { positions, indices, normals, uvs, triangle_materials: Vec::new() })
+    Ok(Mesh { positions, indices, normals, uvs, triangle_materials: Vec::new(), attributes: Vec::new() })
 }
 
 fn read_stream_layout(stream: &mut impl Read, version: u16) -> Result<StreamLayout> {

@@ -166,7 +166,7 @@ impl Loader {
         let mis_compensation = props.boolean("mis_compensation", false)?;
         let record =
             Texture { kind: TEXTURE_BITMAP, width: image.width, height: image.height, ..Default::default() };
-        self.textures.push(SceneTexture { record, texels: image.rgb });
+        self.textures.push(SceneTexture { record, texels: image.rgb, mesh_attribute: None });
         Ok(Emitter::Envmap { texture: self.textures.len() as u32 - 1, to_world, scale, mis_compensation })
     }
 }

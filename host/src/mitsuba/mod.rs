@@ -17,6 +17,7 @@ mod deviations;
 mod emitters;
 mod integrators;
 pub mod ior;
+mod mesh_attributes;
 mod pplastic;
 mod props;
 mod sensors;
@@ -69,6 +70,8 @@ pub(crate) struct Loader {
     ids: HashMap<String, Loc>,
     /// Where the scene's integrator was given: Mitsuba refuses a second.
     integrator_loc: Option<Loc>,
+    /// `mesh_attribute` textures a parameter asked for (`mesh_attributes`).
+    attribute_requests: Vec<u32>,
 }
 
 /// Loads a Mitsuba 3 scene; `defines` are `-D name=value` overrides.
@@ -99,8 +102,10 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         include_depth: 0,
         ids: HashMap::new(),
         integrator_loc: None,
+        attribute_requests: Vec::new(),
     };
     loader.load_file(path)?;
+    loader.check_attribute_uses()?;
     let sensor = match loader.sensor.take() {
         Some(s) => s,
         None => {

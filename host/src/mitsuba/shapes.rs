@@ -26,7 +26,7 @@ impl Loader {
         let to_world = props.transform("to_world")?;
         let mut flip_normals = props.boolean("flip_normals", false)?;
         let face_normals = props.boolean("face_normals", false)?;
-        let geometry = match props.kind.as_str() {
+        let mut geometry = match props.kind.as_str() {
             "obj" | "ply" | "serialized" => {
                 mesh_geometry(self.load_mesh_file(props)?, to_world, face_normals)
             }
@@ -77,6 +77,8 @@ impl Loader {
             }
         }
         let (material, emission) = self.shape_bsdf_and_emitter(props)?;
+        // A mesh keeps only the attributes its textures read: most scenes store and upload none.
+        self.keep_read_attributes(props, &mut geometry, material)?;
         self.warn_unused(props);
         let emission_directional = emission.is_some_and(|e| e.directional);
         let (emission, emission_texture) = (emission.map(|e| e.radiance), emission.and_then(|e| e.texture));
@@ -168,7 +170,7 @@ impl Loader {
 
     /// The mesh of an `obj`, `ply` or `serialized` shape in object space, with Mitsuba's
     /// `flip_tex_coords` (default true for OBJ, false for PLY; serialized files have no such option).
-    fn load_mesh_file(&self, props: &Props) -> Result<Mesh> {
+    fn load_mesh_file(&mut self, props: &Props) -> Result<Mesh> {
         let Some(name) = props.string("filename")? else {
             bail!("{}: a {} shape needs a 'filename'", props.loc, props.kind)
         };
@@ -181,7 +183,12 @@ impl Loader {
         };
         let loaded = match props.kind.as_str() {
             "obj" => mesh::load_obj(&path, false).map(|(mesh, _)| mesh),
-            "ply" => mesh::load_ply(&path),
+            "ply" => mesh::load_ply(&path).map(|(mesh, warnings)| {
+                for w in warnings {
+                    self.warn(&format!("{}: {w}", props.loc));
+                }
+                mesh
+            }),
             _ => {
                 let index = props.integer("shape_index", 0)?;
                 let Ok(index) = u32::try_from(index) else {
@@ -288,5 +295,5 @@ fn tessellated_geometry(mut mesh: Mesh, to_world: Mat4) -> Geometry {
 }
 
 fn triangle_geometry(t: mesh::Triangles) -> Geometry {
-    Geometry::Triangles { triangles: t.triangles, normals: t.normals, uvs: t.uvs }
+    Geometry::Triangles { triangles: t.triangles, normals: t.normals, uvs: t.uvs, attributes: t.attributes }
 }

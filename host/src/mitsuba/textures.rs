@@ -1,10 +1,11 @@
 //! Texture plugins: `bitmap` (image files, sRGB-decoded unless `raw`, bilinear or nearest, wrap modes)
-//! and `checkerboard`; both with `to_uv`. Also colour and scalar parameters that may be a texture.
+//! and `checkerboard`, both with `to_uv`, and `mesh_attribute` (where it may be read:
+//! `mesh_attributes`). Also colour and scalar parameters that may be a texture.
 use super::props::{Entry, Props};
 use super::spectrum::SpectrumUse;
 use super::Loader;
 use crate::buffers::rgba;
-use crate::scene::SceneTexture;
+use crate::scene::{MeshAttributeRef, SceneTexture};
 use anyhow::{bail, Result};
 use caustic_kernel::layout::*;
 use glam::Mat4;
@@ -23,6 +24,24 @@ fn to_uv_rows(m: Mat4) -> [[f32; 4]; 2] {
         let row = m.row(r);
         [row.x, row.y, row.w, 0.0]
     })
+}
+
+/// Mitsuba's `mesh_attribute` (`name`, `scale`): the attribute of the shape it is on, interpolated
+/// over the hit triangle (`caustic_kernel::texture::eval_at`). The shape's loader checks that it has
+/// the attribute (`Loader::keep_read_attributes`).
+fn mesh_attribute(props: &Props) -> Result<SceneTexture> {
+    let Some(name) = props.string("name")? else { bail!("{}: mesh_attribute needs a 'name'", props.loc) };
+    if !(name.starts_with("vertex_") || name.starts_with("face_")) {
+        bail!("{}: a mesh attribute's name starts with 'vertex_' or 'face_' (as Mitsuba requires), not '{name}'", props.loc);
+    }
+    let scale = props.float("scale", 1.0)?;
+    if !scale.is_finite() {
+        bail!("{}: mesh_attribute's scale must be a finite number, not {scale}", props.loc);
+    }
+    let record =
+        Texture { kind: TEXTURE_MESH_ATTRIBUTE, color0: [scale, scale, scale, 0.0], ..Default::default() };
+    let mesh_attribute = Some(MeshAttributeRef { name, origin: props.loc.to_string() });
+    Ok(SceneTexture { record, texels: Vec::new(), mesh_attribute })
 }
 
 impl Loader {
@@ -47,11 +66,15 @@ impl Loader {
                     color1: rgba(color1),
                     ..Default::default()
                 };
-                SceneTexture { record, texels: Vec::new() }
+                SceneTexture { record, texels: Vec::new(), mesh_attribute: None }
             }
             "bitmap" => self.bitmap(props, to_uv)?,
+            "mesh_attribute" => mesh_attribute(props)?,
             other => {
-                bail!("{}: texture type '{other}' is not supported (bitmap, checkerboard are)", props.loc)
+                bail!(
+                    "{}: texture type '{other}' is not supported (bitmap, checkerboard, mesh_attribute are)",
+                    props.loc
+                )
             }
         };
         self.warn_unused(props);
@@ -85,7 +108,7 @@ impl Loader {
             to_uv,
             ..Default::default()
         };
-        Ok(SceneTexture { record, texels: image.rgb })
+        Ok(SceneTexture { record, texels: image.rgb, mesh_attribute: None })
     }
 
     /// A colour-valued BSDF parameter that may also be a nested `<texture>` or a `<ref>` to one.
@@ -105,6 +128,7 @@ impl Loader {
         };
         props.mark_used(name);
         let index = self.texture_entry(props, entry)?;
+        self.note_texture_request(index);
         Ok(ColorParam { rgb: self.texture_mean(index), texture: index })
     }
 
@@ -124,6 +148,7 @@ impl Loader {
         };
         props.mark_used(name);
         let index = self.texture_entry(props, entry)?;
+        self.note_texture_request(index);
         let mut texture = self.textures[index as usize].clone();
         if texture.record.kind == TEXTURE_CHECKERBOARD {
             let grey = |c: [f32; 4]| {

@@ -24,7 +24,7 @@ use crate::features;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::*;
 use crate::spectrum::{luminance, Rgb};
-use crate::texture;
+use crate::texture::{self, Lookup};
 
 /// Which quantity a path carries (pbrt-v4's `TransportMode`): radiance, traced from the camera, or
 /// importance, traced from the lights. Scattering that is not reciprocal depends on it: refraction
@@ -203,22 +203,23 @@ pub struct Component {
 }
 
 impl Component {
-    /// `m` at texture coordinates `uv` in a scene using `features`.
-    pub fn new(m: &Material, textures: &[Texture], tables: &[f32], uv: Vec2, features: u32) -> Component {
+    /// `m` with its textures looked up at `at` in a scene using `features`.
+    pub fn new(m: &Material, textures: &[Texture], tables: &[f32], at: Lookup, features: u32) -> Component {
         let (mut reflectance, mut specular) = (vec3_of(m.reflectance), vec3_of(m.specular_reflectance));
         let mut material = *m;
         if features::has(features, features::TEXTURES) {
-            reflectance = texture::eval_or(textures, tables, m.reflectance_texture, reflectance, uv);
-            specular = texture::eval_or(textures, tables, m.specular_texture, specular, uv);
+            reflectance =
+                texture::eval_or_at(textures, tables, m.reflectance_texture, reflectance, at, features);
+            specular = texture::eval_or_at(textures, tables, m.specular_texture, specular, at, features);
             // Textured roughness: the texture's luminance, as Mitsuba's `eval_1` (the loader gives a
             // checkerboard grey colours, so that this is their mean, as Mitsuba takes it).
             if m.alpha_u_texture != NONE {
                 material.alpha_u =
-                    luminance(texture::eval(&textures[m.alpha_u_texture as usize], tables, uv));
+                    luminance(texture::eval_at(&textures[m.alpha_u_texture as usize], tables, at, features));
             }
             if m.alpha_v_texture != NONE {
                 material.alpha_v =
-                    luminance(texture::eval(&textures[m.alpha_v_texture as usize], tables, uv));
+                    luminance(texture::eval_at(&textures[m.alpha_v_texture as usize], tables, at, features));
             }
         }
         Component { material, reflectance, specular }
@@ -260,7 +261,7 @@ pub struct Bsdf<'a> {
 }
 
 impl<'a> Bsdf<'a> {
-    /// The BSDF of `m` at texture coordinates `uv` in a scene using `features`, tilted by
+    /// The BSDF of `m` with textures looked up at `at` in a scene using `features`, tilted by
     /// `perturbation` (`Perturbation::NONE` without a map); `materials` is the scene's material list,
     /// where a blend's children are.
     pub fn new(
@@ -268,7 +269,7 @@ impl<'a> Bsdf<'a> {
         materials: &[Material],
         textures: &[Texture],
         tables: &'a [f32],
-        uv: Vec2,
+        at: Lookup,
         features: u32,
         perturbation: perturb::Perturbation,
     ) -> Bsdf<'a> {
@@ -278,15 +279,15 @@ impl<'a> Bsdf<'a> {
         let blended = features::has(features, features::BLEND) && m.kind == BSDF_BLEND;
         let (i, j) = blend::children(m);
         let first_record = if blended { materials[i as usize] } else { *m };
-        let first = Component::new(&first_record, textures, tables, uv, features);
+        let first = Component::new(&first_record, textures, tables, at, features);
         let mut second = first;
         let mut weight = 0.0;
         if blended {
-            second = Component::new(&materials[j as usize], textures, tables, uv, features);
+            second = Component::new(&materials[j as usize], textures, tables, at, features);
             weight = m.eta;
             if features::has(features, features::TEXTURES) && m.reflectance_texture != NONE {
                 let t = &textures[m.reflectance_texture as usize];
-                weight = luminance(texture::eval(t, tables, uv)).clamp(0.0, 1.0);
+                weight = luminance(texture::eval_at(t, tables, at, features)).clamp(0.0, 1.0);
             }
         }
         Bsdf { first, second, weight, blended, flags: m.flags, tables, features, perturbation }
@@ -294,7 +295,15 @@ impl<'a> Bsdf<'a> {
 
     /// A BSDF without textures (tests, tools); a blend's children are looked up in `materials`.
     pub fn from_material(m: &Material, materials: &[Material], tables: &'a [f32]) -> Bsdf<'a> {
-        Bsdf::new(m, materials, &[], tables, Vec2::ZERO, features::ALL, perturb::Perturbation::NONE)
+        Bsdf::new(
+            m,
+            materials,
+            &[],
+            tables,
+            Lookup::uv(Vec2::ZERO),
+            features::ALL,
+            perturb::Perturbation::NONE,
+        )
     }
 
     /// How many models the surface mixes (two for a blend), and the `i`-th with its weight. Each query

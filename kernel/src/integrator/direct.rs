@@ -55,7 +55,7 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         scene.materials,
         scene.textures,
         scene.tables,
-        sp.uv,
+        sp.lookup(),
         scene.features,
         shading.tilt,
     );

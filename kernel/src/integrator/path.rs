@@ -164,7 +164,7 @@ impl CameraPath {
             scene.materials,
             scene.textures,
             scene.tables,
-            sp.uv,
+            sp.lookup(),
             scene.features,
             shading.tilt,
         );

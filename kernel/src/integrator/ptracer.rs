@@ -239,7 +239,7 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
             scene.materials,
             scene.textures,
             scene.tables,
-            sp.uv,
+            sp.lookup(),
             scene.features,
             shading.tilt,
         );

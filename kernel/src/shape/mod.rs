@@ -6,7 +6,7 @@ pub mod triangle;
 use crate::camera::Ray;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::{
-    Primitive, TriangleAttributes, PRIM_DISK, PRIM_FLAG_FLIP, PRIM_FLAG_SMOOTH, PRIM_SPHERE,
+    Primitive, TriangleAttributes, NONE, PRIM_DISK, PRIM_FLAG_FLIP, PRIM_FLAG_SMOOTH, PRIM_SPHERE,
 };
 use crate::math::vec3;
 
@@ -48,6 +48,18 @@ pub struct SurfacePoint {
     pub offset_floor: f32,
     /// Texture coordinates (Mitsuba's conventions per shape).
     pub uv: Vec2,
+    /// A triangle's `TriangleAttributes::mesh_attributes` (`NONE` on other shapes).
+    pub mesh_attributes: u32,
+    /// The hit's barycentrics b1, b2 on a triangle (mesh attributes are interpolated by them).
+    pub bary: Vec2,
+}
+
+impl SurfacePoint {
+    /// Where textures are looked up at this point.
+    #[inline]
+    pub fn lookup(&self) -> crate::texture::Lookup {
+        crate::texture::Lookup { uv: self.uv, mesh_attributes: self.mesh_attributes, bary: self.bary }
+    }
 }
 
 /// Reconstructs the surface point of a hit.
@@ -64,7 +76,16 @@ pub fn surface_point(
         let n = (p - centre).normalize() * flip;
         let error_scale = prim.p1[0];
         let uv = sphere::uv((p - centre) / prim.p1[0]);
-        return SurfacePoint { p, ng: n, ns: n, error_scale, offset_floor: prim.offset_floor, uv };
+        return SurfacePoint {
+            p,
+            ng: n,
+            ns: n,
+            error_scale,
+            offset_floor: prim.offset_floor,
+            uv,
+            mesh_attributes: NONE,
+            bary: Vec2::ZERO,
+        };
     }
     if prim.kind == PRIM_DISK {
         let (c, u, v) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
@@ -77,6 +98,8 @@ pub fn surface_point(
             error_scale,
             offset_floor: prim.offset_floor,
             uv: disk::uv(hit.uv),
+            mesh_attributes: NONE,
+            bary: Vec2::ZERO,
         };
     }
     let (p0, p1, p2) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
@@ -94,7 +117,16 @@ pub fn surface_point(
         }
     }
     let error_scale = p0.abs().max(p1.abs()).max(p2.abs()).max_element();
-    SurfacePoint { p, ng, ns, error_scale, offset_floor: prim.offset_floor, uv }
+    SurfacePoint {
+        p,
+        ng,
+        ns,
+        error_scale,
+        offset_floor: prim.offset_floor,
+        uv,
+        mesh_attributes: attr.mesh_attributes,
+        bary: hit.uv,
+    }
 }
 
 /// `dp/du` and `dp/dv` at a hit (Mitsuba's parametrisation of each shape; a triangle's from its
