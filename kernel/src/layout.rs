@@ -131,7 +131,7 @@ pub const PERTURB_SHADOWING: u32 = 8;
 /// The perturbation wraps a `twosided` BSDF (else `twosided`, if any, wraps the perturbation).
 pub const PERTURB_TWO_SIDED_INSIDE: u32 = 16;
 
-/// A BSDF record (128 bytes). Which fields a model reads is documented by the model's `from_material`;
+/// A BSDF record (160 bytes). Which fields a model reads is documented by the model's `from_material`;
 /// colours are linear RGB with an unused fourth lane. `Default` is a black diffuse without textures.
 #[repr(C)]
 #[derive(Clone, Copy)]
@@ -146,7 +146,8 @@ pub struct Material {
     /// Relative index of refraction (interior over exterior) of dielectrics and plastics; the Phong
     /// exponent for `BSDF_PHONG`.
     pub eta: f32,
-    /// Texture replacing `reflectance` (index into the texture list), or `NONE`.
+    /// Texture replacing `reflectance` (index into the texture list), or `NONE`; conductors'
+    /// `conductor_k`.
     pub reflectance_texture: u32,
     /// Texture replacing `specular_reflectance`, or `NONE`.
     pub specular_texture: u32,
@@ -165,22 +166,30 @@ pub struct Material {
     pub reflectance: [f32; 4],
     /// Specular reflectance (Phong `ks`, conductors, dielectrics, plastics).
     pub specular_reflectance: [f32; 4],
-    /// Specular transmittance of dielectrics.
+    /// Specular transmittance of dielectrics (`param_texture` may replace it).
     pub specular_transmittance: [f32; 4],
-    /// Conductors: real part of the relative complex index of refraction, per channel.
+    /// Conductors: real part of the relative complex index of refraction, per channel (`param_texture`
+    /// may replace it).
     pub conductor_eta: [f32; 4],
-    /// Conductors: imaginary part (absorption), per channel.
+    /// Conductors: imaginary part (absorption), per channel (`reflectance_texture` may replace it).
     pub conductor_k: [f32; 4],
     /// Model-specific precomputed scalars (see the model's `precompute`).
     pub params: [f32; 4],
     /// Normal or bump mapping around this BSDF (Mitsuba's `normalmap`, `bumpmap`; `bsdf::perturb`):
     /// `PERTURB_*` bits, 0 for none; the normal map or height texture; the bump map's `scale`.
-    /// (One 16-byte group of its own.)
     pub perturb: u32,
     pub perturb_texture: u32,
     pub bump_scale: f32,
-    pub _perturb_pad: u32,
+    /// Texture replacing the one parameter of a model that the slots above do not cover, or `NONE`
+    /// (`bsdf::Component::new`): the `specular_transmittance` of dielectrics, the `conductor_eta` of
+    /// conductors (which keep a textured `conductor_k` in `reflectance_texture`: they have no diffuse
+    /// reflectance). It takes the perturbation group's spare word, so the record does not grow.
+    pub param_texture: u32,
 }
+
+// The host and both backends share this layout; a field added must find a spare word first.
+#[cfg(not(target_arch = "spirv"))]
+const _: () = assert!(core::mem::size_of::<Material>() == 160);
 
 impl Default for Material {
     fn default() -> Self {
@@ -206,7 +215,7 @@ impl Default for Material {
             perturb: 0,
             perturb_texture: NONE,
             bump_scale: 1.0,
-            _perturb_pad: 0,
+            param_texture: NONE,
         }
     }
 }

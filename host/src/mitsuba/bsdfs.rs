@@ -266,17 +266,21 @@ impl Loader {
         // As Mitsuba: a given `eta` (or `material` none, the default) selects `eta`/`k` (defaults 0
         // and 1, a perfect mirror), and `material` is then not used; otherwise the named material.
         let material = props.string("material")?.unwrap_or_else(|| "none".to_string());
+        // Either may be a texture, read as a colour (Mitsuba's `eval`): `eta`'s index goes to
+        // `param_texture`, `k`'s to `reflectance_texture`, which conductors have no other use for.
         let (eta, k) = if props.has("eta") || material == "none" {
             (
-                props.color("eta", SpectrumUse::Unbounded, [0.0; 3])?,
-                props.color("k", SpectrumUse::Unbounded, [1.0; 3])?,
+                self.color_param(props, "eta", SpectrumUse::Unbounded, [0.0; 3])?,
+                self.color_param(props, "k", SpectrumUse::Unbounded, [1.0; 3])?,
             )
         } else {
             let dirs = ior::with_ancestors(&self.search_paths);
-            ior::conductor_eta_k(&material, &dirs).map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?
+            let (eta, k) = ior::conductor_eta_k(&material, &dirs)
+                .map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?;
+            (ColorParam { rgb: eta, texture: NONE }, ColorParam { rgb: k, texture: NONE })
         };
-        m.conductor_eta = rgba(eta);
-        m.conductor_k = rgba(k);
+        (m.conductor_eta, m.param_texture) = (rgba(eta.rgb), eta.texture);
+        (m.conductor_k, m.reflectance_texture) = (rgba(k.rgb), k.texture);
         set_specular(
             &mut m,
             self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?,
@@ -342,8 +346,10 @@ impl Loader {
             &mut m,
             self.color_param(props, "specular_reflectance", SpectrumUse::Reflectance, [1.0; 3])?,
         );
-        m.specular_transmittance =
-            rgba(props.color("specular_transmittance", SpectrumUse::Reflectance, [1.0; 3])?);
+        // A texture is read as a colour (Mitsuba's `eval`) from `param_texture`.
+        let transmittance =
+            self.color_param(props, "specular_transmittance", SpectrumUse::Reflectance, [1.0; 3])?;
+        (m.specular_transmittance, m.param_texture) = (rgba(transmittance.rgb), transmittance.texture);
         Ok(m)
     }
 

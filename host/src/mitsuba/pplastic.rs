@@ -1,6 +1,6 @@
 //! Mitsuba's `pplastic` in its unpolarized form (`caustic_kernel::bsdf::pplastic`):
-//! `diffuse_reflectance` (0.5) and `specular_reflectance` (1), colours or textures; `eta` (a number; a
-//! texture is replaced by its mean, a substitution) or `int_ior`/`ext_ior` (polypropylene over air,
+//! `diffuse_reflectance` (0.5) and `specular_reflectance` (1), colours or textures; `eta` (a number, or
+//! a texture whose luminance is read, each of its values positive) or `int_ior`/`ext_ior` (polypropylene over air,
 //! positive and different, as Mitsuba requires; not both ways, as Mitsuba); the rough models'
 //! `distribution` (Beckmann by default) and `alpha`/`alpha_u`/`alpha_v`. The probability of sampling
 //! the glossy lobe is Mitsuba's: the specular reflectance's mean over the sum of both means (a texture's
@@ -19,13 +19,12 @@ impl Loader {
             if props.has("int_ior") || props.has("ext_ior") {
                 bail!("{}: pplastic takes 'eta' or 'int_ior'/'ext_ior', not both (as Mitsuba)", props.loc);
             }
+            // A texture is read as Mitsuba's `eval_1` reads it (its luminance) from `param_texture`;
+            // its mean stands in where one number is needed.
             let eta = match self.scalar_texture(props, "eta")? {
-                Some((_, mean)) => {
-                    let message = format!(
-                        "{}: a textured pplastic 'eta' is not supported; using the texture's mean, {mean}",
-                        props.loc
-                    );
-                    self.substituted("textured pplastic eta".into(), &props.loc, message);
+                Some((texture, mean)) => {
+                    self.positive_texture(texture, props, "pplastic eta")?;
+                    m.param_texture = texture;
                     mean
                 }
                 None => props.float("eta", 0.0)?,

@@ -167,6 +167,27 @@ impl Loader {
         Ok(Some((index, mean)))
     }
 
+    /// Refuses a texture with a value whose luminance is not a positive finite number (an index of
+    /// refraction read through `eval_1`): bilinear filtering between such texels stays positive.
+    pub(crate) fn positive_texture(&self, index: u32, props: &Props, what: &str) -> Result<()> {
+        let t = &self.textures[index as usize];
+        let values: Vec<[f32; 3]> = if t.record.kind == TEXTURE_CHECKERBOARD {
+            [t.record.color0, t.record.color1].iter().map(|c| [c[0], c[1], c[2]]).collect()
+        } else {
+            t.texels.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+        };
+        for c in values {
+            let l = caustic_kernel::spectrum::luminance(glam::Vec3::from(c));
+            if !(l > 0.0 && l.is_finite() && c.iter().all(|v| v.is_finite() && *v >= 0.0)) {
+                bail!(
+                    "{}: a textured {what} must be positive everywhere; the texture holds {c:?}",
+                    props.loc
+                );
+            }
+        }
+        Ok(())
+    }
+
     fn texture_entry(&mut self, props: &Props, entry: &Entry) -> Result<u32> {
         let p = self.props(props.src, entry.node)?;
         self.load_texture(&p)

@@ -221,6 +221,22 @@ impl Component {
                 material.alpha_v =
                     luminance(texture::eval_at(&textures[m.alpha_v_texture as usize], tables, at, features));
             }
+            // The parameters without a slot of their own (`Material::param_texture`), read as Mitsuba
+            // reads them: colours by `eval`, pplastic's `eta` by `eval_1` (the luminance).
+            let conductor = m.kind == BSDF_CONDUCTOR || m.kind == BSDF_ROUGH_CONDUCTOR;
+            if m.param_texture != NONE {
+                let value = texture::eval_at(&textures[m.param_texture as usize], tables, at, features);
+                if conductor {
+                    material.conductor_eta = [value.x, value.y, value.z, 0.0];
+                } else if m.kind == BSDF_PPLASTIC {
+                    material.eta = luminance(value);
+                } else {
+                    material.specular_transmittance = [value.x, value.y, value.z, 0.0];
+                }
+            }
+            if conductor && m.reflectance_texture != NONE {
+                material.conductor_k = [reflectance.x, reflectance.y, reflectance.z, 0.0];
+            }
         }
         Component { material, reflectance, specular }
     }
