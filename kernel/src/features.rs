@@ -60,6 +60,8 @@ pub const TEXTURED_EMISSION: u32 = 1 << 28;
 /// the other bits this one says how the buffers are laid out: the host sets it exactly when they are
 /// two-level.
 pub const INSTANCING: u32 = 1 << 29;
+/// Mitsuba's `irradiancemeter` sensor: camera rays leave a shape's surface (`irradiance_meter`).
+pub const IRRADIANCE_METER: u32 = 1 << 31;
 
 // The kinds must fit their bit ranges.
 const _: () = assert!(

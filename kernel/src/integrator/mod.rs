@@ -6,11 +6,12 @@ pub mod path;
 pub mod ptracer;
 
 use crate::bsdf::perturb::{self, Perturbation, Shading};
-use crate::camera::Ray;
+use crate::camera::{Ray, CAMERA_IRRADIANCE_METER};
 use crate::features;
 use crate::film;
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
+use crate::irradiance_meter;
 pub use crate::layout::SceneView;
 use crate::layout::{
     FrameParams, Material, PixelAccum, Primitive, INTEGRATOR_DIRECT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER,
@@ -34,19 +35,36 @@ pub struct PixelSums {
     pub invalid: u32,
 }
 
+/// The dimensions an irradiance meter's ray draws its direction from (its point takes the lens's).
+const DIM_METER_DIRECTION: u32 = u32::MAX - 3;
+
+/// Whether the camera is an irradiance meter (compiled in only for scenes with one).
+#[inline]
+fn is_irradiance_meter(scene: &SceneView, params: &FrameParams) -> bool {
+    params.camera.kind == CAMERA_IRRADIANCE_METER && features::has(scene.features, features::IRRADIANCE_METER)
+}
+
 /// A camera sample of pixel (`px`, `py`): its sampler (keyed by seed, pixel and sample), the film
-/// sample (where it lands, in fractions of the full image, and its filter weight) and the primary ray.
+/// sample (where it lands, in fractions of the full image, and its filter weight) and the primary ray
+/// (whose radiance an irradiance meter weights by `irradiance_meter::WEIGHT`). (A fourth value in
+/// the returned tuple, the weight, made naga reject the SPIR-V: "member at 52 overlaps the previous".)
 #[inline]
 fn camera_sample(
+    scene: &SceneView,
     params: &FrameParams,
-    tables: &[f32],
     pixel: u32,
     sample_index: u32,
 ) -> (Sampler, film::FilmSample, Ray) {
     let (px, py) = (pixel % params.width, pixel / params.width);
     let mut sampler = Sampler::new(params.seed, pixel, sample_index);
-    let film_sample = film::sample_position(params, tables, px, py, sample_index, &mut sampler);
+    let film_sample = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
     let u_lens = sampler.next_2d();
+    if is_irradiance_meter(scene, params) {
+        sampler.set_dimension(DIM_METER_DIRECTION);
+        let u_dir = sampler.next_2d();
+        let ray = irradiance_meter::generate_ray(scene, params.camera.meter_table, u_lens, u_dir);
+        return (sampler, film_sample, ray);
+    }
     (sampler, film_sample, params.camera.generate_ray(film_sample.pos, u_lens))
 }
 
@@ -56,8 +74,7 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
     let k = crate::layout::square_scale(params);
     let mut s = 0;
     while s < params.sample_count {
-        let (mut sampler, film_sample, ray) =
-            camera_sample(params, scene.tables, pixel, params.sample_base + s);
+        let (mut sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
         let mut l = if params.integrator == INTEGRATOR_DIRECT
             && features::has(scene.features, features::DIRECT_INTEGRATOR)
         {
@@ -65,6 +82,9 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
         } else {
             path::li(scene, params, ray, &mut sampler, 1.0)
         };
+        if is_irradiance_meter(scene, params) {
+            l *= irradiance_meter::WEIGHT;
+        }
         if params.filter_signed != 0 {
             l *= film_sample.weight;
         }
@@ -97,8 +117,8 @@ pub fn splat_camera_paths<W: AtomicWords>(
     let (px, py) = (pixel % params.width, pixel / params.width);
     let mut s = 0;
     while s < params.sample_count {
-        let (mut sampler, film_sample, ray) =
-            camera_sample(params, scene.tables, pixel, params.sample_base + s);
+        // (IBPT refuses the irradiance meter: no weight here.)
+        let (mut sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
         let film_pos = film_sample.pos;
         let pos = Vec2::new(film_pos.x * params.full_width as f32, film_pos.y * params.full_height as f32);
         let density = film::pixel_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);
