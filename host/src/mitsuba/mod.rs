@@ -9,6 +9,7 @@
 //! `<include>`, `<path>`, `id`/`<ref>` (ids unique, as Mitsuba wants them), and one integrator per
 //! scene; `deviations` collects what was substituted or ignored, which `--strict`
 //! (`LoadOptions::strict`) refuses.
+mod bitmap_format;
 mod blend;
 mod bsdf_maps;
 mod bsdfs;
