@@ -46,8 +46,9 @@ fn is_irradiance_meter(scene: &SceneView, params: &FrameParams) -> bool {
 
 /// A camera sample of pixel (`px`, `py`): its sampler (keyed by seed, pixel and sample), the film
 /// sample (where it lands, in fractions of the full image, and its filter weight) and the primary ray
-/// (whose radiance an irradiance meter weights by `irradiance_meter::WEIGHT`). (A fourth value in
-/// the returned tuple, the weight, made naga reject the SPIR-V: "member at 52 overlaps the previous".)
+/// (whose radiance an irradiance meter weights by `irradiance_meter::WEIGHT`). (The tuple is built
+/// in one place: returning it from two branches, or with the weight as a fourth value, made naga
+/// reject the SPIR-V: "member at 52 overlaps the previous".)
 #[inline]
 fn camera_sample(
     scene: &SceneView,
@@ -59,13 +60,27 @@ fn camera_sample(
     let mut sampler = Sampler::new(params.seed, pixel, sample_index);
     let film_sample = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
     let u_lens = sampler.next_2d();
+    let ray = primary_ray(scene, params, film_sample.pos, u_lens, &mut sampler);
+    (sampler, film_sample, ray)
+}
+
+/// The camera's ray through `film` (`u_lens` picks a thin lens's aperture point); an irradiance
+/// meter's ray from its shape instead (its point drawn from `u_lens`, its direction from
+/// `DIM_METER_DIRECTION`).
+#[inline]
+fn primary_ray(
+    scene: &SceneView,
+    params: &FrameParams,
+    film: Vec2,
+    u_lens: Vec2,
+    sampler: &mut Sampler,
+) -> Ray {
     if is_irradiance_meter(scene, params) {
         sampler.set_dimension(DIM_METER_DIRECTION);
         let u_dir = sampler.next_2d();
-        let ray = irradiance_meter::generate_ray(scene, params.camera.meter_table, u_lens, u_dir);
-        return (sampler, film_sample, ray);
+        return irradiance_meter::generate_ray(scene, params.camera.meter_table, u_lens, u_dir);
     }
-    (sampler, film_sample, params.camera.generate_ray(film_sample.pos, u_lens))
+    params.camera.generate_ray(film, u_lens)
 }
 
 /// Renders `params.sample_count` samples of one pixel (row-major index).
