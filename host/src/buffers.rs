@@ -4,7 +4,9 @@
 use crate::scene::{Emitter, Geometry, IntegratorKind, Projection, SamplerKind, Scene, Shape};
 use anyhow::{bail, Result};
 use caustic_kernel::bvh::STACK_SIZE;
-use caustic_kernel::camera::{Camera, CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, CAMERA_THIN_LENS};
+use caustic_kernel::camera::{
+    Camera, CAMERA_IRRADIANCE_METER, CAMERA_ORTHOGRAPHIC, CAMERA_PERSPECTIVE, CAMERA_THIN_LENS,
+};
 use caustic_kernel::features;
 use caustic_kernel::layout::*;
 use caustic_kernel::spectrum::luminance;
@@ -261,6 +263,16 @@ pub(crate) fn build_bvh(
     origins: &mut Vec<[u32; 2]>,
     lights: &mut [Light],
 ) -> Result<Vec<BvhNode>> {
+    build_bvh_reordering(prims, attributes, origins, lights).map(|(nodes, _)| nodes)
+}
+
+/// `build_bvh`, also returning each primitive's new index (by its index before).
+fn build_bvh_reordering(
+    prims: &mut Vec<Primitive>,
+    attributes: &mut Vec<TriangleAttributes>,
+    origins: &mut Vec<[u32; 2]>,
+    lights: &mut [Light],
+) -> Result<(Vec<BvhNode>, Vec<u32>)> {
     let aabbs: Vec<Aabb> = prims.iter().map(bounds).collect();
     let mut build_time = std::time::Duration::ZERO;
     let bvh = obvhs::bvh2::builder::build_bvh2(&aabbs, bvh_build_params(), &mut build_time);
@@ -291,7 +303,7 @@ pub(crate) fn build_bvh(
     if depth >= STACK_SIZE {
         bail!("the BVH is {depth} levels deep; the kernel's traversal stack holds {STACK_SIZE}");
     }
-    Ok(nodes)
+    Ok((nodes, new_index))
 }
 
 /// The scene's bounding sphere (centre, radius), slightly enlarged as Mitsuba does for emitters at
@@ -306,7 +318,7 @@ fn bounding_sphere(nodes: &[BvhNode], has_prims: bool) -> (Vec3, f32) {
 }
 
 /// Normalised inclusive CDF of non-negative weights (uniform when they sum to zero).
-fn cdf_of(weights: &[f64]) -> Vec<f32> {
+pub(crate) fn cdf_of(weights: &[f64]) -> Vec<f32> {
     let total: f64 = weights.iter().sum();
     let n = weights.len() as f64;
     let mut running = 0.0f64;
@@ -514,6 +526,8 @@ pub fn camera(scene: &Scene) -> Camera {
             camera.tan_half_x = 0.0;
             camera.tan_half_y = 0.0;
         }
+        // Its primitives' table is placed by `build`.
+        Projection::IrradianceMeter { .. } => camera.kind = CAMERA_IRRADIANCE_METER,
     }
     camera
 }
@@ -546,8 +560,14 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let (mut prims, mut attributes) = primitives(&scene.shapes, light_tracing, &mut light_list, &mut blocks);
     let mut prim_origins = if scene.aovs.is_some() { prim_origins(scene) } else { Vec::new() };
     let has_prims = !prims.is_empty();
+    // The irradiance meter's primitives, by their index in scene order (`primitives` pushes them).
+    let meter_prims = crate::irradiance_meter::scene_order_primitives(scene);
+    let mut new_index = Vec::new();
     let mut nodes = if has_prims {
-        build_bvh(&mut prims, &mut attributes, &mut prim_origins, &mut light_list.lights)?
+        let (nodes, order) =
+            build_bvh_reordering(&mut prims, &mut attributes, &mut prim_origins, &mut light_list.lights)?;
+        new_index = order;
+        nodes
     } else {
         // A leaf holding only the placeholder primitive pushed below (a triangle of zero area that no
         // ray hits). Not an inner node with an inverted box: the slab test swaps min and max, so such a
@@ -584,6 +604,10 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     }
     let light_cdf_offset = tables.len() as u32;
     tables.extend(light_cdf);
+    let mut camera = camera(scene);
+    if let Some(meter) = meter_prims {
+        camera.meter_table = crate::irradiance_meter::place_table(&meter, &new_index, &prims, &mut tables)?;
+    }
 
     let mut materials = scene.materials.clone();
     for m in &mut materials {
@@ -653,12 +677,15 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         bsdf_samples,
         wavelength_table,
         square_scale_log2: square_scale_log2(&lights, &textures, &tables),
-        camera: camera(scene),
+        camera,
         ..Default::default()
     };
     let mut features = scene_features(&materials, &lights, !textures.is_empty(), integrator_kind);
     if crate::attribute_buffers::used(scene) {
         features |= features::MESH_ATTRIBUTES;
+    }
+    if camera.kind == CAMERA_IRRADIANCE_METER {
+        features |= features::IRRADIANCE_METER;
     }
     // Not paths to specialize but how the buffers are laid out and which per-pixel loop runs: set
     // exactly when they are two-level and when the integrator is `direct` (also under
@@ -790,6 +817,9 @@ fn check_light_tracing(scene: &Scene, name: &str) -> Result<()> {
     let integrator = name;
     if matches!(scene.sensor.projection, Projection::RadianceMeter) {
         bail!("{integrator}: the radiancemeter sensor measures a single ray, which light tracing cannot connect to (render this scene with path)");
+    }
+    if matches!(scene.sensor.projection, Projection::IrradianceMeter { .. }) {
+        bail!("{integrator}: the irradiancemeter sensor is not supported by light tracing yet (render this scene with path)");
     }
     if !camera(scene).connectable() {
         bail!(

@@ -16,6 +16,17 @@ pub struct LinearImage {
     pub width: u32,
     pub height: u32,
     pub rgb: Vec<f32>,
+    /// What the file stored each sample as (Mitsuba's `bitmap` picks its storage by it).
+    pub depth: SampleDepth,
+}
+
+/// The samples of an image file: 8- or 16-bit integers (sRGB-encoded unless `raw`), or floats
+/// (half or single: EXR, Radiance HDR).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SampleDepth {
+    Int8,
+    Int16,
+    Float,
 }
 
 impl LinearImage {
@@ -66,6 +77,12 @@ fn load_with_image_crate(path: &Path, raw: bool) -> Result<LinearImage> {
     let decoded = image::ImageReader::open(path)?.with_guessed_format()?.decode()?;
     let (width, height) = (decoded.width(), decoded.height());
     use image::DynamicImage as D;
+    use SampleDepth::{Float, Int16, Int8};
+    let depth = match &decoded {
+        D::ImageLuma8(_) | D::ImageLumaA8(_) | D::ImageRgb8(_) | D::ImageRgba8(_) => Int8,
+        D::ImageLuma16(_) | D::ImageLumaA16(_) | D::ImageRgb16(_) | D::ImageRgba16(_) => Int16,
+        _ => Float,
+    };
     let rgb = match decoded {
         // Floating-point formats (Radiance HDR) are linear already.
         D::ImageRgb32F(img) => img.into_raw(),
@@ -81,7 +98,7 @@ fn load_with_image_crate(path: &Path, raw: bool) -> Result<LinearImage> {
         D::ImageRgba16(img) => integer_to_linear(&img.into_raw(), 4, u16::MAX as f32, raw),
         other => bail!("unsupported pixel layout {:?}", other.color()),
     };
-    Ok(LinearImage { width, height, rgb })
+    Ok(LinearImage { width, height, rgb, depth })
 }
 
 /// `channels` = 1 (grey), 2 (grey + alpha), 3 (RGB) or 4 (RGBA) integer samples per texel.
@@ -147,7 +164,7 @@ fn load_exr(path: &Path) -> Result<LinearImage> {
         bail!("channel sizes do not match the {width}×{height} data window");
     }
     let rgb = (0..texels).flat_map(|i| [planes[0][i], planes[1][i], planes[2][i]]).collect();
-    Ok(LinearImage { width: width as u32, height: height as u32, rgb })
+    Ok(LinearImage { width: width as u32, height: height as u32, rgb, depth: SampleDepth::Float })
 }
 
 #[cfg(test)]

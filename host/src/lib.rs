@@ -15,6 +15,7 @@ pub mod image_io;
 pub mod instance_buffers;
 pub mod instancing;
 pub mod interrupt;
+pub mod irradiance_meter;
 pub mod memory;
 pub mod mesh;
 pub mod mitsuba;

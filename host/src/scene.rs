@@ -111,6 +111,11 @@ pub enum Projection {
     /// Mitsuba's `radiancemeter`: the radiance along one ray, from the origin along local +z (a
     /// perspective camera whose field of view is zero: every film position gives that ray).
     RadianceMeter,
+    /// Mitsuba's `irradiancemeter`: the irradiance averaged over shape `shape` (index into
+    /// `Scene::shapes`), measured by rays leaving it (`crate::irradiance_meter`).
+    IrradianceMeter {
+        shape: usize,
+    },
 }
 
 /// The part of the full image that is rendered (Mitsuba's `crop_*`).

@@ -9,6 +9,9 @@ use crate::sampling::square_to_concentric_disk;
 pub const CAMERA_PERSPECTIVE: u32 = 0;
 pub const CAMERA_THIN_LENS: u32 = 1;
 pub const CAMERA_ORTHOGRAPHIC: u32 = 2;
+/// Mitsuba's `irradiancemeter`: rays leave the points of a shape (`crate::irradiance_meter`, which
+/// reads the shape from `Camera::meter_table`); the other fields are unused.
+pub const CAMERA_IRRADIANCE_METER: u32 = 3;
 
 /// A camera in world space. The axes are the sensor's `to_world` image of the local x, y, z axes: local
 /// +z looks into the scene and local +x points to the image's left, so film coordinates increase
@@ -32,7 +35,8 @@ pub struct Camera {
     pub aperture_radius: f32,
     /// Thin lens: distance of the plane in focus along local +z.
     pub focus_distance: f32,
-    pub _pad: u32,
+    /// Irradiance meter: where its shape's primitives start in `tables` (`crate::irradiance_meter`).
+    pub meter_table: u32,
 }
 
 /// A connection from a scene point to the camera (`Camera::connect`).

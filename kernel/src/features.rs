@@ -67,6 +67,8 @@ pub const INSTANCING: u32 = 1 << 29;
 /// `mesh_attribute` textures on BSDF parameters: lookups read the hit triangle's attributes
 /// (`texture::eval_at`).
 pub const MESH_ATTRIBUTES: u32 = 1 << 30;
+/// Mitsuba's `irradiancemeter` sensor: camera rays leave a shape's surface (`irradiance_meter`).
+pub const IRRADIANCE_METER: u32 = 1 << 31;
 
 // The kinds must fit their bit ranges.
 const _: () = assert!(

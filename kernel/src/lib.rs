@@ -19,6 +19,7 @@ pub mod film;
 pub mod frame;
 pub mod instancing;
 pub mod integrator;
+pub mod irradiance_meter;
 pub mod layout;
 pub mod light;
 pub mod mask;

@@ -67,6 +67,8 @@ fn scene_using(family: &str, plugin: &str) -> Option<String> {
         }
         // Mitsuba refuses the default film (768×576) for a radiance meter, as caustic does.
         ("sensor", "radiancemeter") => r#"<sensor type="radiancemeter"><film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/></film></sensor>"#.into(),
+        // The irradiance meter lives in a shape, as in Mitsuba.
+        ("sensor", "irradiancemeter") => r#"<shape type="sphere"><sensor type="irradiancemeter"/></shape>"#.into(),
         ("sensor", _) => format!(r#"<sensor type="{plugin}"/>"#),
         // Mitsuba requires a group's id and an instance's group, as caustic does.
         ("shape", "shapegroup") => r#"<shape type="shapegroup" id="g"><shape type="sphere"/></shape>"#.into(),

@@ -9,6 +9,7 @@
 //! `<include>`, `<path>`, `id`/`<ref>` (ids unique, as Mitsuba wants them), and one integrator per
 //! scene; `deviations` collects what was substituted or ignored, which `--strict`
 //! (`LoadOptions::strict`) refuses.
+mod bitmap_format;
 mod blend;
 mod bsdf_maps;
 mod bsdfs;
@@ -58,7 +59,12 @@ pub(crate) struct Loader {
     instancing: crate::instancing::Instancing,
     /// Named textures (`id`), as indices into `textures`.
     named_textures: HashMap<String, u32>,
+    /// The scene's sensor: the first in document order, which Mitsuba renders by default.
     sensor: Option<crate::scene::Sensor>,
+    /// Where that sensor was given.
+    sensor_loc: Option<Loc>,
+    /// The shape (index into `shapes`) carrying an irradiance meter, and where the meter was given.
+    meter_shape: Option<(usize, Loc)>,
     integrator: Option<Integrator>,
     /// The `aov` or `depth` integrator's outputs (`crate::aov`).
     aovs: Option<crate::aov::AovSpec>,
@@ -95,6 +101,8 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         group_spheres: Vec::new(),
         instancing: Default::default(),
         sensor: None,
+        sensor_loc: None,
+        meter_shape: None,
         integrator: None,
         aovs: None,
         warnings: Vec::new(),
@@ -241,7 +249,8 @@ impl Loader {
                 }
                 "sensor" => {
                     let props = self.props(src, node)?;
-                    self.sensor = Some(self.load_sensor(&props)?);
+                    let sensor = self.load_sensor(&props)?;
+                    self.set_sensor(sensor, &loc);
                 }
                 "integrator" => {
                     if let Some(first) = &self.integrator_loc {
@@ -328,6 +337,22 @@ impl Loader {
     }
 
     /// Records every property and nested element of `props` that the plugin did not read.
+    /// Takes `sensor` (given at `loc`) as the scene's unless one came before it: Mitsuba lists a
+    /// scene's sensors in document order (those in shapes among them) and renders the first.
+    pub(crate) fn set_sensor(&mut self, sensor: crate::scene::Sensor, loc: &Loc) {
+        if let Some(first) = &self.sensor_loc {
+            let message =
+                format!("{loc}: a second sensor; the first, at {first}, is the one rendered (as Mitsuba)");
+            self.warn(&message);
+            return;
+        }
+        if let crate::scene::Projection::IrradianceMeter { shape } = sensor.projection {
+            self.meter_shape = Some((shape, loc.clone()));
+        }
+        self.sensor = Some(sensor);
+        self.sensor_loc = Some(loc.clone());
+    }
+
     pub(crate) fn warn_unused(&mut self, props: &Props) {
         for (loc, group, message) in props.unused() {
             self.ignored(group, &loc, message);

@@ -1,4 +1,5 @@
-//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `radiancemeter`) with their film
+//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `radiancemeter`, and
+//! `irradiancemeter` nested in a shape) with their film
 //! (`hdrfilm`), reconstruction filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`,
 //! `lanczos`) and sampler (`independent`; `stratified`, `multijitter`, `orthogonal` and `ldsampler`
 //! all use caustic's stratified sequence with the sample count Mitsuba would take).
@@ -107,6 +108,12 @@ fn fov_along_x(fov: f64, axis: &str, aspect: f64) -> Option<f64> {
 impl Loader {
     pub(crate) fn load_sensor(&mut self, props: &Props) -> Result<Sensor> {
         let mut sensor = default_sensor();
+        if props.kind == "irradiancemeter" {
+            bail!(
+                "{}: the irradiancemeter measures over a shape: nest it in the <shape> (Mitsuba takes it from there)",
+                props.loc
+            );
+        }
         if !matches!(props.kind.as_str(), "perspective" | "thinlens" | "orthographic" | "radiancemeter") {
             let message = format!(
                 "{}: sensor type '{}' is not supported yet; using perspective",
@@ -171,6 +178,45 @@ impl Loader {
             }
         };
         sensor.to_world = without_scale(to_world);
+        self.warn_unused(props);
+        Ok(sensor)
+    }
+
+    /// A sensor nested in shape `shape` (index into the loader's shapes), which must be Mitsuba's
+    /// `irradiancemeter` (`src/sensors/irradiancemeter.cpp`): the irradiance averaged over the
+    /// shape's surface. Like Mitsuba it takes its placement from the shape (a `to_world` is refused)
+    /// and measures the same value in every pixel of whatever film it has (its documentation asks for
+    /// 1×1).
+    pub(crate) fn load_shape_sensor(&mut self, props: &Props, shape: usize) -> Result<Sensor> {
+        if props.kind != "irradiancemeter" {
+            bail!(
+                "{}: a sensor inside a shape must be an irradiancemeter, not '{}' (Mitsuba attaches no other sensor to a shape)",
+                props.loc,
+                props.kind
+            );
+        }
+        if props.has("to_world") {
+            bail!(
+                "{}: the irradiancemeter takes its placement from its shape: a 'to_world' is not allowed (Mitsuba refuses it too)",
+                props.loc
+            );
+        }
+        let mut sensor = default_sensor();
+        for e in props.nested("film") {
+            let film = self.props(props.src, e.node)?;
+            self.load_film(&film, &mut sensor)?;
+        }
+        for e in props.nested("sampler") {
+            let sampler = self.props(props.src, e.node)?;
+            self.load_sampler(&sampler, &mut sensor)?;
+        }
+        if sensor.filter.radius() > 0.5 + RAY_EPSILON {
+            self.warn(&format!(
+                "{}: Mitsuba advises a reconstruction filter of radius 0.5 or less (e.g. box) for the irradiancemeter",
+                props.loc
+            ));
+        }
+        sensor.projection = Projection::IrradianceMeter { shape };
         self.warn_unused(props);
         Ok(sensor)
     }

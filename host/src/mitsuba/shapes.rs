@@ -63,6 +63,7 @@ impl Loader {
                 Geometry::Sphere { center, radius }
             }
             other => {
+                refuse_lost_sensor(props)?;
                 let message = format!("{}: shape type '{other}' is not supported yet; ignored", props.loc);
                 self.substituted(format!("shape '{other}'"), &props.loc, message);
                 props.mark_all_used();
@@ -71,6 +72,7 @@ impl Loader {
         };
         if let Geometry::Triangles { triangles, .. } = &geometry {
             if triangles.is_empty() {
+                refuse_lost_sensor(props)?;
                 self.warn(&format!("{}: shape has no non-degenerate triangles; ignored", props.loc));
                 props.mark_all_used();
                 return Ok(());
@@ -79,6 +81,15 @@ impl Loader {
         let (material, emission) = self.shape_bsdf_and_emitter(props)?;
         // A mesh keeps only the attributes its textures read: most scenes store and upload none.
         self.keep_read_attributes(props, &mut geometry, material)?;
+        let sensors = props.nested("sensor");
+        if let Some(second) = sensors.get(1) {
+            bail!("{}: a shape takes one sensor; the first is at {}", second.loc, sensors[0].loc);
+        }
+        for e in sensors {
+            let sensor_props = self.props(props.src, e.node)?;
+            let sensor = self.load_shape_sensor(&sensor_props, self.shapes.len())?;
+            self.set_sensor(sensor, &e.loc);
+        }
         self.warn_unused(props);
         let emission_directional = emission.is_some_and(|e| e.directional);
         let (emission, emission_texture) = (emission.map(|e| e.radiance), emission.and_then(|e| e.texture));
@@ -105,6 +116,13 @@ impl Loader {
                 bail!("{}: a {} cannot hold a {} (Mitsuba refuses it too)", e.loc, props.kind, child.kind);
             }
             self.load_shape(&child)?;
+        }
+        if let Some(loc) = self.meter_shape.as_ref().filter(|(shape, _)| *shape >= start).map(|(_, loc)| loc)
+        {
+            bail!(
+                "{loc}: an irradiancemeter inside a {} is not supported (attach it to a shape of the scene)",
+                props.kind
+            );
         }
         Ok(self.shapes.drain(start..).collect())
     }
@@ -296,4 +314,13 @@ fn tessellated_geometry(mut mesh: Mesh, to_world: Mat4) -> Geometry {
 
 fn triangle_geometry(t: mesh::Triangles) -> Geometry {
     Geometry::Triangles { triangles: t.triangles, normals: t.normals, uvs: t.uvs, attributes: t.attributes }
+}
+
+/// A sensor in a shape that is left out (an unsupported type, no triangles) would measure nothing:
+/// refused rather than dropped.
+fn refuse_lost_sensor(props: &Props) -> Result<()> {
+    if let Some(e) = props.nested("sensor").first() {
+        bail!("{}: this sensor's shape ({}) is left out, so it cannot measure anything", e.loc, props.loc);
+    }
+    Ok(())
 }

@@ -1,6 +1,8 @@
-//! Texture plugins: `bitmap` (image files, sRGB-decoded unless `raw`, bilinear or nearest, wrap modes)
-//! and `checkerboard`, both with `to_uv`, and `mesh_attribute` (where it may be read:
-//! `mesh_attributes`). Also colour and scalar parameters that may be a texture.
+//! Texture plugins: `bitmap` (image files, sRGB-decoded unless `raw`, bilinear or nearest, wrap modes,
+//! the storage precision of `format`: `bitmap_format`) and `checkerboard`, both with `to_uv`, and
+//! `mesh_attribute` (where it may be read: `mesh_attributes`). Also colour and scalar parameters that
+//! may be a texture.
+use super::bitmap_format;
 use super::props::{Entry, Props};
 use super::spectrum::SpectrumUse;
 use super::Loader;
@@ -86,8 +88,12 @@ impl Loader {
         let Some(name) = props.string("filename")? else { bail!("{}: bitmap needs a 'filename'", props.loc) };
         let path = self.resolve(&name, &props.loc)?;
         let raw = props.boolean("raw", false)?;
-        let image = crate::image_io::load_linear_rgb(&path, raw)
+        let format = bitmap_format::parse(props)?;
+        props.boolean("accel", true)?; // hardware interpolation on CUDA: no value changes
+        let mut image = crate::image_io::load_linear_rgb(&path, raw)
             .map_err(|e| anyhow::anyhow!("{}: {e:#}", props.loc))?;
+        bitmap_format::store(format, &mut image, raw)
+            .map_err(|e| anyhow::anyhow!("{}: {}: {e:#}", props.loc, path.display()))?;
         let filter = match props.string("filter_type")?.as_deref() {
             None | Some("bilinear") => 0,
             Some("nearest") => TEXTURE_NEAREST,
@@ -99,7 +105,6 @@ impl Loader {
             Some("clamp") => TEXTURE_WRAP_CLAMP,
             Some(other) => bail!("{}: wrap_mode must be repeat, mirror or clamp, not '{other}'", props.loc),
         };
-        props.string("format")?; // caustic always stores linear RGB
         let record = Texture {
             kind: TEXTURE_BITMAP,
             width: image.width,

@@ -6,11 +6,12 @@ pub mod path;
 pub mod ptracer;
 
 use crate::bsdf::perturb::{self, Perturbation, Shading};
-use crate::camera::Ray;
+use crate::camera::{Ray, CAMERA_IRRADIANCE_METER};
 use crate::features;
 use crate::film;
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
+use crate::irradiance_meter;
 pub use crate::layout::SceneView;
 use crate::layout::{
     FrameParams, Material, PixelAccum, Primitive, INTEGRATOR_IBPT, INTEGRATOR_PTRACER, MATERIAL_TWO_SIDED,
@@ -33,20 +34,52 @@ pub struct PixelSums {
     pub invalid: u32,
 }
 
+/// The dimensions an irradiance meter's ray draws its direction from (its point takes the lens's).
+const DIM_METER_DIRECTION: u32 = u32::MAX - 3;
+
+/// Whether the camera is an irradiance meter (compiled in only for scenes with one).
+#[inline]
+fn is_irradiance_meter(scene: &SceneView, params: &FrameParams) -> bool {
+    params.camera.kind == CAMERA_IRRADIANCE_METER && features::has(scene.features, features::IRRADIANCE_METER)
+}
+
 /// A camera sample of pixel (`px`, `py`): its sampler (keyed by seed, pixel and sample), the film
-/// sample (where it lands, in fractions of the full image, and its filter weight) and the primary ray.
+/// sample (where it lands, in fractions of the full image, and its filter weight) and the primary ray
+/// (whose radiance an irradiance meter weights by `irradiance_meter::WEIGHT`). (The tuple is built
+/// in one place: returning it from two branches, or with the weight as a fourth value, made naga
+/// reject the SPIR-V: "member at 52 overlaps the previous".)
 #[inline]
 fn camera_sample(
+    scene: &SceneView,
     params: &FrameParams,
-    tables: &[f32],
     pixel: u32,
     sample_index: u32,
 ) -> (Sampler, film::FilmSample, Ray) {
     let (px, py) = (pixel % params.width, pixel / params.width);
     let mut sampler = Sampler::new(params.seed, pixel, sample_index);
-    let film_sample = film::sample_position(params, tables, px, py, sample_index, &mut sampler);
+    let film_sample = film::sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
     let u_lens = sampler.next_2d();
-    (sampler, film_sample, params.camera.generate_ray(film_sample.pos, u_lens))
+    let ray = primary_ray(scene, params, film_sample.pos, u_lens, &mut sampler);
+    (sampler, film_sample, ray)
+}
+
+/// The camera's ray through `film` (`u_lens` picks a thin lens's aperture point); an irradiance
+/// meter's ray from its shape instead (its point drawn from `u_lens`, its direction from
+/// `DIM_METER_DIRECTION`).
+#[inline]
+fn primary_ray(
+    scene: &SceneView,
+    params: &FrameParams,
+    film: Vec2,
+    u_lens: Vec2,
+    sampler: &mut Sampler,
+) -> Ray {
+    if is_irradiance_meter(scene, params) {
+        sampler.set_dimension(DIM_METER_DIRECTION);
+        let u_dir = sampler.next_2d();
+        return irradiance_meter::generate_ray(scene, params.camera.meter_table, u_lens, u_dir);
+    }
+    params.camera.generate_ray(film, u_lens)
 }
 
 /// Renders `params.sample_count` samples of one pixel (row-major index).
@@ -59,10 +92,9 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
     if features::has(scene.features, features::DIRECT_INTEGRATOR) {
         let mut s = 0;
         while s < params.sample_count {
-            let (mut sampler, film_sample, ray) =
-                camera_sample(params, scene.tables, pixel, params.sample_base + s);
+            let (mut sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
             let l = direct::li(scene, params, ray, &mut sampler);
-            add_sample(&mut sums, params, l, film_sample.weight);
+            add_sample(&mut sums, scene, params, l, film_sample.weight);
             s += 1;
         }
         return sums;
@@ -71,27 +103,28 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> Pixe
     // hands its lane the next sample at once (`path::CameraPath`). Each sample draws the random
     // numbers it drew as a path of its own, and the sums add in the same order.
     let mut s = 0;
-    let (mut sampler, mut film_sample, ray) = camera_sample(params, scene.tables, pixel, params.sample_base);
+    let (mut sampler, mut film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base);
     let mut path = path::CameraPath::new(ray, 1.0);
     loop {
         if !path.bounce(scene, params, &mut sampler) {
-            add_sample(&mut sums, params, path.result, film_sample.weight);
+            add_sample(&mut sums, scene, params, path.result, film_sample.weight);
             s += 1;
             if s >= params.sample_count {
                 break;
             }
             let ray;
-            (sampler, film_sample, ray) = camera_sample(params, scene.tables, pixel, params.sample_base + s);
+            (sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
             path = path::CameraPath::new(ray, 1.0);
         }
     }
     sums
 }
 
-/// Adds one sample's estimate (times its filter weight under a signed filter) to the sums, or counts
-/// it as invalid.
+/// Adds one sample's estimate (an irradiance meter's times its weight, any under a signed filter
+/// times its filter weight) to the sums, or counts it as invalid.
 #[inline]
-fn add_sample(sums: &mut PixelSums, params: &FrameParams, l: Rgb, filter_weight: f32) {
+fn add_sample(sums: &mut PixelSums, scene: &SceneView, params: &FrameParams, l: Rgb, filter_weight: f32) {
+    let l = if is_irradiance_meter(scene, params) { l * irradiance_meter::WEIGHT } else { l };
     let l = if params.filter_signed != 0 { l * filter_weight } else { l };
     if is_finite3(l) {
         sums.sum += l;
@@ -119,8 +152,8 @@ pub fn splat_camera_paths<W: AtomicWords>(
     let (px, py) = (pixel % params.width, pixel / params.width);
     let mut s = 0;
     while s < params.sample_count {
-        let (mut sampler, film_sample, ray) =
-            camera_sample(params, scene.tables, pixel, params.sample_base + s);
+        // (IBPT refuses the irradiance meter: no weight here.)
+        let (mut sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
         let film_pos = film_sample.pos;
         let pos = Vec2::new(film_pos.x * params.full_width as f32, film_pos.y * params.full_height as f32);
         let density = film::pixel_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);

@@ -16,14 +16,13 @@ use crate::glam::{Vec2, Vec3};
 use crate::layout::{
     FrameParams, Light, SceneView, INTEGRATOR_PTRACER, LIGHT_AREA, LIGHT_CONSTANT, LIGHT_DIRECTIONAL,
     LIGHT_ENVMAP, LIGHT_FLAG_DIRECTIONAL_AREA, LIGHT_POINT, LIGHT_PROJECTOR, LIGHT_SPHERE, LIGHT_SPOT, NONE,
-    PRIM_DISK, PRIM_FLAG_FLIP,
 };
 use crate::math::{vec3, PI};
 use crate::sampling::{
     sample_cdf, square_to_concentric_disk, square_to_cosine_hemisphere, square_to_uniform_cone,
     square_to_uniform_sphere,
 };
-use crate::shape::{disk, offset_scale, triangle, RAY_EPSILON};
+use crate::shape::{offset_scale, RAY_EPSILON};
 use crate::spectrum::Rgb;
 
 /// The start of a light path.
@@ -128,21 +127,7 @@ pub fn sample(
     s.light = chosen.index;
     if light.kind == LIGHT_AREA || light.kind == LIGHT_SPHERE {
         let prim = scene.prims[light.prim as usize];
-        let (p, n, area, scale) = if light.kind == LIGHT_SPHERE {
-            let dir = square_to_uniform_sphere(u_pos);
-            let orientation = if prim.flags & PRIM_FLAG_FLIP != 0 { -1.0 } else { 1.0 };
-            let r = prim.p1[0];
-            (vec3(prim.p0) + dir * r, dir * orientation, 4.0 * PI * r * r, r)
-        } else {
-            let (p0, p1, p2) = (vec3(prim.p0), vec3(prim.p1), vec3(prim.p2));
-            let q = if prim.kind == PRIM_DISK {
-                disk::sample_point(p0, p1, p2, u_pos)
-            } else {
-                triangle::sample_point(p0, p1, p2, u_pos)
-            };
-            let (n, area) = area::normal_and_area(&prim);
-            (q, n, area, 0.0)
-        };
+        let area::PositionSample { p, n, area, error_scale: scale } = area::sample_position(&prim, u_pos);
         if light.flags & LIGHT_FLAG_DIRECTIONAL_AREA != 0 {
             // Mitsuba's `directionalarea`: along the normal, Le·A / pmf; no camera ray can meet that
             // direction, so the point itself is not connected to the camera.
