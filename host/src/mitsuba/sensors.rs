@@ -121,14 +121,7 @@ impl Loader {
             );
             self.substituted(format!("sensor '{}'", props.kind), &props.loc, message);
         }
-        for e in props.nested("film") {
-            let film = self.props(props.src, e.node)?;
-            self.load_film(&film, &mut sensor)?;
-        }
-        for e in props.nested("sampler") {
-            let sampler = self.props(props.src, e.node)?;
-            self.load_sampler(&sampler, &mut sensor)?;
-        }
+        self.load_film_and_sampler(props, &mut sensor)?;
         if props.kind == "radiancemeter" {
             sensor.to_world = without_scale(self.radiancemeter(props, &mut sensor)?);
             self.warn_unused(props);
@@ -202,14 +195,7 @@ impl Loader {
             );
         }
         let mut sensor = default_sensor();
-        for e in props.nested("film") {
-            let film = self.props(props.src, e.node)?;
-            self.load_film(&film, &mut sensor)?;
-        }
-        for e in props.nested("sampler") {
-            let sampler = self.props(props.src, e.node)?;
-            self.load_sampler(&sampler, &mut sensor)?;
-        }
+        self.load_film_and_sampler(props, &mut sensor)?;
         if sensor.filter.radius() > 0.5 + RAY_EPSILON {
             self.warn(&format!(
                 "{}: Mitsuba advises a reconstruction filter of radius 0.5 or less (e.g. box) for the irradiancemeter",
@@ -219,6 +205,19 @@ impl Loader {
         sensor.projection = Projection::IrradianceMeter { shape };
         self.warn_unused(props);
         Ok(sensor)
+    }
+
+    /// A sensor's nested film and sampler.
+    fn load_film_and_sampler(&mut self, props: &Props, sensor: &mut Sensor) -> Result<()> {
+        for e in props.nested("film") {
+            let film = self.props(props.src, e.node)?;
+            self.load_film(&film, sensor)?;
+        }
+        for e in props.nested("sampler") {
+            let sampler = self.props(props.src, e.node)?;
+            self.load_sampler(&sampler, sensor)?;
+        }
+        Ok(())
     }
 
     /// Mitsuba's `radiancemeter` (`src/sensors/radiancemeter.cpp`): the ray from the origin along
