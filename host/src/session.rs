@@ -247,14 +247,6 @@ impl Observer<'_> {
 }
 
 impl render::PassObserver for Observer<'_> {
-    fn pass_target(&self) -> Duration {
-        if self.viewer.is_some() {
-            render::INTERACTIVE_PASS
-        } else {
-            render::TARGET_PASS
-        }
-    }
-
     fn progress(&mut self, finished: u32) {
         self.bar.set_position(finished as u64);
     }
