@@ -8,15 +8,16 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Adds `params.sample_count` samples to every pixel of `accum` (one `PixelAccum` per pixel), exactly
-/// as one GPU dispatch does.
-pub fn render_pass(scene: &SceneView, params: &FrameParams, accum: &mut [PixelAccum]) {
+/// as one GPU dispatch does; the path tracer by its regenerating loop or its plain one (the same
+/// image either way: `render_pixel`).
+pub fn render_pass(scene: &SceneView, params: &FrameParams, accum: &mut [PixelAccum], regenerate: bool) {
     let pixels = (params.width * params.height) as usize;
     assert_eq!(accum.len(), pixels, "accumulation buffer does not match the image size");
     // Rows as work items: large enough to amortise scheduling, small enough to balance load.
     accum.par_chunks_mut(params.width as usize).enumerate().for_each(|(y, row)| {
         for (x, slot) in row.iter_mut().enumerate() {
             let pixel = y as u32 * params.width + x as u32;
-            *slot = accumulated(*slot, &render_pixel(scene, params, pixel), params.sample_count);
+            *slot = accumulated(*slot, &render_pixel(scene, params, pixel, regenerate), params.sample_count);
         }
     });
 }

@@ -14,7 +14,7 @@ pub struct Film {
     /// Variance of each mean (sample variance / n), when known. f64: a lamp of radiance 1e30 gives
     /// variances near 1e55, past f32's range (3.4e38), and the estimate is computed in f64 anyway.
     pub variance: Option<Vec<[f64; 3]>>,
-    /// Samples dropped because they were not finite.
+    /// Samples dropped because they were not finite, or because the GPU driver cut them short.
     pub invalid_samples: u64,
     /// A note written into EXR files' `comments` attribute (a partial render says so there).
     pub comment: Option<String>,

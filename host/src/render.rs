@@ -11,13 +11,17 @@ use caustic_kernel::layout::FrameParams;
 use std::ops::ControlFlow::{self, Continue};
 use std::time::{Duration, Instant};
 
-/// How long one pass should take: long enough to amortise dispatch overhead, short enough that no
-/// single GPU dispatch comes near a watchdog limit and progress stays responsive. Longer passes run
-/// the diamond faster (every pass waits for its slowest path: 7.35 Msamples/s at 150 ms, 9.47 at 1 s
-/// on the H100, session 9), but at 1 s lavapipe's image of `stiff.rs`'s facing mirrors (paths ended
-/// by Russian roulette alone) disagreed with the CPU's (image z −5.2; at 150 ms they agree exactly),
-/// which is not yet understood; until it is, passes stay short (`CAUSTIC_PASS_MS` sets another length).
-pub const TARGET_PASS: Duration = Duration::from_millis(150);
+/// How long one pass should take: long enough that the slowest paths of a pass leave the GPU idle
+/// for a small part of it, short enough that no dispatch nears a watchdog (Windows' default is 2 s).
+/// Every pass waits for its longest paths: in the diamond (`bsdf_dielectric_diamond`), where total
+/// internal reflection keeps some paths bouncing for hundreds of vertices, 150 ms passes (1 spp
+/// each) ran at 7.35 Msamples/s and 1 s passes at 9.47 on the H100 (session 9, same run); the
+/// other scenes gained 0–1%. (On software adapters the GPU backend splits a pass into dispatches of
+/// a few samples: llvmpipe cuts long-running invocations short, `backend::gpu`.)
+pub const TARGET_PASS: Duration = Duration::from_millis(1000);
+/// The pass length while a viewer shows the image as it converges (`--tev`), so that it updates
+/// several times a second.
+pub const INTERACTIVE_PASS: Duration = Duration::from_millis(250);
 
 /// `default`, or `CAUSTIC_PASS_MS` milliseconds where that is set (for measurements).
 fn target_pass(default: Duration) -> Result<Duration> {

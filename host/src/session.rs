@@ -58,7 +58,7 @@ pub struct RenderReport {
     pub resumed_at: u32,
     /// Seconds in the pass loop (loading, building and saving excluded).
     pub seconds: f64,
-    /// Samples that were not finite and were counted as black.
+    /// Samples that were not finite, or that the GPU driver cut short, counted as black.
     pub invalid_samples: u64,
     /// The signal (SIGINT, SIGTERM) that stopped the render before `spp` samples: the image saved
     /// holds `spp_done` samples per pixel and says so (EXR comments), the checkpoint is kept.
@@ -247,6 +247,14 @@ impl Observer<'_> {
 }
 
 impl render::PassObserver for Observer<'_> {
+    fn pass_target(&self) -> Duration {
+        if self.viewer.is_some() {
+            render::INTERACTIVE_PASS
+        } else {
+            render::TARGET_PASS
+        }
+    }
+
     fn progress(&mut self, finished: u32) {
         self.bar.set_position(finished as u64);
     }
@@ -373,7 +381,11 @@ pub(crate) fn resume(path: &Path, backend: &mut dyn Backend, fingerprint: u64, s
 /// Guarantees a finite image. The kernel already drops non-finite samples; report them.
 pub(crate) fn sanitize(film: &mut Film) {
     if film.invalid_samples > 0 {
-        eprintln!("warning: {} samples were not finite and were counted as black", film.invalid_samples);
+        eprintln!(
+            "warning: {} samples were not finite or were cut short by the GPU driver (a software \
+             adapter's loop limit), and were counted as black",
+            film.invalid_samples
+        );
     }
     for p in film.rgb.iter_mut().flatten() {
         if !p.is_finite() {

@@ -27,8 +27,11 @@ pub fn render(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] accum: &mut [PixelAccum], // ACCUM
     #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] textures: &[Texture], // TEXTURES
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] splat: &mut [u32],    // SPLAT
-    // The scene's `features` mask, fixed when the pipeline is created (default: everything).
+    // The scene's `features` mask, fixed when the pipeline is created (default: everything);
+    // layout::SPEC_FEATURES.
     #[spirv(spec_constant(id = 0, default = 4294967295))] features: u32,
+    // The path tracer's loop (layout::SPEC_REGENERATE; default: regenerating).
+    #[spirv(spec_constant(id = 1, default = 1))] regenerate: u32,
 ) {
     if id.x >= params.width || id.y >= params.height {
         return;
@@ -39,7 +42,7 @@ pub fn render(
         splat_camera_paths(&scene, params, pixel, &mut GpuWords(splat));
         return;
     }
-    let sums = render_pixel(&scene, params, pixel);
+    let sums = render_pixel(&scene, params, pixel, regenerate != 0);
     accum[pixel as usize] = accumulated(accum[pixel as usize], &sums, params.sample_count);
 }
 

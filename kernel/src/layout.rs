@@ -117,6 +117,10 @@ pub const MATERIAL_SELLMEIER: u32 = 16;
 /// Mitsuba's `mask`: the surface is there with probability `opacity` (or `opacity_texture`'s
 /// luminance) and otherwise lets the path through unchanged (`crate::mask`).
 pub const MATERIAL_MASK: u32 = 32;
+/// Flags above this bit: where a `twosided` of two BSDFs keeps its back's record, its index in the
+/// material list plus one (0: none; `two_sided`). The record has no spare word; the flags' low byte
+/// is enough for the flag bits.
+pub const MATERIAL_BACK_SHIFT: u32 = 8;
 
 /// `Material::perturb`: the kind of perturbation in the low two bits (0: none).
 pub const PERTURB_KIND: u32 = 3;
@@ -346,6 +350,12 @@ pub fn square_scale(params: &FrameParams) -> f32 {
 /// The GPU entry point's workgroup edge (`threads(8, 8, 1)` in `entry.rs`, which needs a literal):
 /// 8×8 pixels, so neighbouring rays (coherent traversal) run together. The host dispatches by it.
 pub const TILE: u32 = 8;
+
+/// Specialization constant ids of the camera entry point (`entry.rs` spells them as literals): the
+/// scene's feature mask (`features`), and whether the path tracer runs its regenerating loop (1) or
+/// its plain one (0; `integrator::render_pixel`).
+pub const SPEC_FEATURES: u32 = 0;
+pub const SPEC_REGENERATE: u32 = 1;
 
 /// Binding numbers of the entry point's buffers (descriptor set 0), named for the host's bind group;
 /// `entry.rs` spells the same numbers as the literals rust-gpu's attributes need.

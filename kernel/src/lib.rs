@@ -30,6 +30,7 @@ pub mod shape;
 pub mod spectrum;
 pub mod splat;
 pub mod texture;
+pub mod two_sided;
 pub mod wavelength;
 
 #[cfg(target_arch = "spirv")]

@@ -14,9 +14,11 @@
 use crate::bvh::Accel;
 use crate::camera::Ray;
 use crate::features;
-use crate::glam::Vec2;
+use crate::glam::{Vec2, Vec3};
 use crate::instancing::surface_point;
 use crate::layout::{Material, SceneView, MATERIAL_MASK, NONE};
+use crate::rng::Sampler;
+use crate::shape::{offset_origin, SurfacePoint};
 use crate::spectrum::luminance;
 
 /// Most masks one path or shadow ray passes through: bounds the loops on the GPU. A path that meets
@@ -67,4 +69,25 @@ pub fn transmittance(scene: &SceneView, accel: &Accel, shadow: &Ray, target: u32
         passes += 1;
     }
     0.0
+}
+
+/// Whether a path meeting material `m` at `sp` passes through it (a mask, with probability
+/// `1 − opacity`). Decision `k` draws dimension `path::DIM_MASK + k` from a copy of `sampler`, so the
+/// caller's dimensions are undisturbed; `k` counts every decision of the path (a number drawn twice
+/// would correlate them). Integrators whose paths stop at `MAX_PASSES` decisions check `k` after.
+#[inline]
+pub fn passes(scene: &SceneView, m: &Material, sp: &SurfacePoint, sampler: &Sampler, k: &mut u32) -> bool {
+    if !is_mask(scene, m) {
+        return false;
+    }
+    let mut s = *sampler;
+    s.set_dimension(crate::integrator::path::DIM_MASK + *k);
+    *k += 1;
+    s.next_1d() >= opacity(scene, m, sp.uv)
+}
+
+/// The ray that goes on along `dir` from the mask at `sp` it passed through.
+#[inline]
+pub fn onward(sp: &SurfacePoint, dir: Vec3) -> Ray {
+    Ray { origin: offset_origin(sp, sp.ng, dir), dir, t_min: 0.0, t_max: f32::MAX }
 }

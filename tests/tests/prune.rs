@@ -24,8 +24,10 @@ fn a_pruned_kernel_renders_the_specialised_image() {
     // The module itself: the constant is gone and so is most of the code.
     let words: Vec<u32> =
         bytemuck::pod_collect_to_vec(include_bytes!("../../host/shaders/caustic-kernel.spv"));
-    let pruned =
-        caustic::backend::prune::pruned(&words, buffers.features).expect("spirv-opt prunes the kernel");
+    // (The regenerating path loop: what lavapipe runs unless asked otherwise, `backend::path_loop`.)
+    let regenerate = caustic::backend::path_loop::PathLoop::Regenerate.spec_value();
+    let pruned = caustic::backend::prune::pruned(&words, buffers.features, regenerate)
+        .expect("spirv-opt prunes the kernel");
     assert!(pruned.len() < words.len() / 2, "pruned {} words of {}", pruned.len(), words.len());
 
     std::env::set_var("CAUSTIC_PRUNE", "0");
@@ -45,5 +47,5 @@ fn a_pruned_kernel_renders_the_specialised_image() {
     // As `cross_backend`'s specialization test: the driver compiles two pipelines and may contract
     // floating point differently, so a few paths may diverge; a wrong path would change most pixels.
     assert!(differ <= specialised.rgb.len() / 50, "{differ} pixels differ between pruned and specialised");
-    assert_eq!(entries, 1, "one kernel, one mask: one cache entry");
+    assert_eq!(entries, 1, "one kernel, one mask, one loop: one cache entry");
 }

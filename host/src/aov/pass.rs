@@ -167,7 +167,8 @@ fn shading_normal(
 /// `roughplastic`, and the base colour of `principled` and `principledthin`; a blend's children
 /// weighted as the blend weighs them; every other model Mitsuba's default, π·f(viewer, normal)
 /// (the BSDF evaluated towards the shading normal: 0 for smooth conductors and dielectrics, which
-/// are Dirac lobes). `twosided` is the material's flag: seen from behind, the back is the front.
+/// are Dirac lobes). `twosided` is the material's flag: seen from behind, the back is the front, or the back's record
+/// where it has two (`caustic_kernel::two_sided::seen`).
 fn albedo(
     buffers: &SceneBuffers,
     prim: &Primitive,
@@ -176,7 +177,7 @@ fn albedo(
     dir: Vec3,
 ) -> Rgb {
     let scene = buffers.view();
-    let material = &scene.materials[prim.material as usize];
+    let material = &scene.materials[caustic_kernel::two_sided::seen(&scene, prim.material, sp, dir) as usize];
     let bsdf = Bsdf::new(
         material,
         scene.materials,

@@ -11,6 +11,9 @@ pub struct CpuBackend {
     /// The f32 sums the kernel adds to, as the GPU's accumulation buffer.
     device: Vec<PixelAccum>,
     folding: Folding,
+    /// The path tracer's loop (`path_loop`): the regenerating one only where `CAUSTIC_PATH_LOOP` asks
+    /// for it; a CPU core has no warp for it to keep busy.
+    regenerate: bool,
 }
 
 impl CpuBackend {
@@ -18,7 +21,9 @@ impl CpuBackend {
         let pixels = (buffers.params.width * buffers.params.height) as usize;
         let splatted = caustic_kernel::integrator::splats(buffers.params.integrator);
         let folding = Folding::new(pixels, splatted, buffers.params.square_scale_log2);
-        CpuBackend { buffers, device: vec![PixelAccum::default(); pixels], folding }
+        use super::path_loop::{requested, PathLoop, Request};
+        let regenerate = requested().ok() == Some(Request::Fixed(PathLoop::Regenerate));
+        CpuBackend { buffers, device: vec![PixelAccum::default(); pixels], folding, regenerate }
     }
 
     fn fold(&mut self) {
@@ -41,7 +46,7 @@ impl Backend for CpuBackend {
                 *px = resolved(*px, w.try_into().expect("a pixel's words"), params.sample_count, q);
             }
         } else {
-            caustic_cpu::render_pass(&self.buffers.view(), params, &mut self.device);
+            caustic_cpu::render_pass(&self.buffers.view(), params, &mut self.device, self.regenerate);
         }
         if self.folding.passed(params.sample_count) {
             self.fold();

@@ -3,13 +3,17 @@
 //! The module is consumed through naga with runtime bounds checks off (`create_shader_module_trusted`
 //! with unchecked runtime checks): measured fastest on the H100 (see ../shared/notes and
 //! BENCHMARKS.md), and safe because the kernel's own indexing is bounds-checked Rust.
+use super::path_loop::{self, PathLoop, Request, Trial};
 use super::Backend;
 use crate::buffers::SceneBuffers;
 use crate::film::{Accumulation, Folding};
 use anyhow::{anyhow, bail, Context, Result};
 use caustic_kernel::integrator::{splats, traces_camera_paths};
-use caustic_kernel::layout::{binding, FrameParams, PixelAccum, TILE};
+use caustic_kernel::layout::{
+    binding, FrameParams, PixelAccum, INTEGRATOR_PATH, SPEC_FEATURES, SPEC_REGENERATE, TILE,
+};
 use caustic_kernel::splat::SPLAT_STRIDE;
+use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 /// The kernel compiled by `shaders-build` (committed; CI checks it matches the source).
@@ -23,8 +27,11 @@ const RESOLVE_ENTRY: &str = "entry::resolve";
 pub struct GpuBackend {
     device: wgpu::Device,
     queue: wgpu::Queue,
-    /// The camera and the light entry points, as the integrator needs them.
-    camera_pipeline: Option<wgpu::ComputePipeline>,
+    /// The camera entry point, per path loop (`path_loop`: indexed by `PathLoop::spec_value`; only
+    /// the path tracer builds both), and the light entry point, as the integrator needs them.
+    camera_pipelines: [Option<wgpu::ComputePipeline>; 2],
+    /// Which camera pipeline runs: measured on the first passes where both are built.
+    trial: Trial,
     light_pipeline: Option<wgpu::ComputePipeline>,
     bind_group: wgpu::BindGroup,
     params_buffer: wgpu::Buffer,
@@ -37,9 +44,19 @@ pub struct GpuBackend {
     /// and clears them. `None` otherwise.
     resolve_pipeline: Option<wgpu::ComputePipeline>,
     adapter_name: String,
+    /// Samples per pixel one dispatch may take (a longer pass is several dispatches).
+    max_dispatch_samples: u32,
     width: u32,
     height: u32,
 }
+
+/// Samples per pixel in one dispatch on a software adapter. llvmpipe (lavapipe) ends all of an
+/// invocation's loops once they have run 65535 iterations together (Mesa's
+/// `LP_MAX_TGSI_LOOP_ITERATIONS`): one dispatch of 128 samples through `stiff.rs`'s facing mirrors
+/// (Russian roulette alone ends the paths) lost up to half of some pixels' samples, 64 lost none. The
+/// kernel counts samples cut short as invalid, so a scene whose single samples run that long is
+/// reported, not silently darker.
+const SOFTWARE_DISPATCH_SAMPLES: u32 = 16;
 
 fn adapter_rank(info: &wgpu::AdapterInfo) -> u32 {
     match info.device_type {
@@ -94,26 +111,50 @@ impl GpuBackend {
             ),
             None => None,
         };
-        let mut words: Vec<u32> = bytemuck::pod_collect_to_vec(override_spv.as_deref().unwrap_or(KERNEL_SPV));
-        let mut specialisable = declares_spec_constant(&words, 0);
-        // The scene's paths alone (`prune`): a pruned module has its mask frozen in, no constant left.
-        if specialisable && super::prune::wanted(info.device_type == wgpu::DeviceType::Cpu) {
-            if let Some(pruned) = super::prune::pruned(&words, buffers.features) {
-                words = pruned;
-                specialisable = declares_spec_constant(&words, 0);
-            }
-        }
-        // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are bounds-checked
-        // in the source; dropping naga's duplicate runtime checks is what makes this path fast.
-        let module = unsafe {
-            device.create_shader_module_trusted(
-                wgpu::ShaderModuleDescriptor {
-                    label: Some("caustic-kernel"),
-                    source: wgpu::ShaderSource::SpirV(words.into()),
-                },
-                wgpu::ShaderRuntimeChecks::unchecked(),
-            )
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(override_spv.as_deref().unwrap_or(KERNEL_SPV));
+        let integrator = buffers.params.integrator;
+        let software = info.device_type == wgpu::DeviceType::Cpu;
+        // The path tracer's two loops, where the choice is open: timed on the first passes on a
+        // hardware GPU; on a software adapter (the tests' lavapipe) the regenerating loop alone, to
+        // compile one kernel rather than two. Other integrators have one loop each.
+        let path_tracer = integrator == INTEGRATOR_PATH && !splats(integrator);
+        let loops: Vec<PathLoop> = match path_loop::requested()? {
+            Request::Fixed(choice) => vec![choice],
+            Request::Measure if path_tracer => PathLoop::BOTH.to_vec(),
+            Request::Default if path_tracer && !software => PathLoop::BOTH.to_vec(),
+            _ => vec![PathLoop::Regenerate],
         };
+        let trial = if loops.len() == 2 { Trial::default() } else { Trial::fixed(loops[0]) };
+        // Each loop's module and whether its constants are still open: the scene's paths alone
+        // (`prune`) have the mask and the loop frozen in, no constant left.
+        let prune = super::prune::wanted(software);
+        let modules: Vec<(PathLoop, wgpu::ShaderModule, bool)> = loops
+            .iter()
+            .map(|&choice| {
+                let mut words = words.clone();
+                let mut specialisable = declares_spec_constant(&words, 0);
+                if specialisable && prune {
+                    if let Some(pruned) = super::prune::pruned(&words, buffers.features, choice.spec_value())
+                    {
+                        words = pruned;
+                        specialisable = declares_spec_constant(&words, 0);
+                    }
+                }
+                // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are
+                // bounds-checked in the source; dropping naga's duplicate runtime checks is what
+                // makes this path fast.
+                let module = unsafe {
+                    device.create_shader_module_trusted(
+                        wgpu::ShaderModuleDescriptor {
+                            label: Some("caustic-kernel"),
+                            source: wgpu::ShaderSource::SpirV(words.into()),
+                        },
+                        wgpu::ShaderRuntimeChecks::unchecked(),
+                    )
+                };
+                (choice, module, specialisable)
+            })
+            .collect();
         // One explicit layout for both entry points (each uses a subset of the bindings).
         let entry = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
             binding,
@@ -149,25 +190,37 @@ impl GpuBackend {
             bind_group_layouts: &[Some(&bind_group_layout)],
             immediate_size: 0,
         });
-        // A module built with the scene's mask already frozen in (CAUSTIC_KERNEL_SPV, e.g. spirv-opt
-        // --freeze-spec-const) has no constant left to set.
-        let spec_constants = [("0", buffers.features as f64)];
-        let constants: &[(&str, f64)] = if specialisable { &spec_constants } else { &[] };
-        let pipeline = |entry_point: &str| {
+        // A module built with the scene's mask already frozen in (pruned, or CAUSTIC_KERNEL_SPV, e.g.
+        // spirv-opt --freeze-spec-const) has no constant left to set.
+        let pipeline = |(choice, module, specialisable): &(PathLoop, wgpu::ShaderModule, bool),
+                        entry_point: &str| {
+            // The scene's feature mask specialises the kernel (spec constant 0): unused paths fold
+            // away; spec constant 1 picks the path loop.
+            let spec_constants = [
+                (SPEC_FEATURES.to_string(), buffers.features as f64),
+                (SPEC_REGENERATE.to_string(), choice.spec_value() as f64),
+            ];
+            let constants: &[(&str, f64)] = &spec_constants.each_ref().map(|(k, v)| (k.as_str(), *v));
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry_point),
                 layout: Some(&pipeline_layout),
-                module: &module,
+                module,
                 entry_point: Some(entry_point),
-                // The scene's feature mask specialises the kernel (spec constant 0): unused paths fold away.
-                compilation_options: wgpu::PipelineCompilationOptions { constants, ..Default::default() },
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: if *specialisable { constants } else { &[] },
+                    ..Default::default()
+                },
                 cache: None,
             })
         };
-        let integrator = buffers.params.integrator;
-        let camera_pipeline = traces_camera_paths(integrator).then(|| pipeline(CAMERA_ENTRY));
-        let light_pipeline = splats(integrator).then(|| pipeline(LIGHT_ENTRY));
-        let resolve_pipeline = splats(integrator).then(|| pipeline(RESOLVE_ENTRY));
+        let mut camera_pipelines = [None, None];
+        if traces_camera_paths(integrator) {
+            for m in &modules {
+                camera_pipelines[m.0.spec_value() as usize] = Some(pipeline(m, CAMERA_ENTRY));
+            }
+        }
+        let light_pipeline = splats(integrator).then(|| pipeline(&modules[0], LIGHT_ENTRY));
+        let resolve_pipeline = splats(integrator).then(|| pipeline(&modules[0], RESOLVE_ENTRY));
         if let Some(e) = pollster::block_on(scope.pop()) {
             bail!("the GPU rejected the kernel on {}: {e}", info.name);
         }
@@ -232,7 +285,8 @@ impl GpuBackend {
         Ok(GpuBackend {
             device,
             queue,
-            camera_pipeline,
+            camera_pipelines,
+            trial,
             light_pipeline,
             bind_group,
             params_buffer,
@@ -241,6 +295,11 @@ impl GpuBackend {
             folding: Folding::new(pixels as usize, splatted, buffers.params.square_scale_log2),
             resolve_pipeline,
             adapter_name,
+            max_dispatch_samples: if info.device_type == wgpu::DeviceType::Cpu {
+                SOFTWARE_DISPATCH_SAMPLES
+            } else {
+                u32::MAX
+            },
             width: buffers.params.width,
             height: buffers.params.height,
         })
@@ -283,34 +342,35 @@ impl GpuBackend {
 
 impl Backend for GpuBackend {
     fn describe(&self) -> String {
-        format!("gpu: {}", self.adapter_name)
+        match (self.camera_pipelines.iter().flatten().count(), self.trial.decided()) {
+            (2, Some(choice)) => {
+                let [plain, regenerate] = self.trial.per_sample().map(|s| s * 1e3);
+                format!(
+                    "gpu: {}, {} path loop ({plain:.2} against {regenerate:.2} ms per spp, plain against regenerating)",
+                    self.adapter_name,
+                    if choice == PathLoop::Regenerate { "regenerating" } else { "plain" }
+                )
+            }
+            _ => format!("gpu: {}", self.adapter_name),
+        }
     }
 
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
-        self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(params));
-        let mut encoder =
-            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pass") });
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("render"),
-                timestamp_writes: None,
-            });
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            // Camera paths, light paths, then (splatting) the words folded into the accumulator: each
-            // dispatch sees the previous one's writes (wgpu orders dispatches that share a buffer).
-            for pipeline in
-                [&self.camera_pipeline, &self.light_pipeline, &self.resolve_pipeline].into_iter().flatten()
-            {
-                pass.set_pipeline(pipeline);
-                pass.dispatch_workgroups(self.width.div_ceil(TILE), self.height.div_ceil(TILE), 1);
+        let mut chunk = *params;
+        let mut timed = Vec::with_capacity(2);
+        for (choice, count) in self.trial.plan(params.sample_count) {
+            let end = chunk.sample_base + count;
+            let clock = Instant::now();
+            while chunk.sample_base < end {
+                chunk.sample_count = (end - chunk.sample_base).min(self.max_dispatch_samples);
+                self.dispatch(&chunk, choice)?;
+                chunk.sample_base += chunk.sample_count;
             }
+            // (`dispatch` waits for the GPU: the clock measures the samples alone.)
+            timed.push((choice, count, clock.elapsed()));
         }
-        self.queue.submit([encoder.finish()]);
-        if self.folding.passed(params.sample_count) {
-            self.fold()
-        } else {
-            self.wait()
-        }
+        self.trial.record(&timed);
+        Ok(())
     }
 
     fn write_accum(&mut self, accum: &Accumulation) -> Result<()> {
@@ -325,6 +385,40 @@ impl Backend for GpuBackend {
 }
 
 impl GpuBackend {
+    /// One dispatch of the kernel: `params.sample_count` samples per pixel (at most
+    /// `max_dispatch_samples`).
+    fn dispatch(&mut self, params: &FrameParams, choice: PathLoop) -> Result<()> {
+        self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(params));
+        let mut encoder =
+            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pass") });
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("render"),
+                timestamp_writes: None,
+            });
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            // Camera paths, light paths, then (splatting) the words folded into the accumulator: each
+            // dispatch sees the previous one's writes (wgpu orders dispatches that share a buffer).
+            for pipeline in [
+                &self.camera_pipelines[choice.spec_value() as usize],
+                &self.light_pipeline,
+                &self.resolve_pipeline,
+            ]
+            .into_iter()
+            .flatten()
+            {
+                pass.set_pipeline(pipeline);
+                pass.dispatch_workgroups(self.width.div_ceil(TILE), self.height.div_ceil(TILE), 1);
+            }
+        }
+        self.queue.submit([encoder.finish()]);
+        if self.folding.passed(params.sample_count) {
+            self.fold()
+        } else {
+            self.wait()
+        }
+    }
+
     /// Reads the device's f32 sums back into the host's f64 totals and clears them.
     fn fold(&mut self) -> Result<()> {
         let bytes = self.read_buffer(&self.accum_buffer, self.accum_size)?;
@@ -369,10 +463,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_committed_kernel_declares_the_feature_constant() {
+    fn the_committed_kernel_declares_its_two_constants() {
         let words: Vec<u32> = bytemuck::pod_collect_to_vec(KERNEL_SPV);
-        assert!(declares_spec_constant(&words, 0));
-        assert!(!declares_spec_constant(&words, 1));
+        assert!(declares_spec_constant(&words, SPEC_FEATURES));
+        assert!(declares_spec_constant(&words, SPEC_REGENERATE));
+        assert!(!declares_spec_constant(&words, 2));
         // A module without decorations (header only) and a truncated one declare nothing.
         assert!(!declares_spec_constant(&words[..5], 0));
         assert!(!declares_spec_constant(&[0x0723_0203, 0, 0, 0, 0, 0], 0));

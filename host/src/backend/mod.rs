@@ -3,6 +3,7 @@
 pub mod cpu;
 pub mod gpu;
 pub mod limits;
+pub mod path_loop;
 pub mod pool;
 pub mod prune;
 pub mod runtime_dir;
@@ -122,6 +123,7 @@ pub fn create_on(
         crate::memory::available(),
         &format!("a {w}×{h} render"),
     )?;
+    path_loop::requested()?; // (a bad CAUSTIC_PATH_LOOP is an error on every backend)
     let cpu = || -> Box<dyn Backend + Send> { Box::new(cpu::CpuBackend::new(buffers.clone())) };
     let hardware_only = match choice {
         BackendChoice::Cpu => return Ok(cpu()),

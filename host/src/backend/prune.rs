@@ -1,5 +1,5 @@
-//! The kernel pruned to one scene: the SPIR-V with the scene's feature mask frozen into its
-//! specialization constant and every path the mask disables deleted, by SPIRV-Tools' `spirv-opt`
+//! The kernel pruned to one scene: the SPIR-V with the scene's feature mask (and its path loop,
+//! `path_loop`) frozen into its specialization constants and every path they disable deleted, by SPIRV-Tools' `spirv-opt`
 //! (the optimiser rust-gpu itself uses), before the driver sees it.
 //!
 //! Why: the specialization constant alone lets the driver fold unused paths away, and with the
@@ -42,11 +42,12 @@ pub fn wanted(software_adapter: bool) -> bool {
     }
 }
 
-/// `words` with spec constant 0 frozen at `mask` and the dead paths removed, from the cache or from
-/// `spirv-opt`; `None` (with the reason on stderr) where neither can give it.
-pub fn pruned(words: &[u32], mask: u32) -> Option<Vec<u32>> {
+/// `words` with spec constant 0 frozen at `mask`, 1 at `path_loop` (`PathLoop::spec_value`) and the
+/// dead paths removed, from the cache or from `spirv-opt`; `None` (with the reason on stderr) where
+/// neither can give it.
+pub fn pruned(words: &[u32], mask: u32, path_loop: u32) -> Option<Vec<u32>> {
     let bytes: &[u8] = bytemuck::cast_slice(words);
-    let cached = cache_dir().map(|dir| dir.join(format!("{:016x}-{mask:08x}.spv", key(bytes))));
+    let cached = cache_dir().map(|dir| dir.join(format!("{:016x}-{mask:08x}-{path_loop}.spv", key(bytes))));
     if let Some(words) = cached.as_deref().and_then(read_module) {
         return Some(words);
     }
@@ -55,7 +56,7 @@ pub fn pruned(words: &[u32], mask: u32) -> Option<Vec<u32>> {
     let result = std::fs::write(&input, bytes).ok().and_then(|_| {
         eprintln!("pruning the kernel to this scene's paths (spirv-opt; once per feature mask)");
         let status = Command::new("spirv-opt")
-            .arg(format!("--set-spec-const-default-value=0:{mask}"))
+            .arg(format!("--set-spec-const-default-value=0:{mask} 1:{path_loop}"))
             .args(PASSES)
             .arg(&input)
             .arg("-o")

@@ -7,7 +7,8 @@
 //! kernel builds two models, with no recursion; flattening would need a list of weights per surface,
 //! textured weights multiplied), a `mask` inside (the kernel reads a mask's opacity on the surface's
 //! own record), a dispersive dielectric inside (its wavelength is drawn on the surface's own record),
-//! and a two-sided child beside a one-sided one (a surface's shading frame is mirrored for all of it).
+//! a two-sided child beside a one-sided one (a surface's shading frame is mirrored for all of it),
+//! and a `twosided` of two BSDFs (the kernel picks a side on the surface's own record).
 //! A child with a Dirac lobe beside one with a smooth lobe renders differently from Mitsuba
 //! (`caustic_kernel::bsdf::blend`): a substitution, which `--strict` refuses.
 use super::props::{Entry, Props};
@@ -43,6 +44,8 @@ impl Loader {
             let m = self.materials[i as usize];
             let refusal = if m.kind == BSDF_BLEND {
                 Some("a blendbsdf inside a blendbsdf is not supported (the kernel mixes two models, no deeper)")
+            } else if caustic_kernel::two_sided::back_plus_one(&m) != 0 {
+                Some("a twosided of two BSDFs inside a blendbsdf is not supported; blend each side's BSDFs inside the twosided")
             } else if m.flags & MATERIAL_MASK != 0 {
                 Some("a mask inside a blendbsdf is not supported; put the mask around the blendbsdf")
             } else if m.perturb != 0 {

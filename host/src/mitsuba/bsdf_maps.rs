@@ -87,6 +87,9 @@ impl Loader {
         if props.boolean("use_shadowing_function", true)? {
             m.perturb |= PERTURB_SHADOWING;
         }
+        if caustic_kernel::two_sided::back_plus_one(&m) != 0 {
+            bail!("{}: a normalmap or bumpmap around a twosided of two BSDFs is not supported", props.loc);
+        }
         if m.flags & MATERIAL_TWO_SIDED != 0 {
             m.perturb |= PERTURB_TWO_SIDED_INSIDE;
         }

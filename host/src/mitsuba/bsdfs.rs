@@ -174,6 +174,9 @@ impl Loader {
         if m.flags & MATERIAL_MASK != 0 {
             bail!("{}: a mask inside a mask is not supported", props.loc);
         }
+        if caustic_kernel::two_sided::back_plus_one(&m) != 0 {
+            bail!("{}: a mask around a twosided of two BSDFs is not supported", props.loc);
+        }
         // A number as Mitsuba reads it (`Texture::eval_1`: a texture's luminance, a checkerboard's
         // colours on the other cells than as a colour: `scalar_texture`).
         let (opacity, texture) = match self.scalar_texture(props, "opacity")? {
@@ -189,28 +192,53 @@ impl Loader {
         Ok(m)
     }
 
+    /// Mitsuba's `twosided`: one nested BSDF (`<bsdf>` or `<ref>`) on both sides, or two, the first on
+    /// the front and the second, mirrored, on the back (`caustic_kernel::two_sided`: the front's record
+    /// names the back's).
     fn twosided(&mut self, props: &Props) -> Result<Material> {
-        let nested = props.nested("bsdf");
-        let refs = props.nested("ref");
-        let inner_entry = match (nested.first(), refs.first()) {
-            (Some(e), _) | (None, Some(e)) => *e,
-            (None, None) => bail!("{}: twosided needs a nested <bsdf>", props.loc),
-        };
-        if nested.len() + refs.len() > 1 {
-            let message = format!(
-                "{}: twosided with two different BSDFs is not supported; using the first on both sides",
-                props.loc
-            );
-            self.substituted("twosided with two BSDFs".to_string(), &props.loc, message);
+        // Marks the nested elements as read; the order comes from the entries.
+        props.nested("bsdf");
+        props.nested("ref");
+        let children: Vec<_> = props.entries.iter().filter(|e| e.tag == "bsdf" || e.tag == "ref").collect();
+        let mut sides = Vec::new();
+        for entry in &children {
+            let child_props = self.props(props.src, entry.node)?;
+            let index = self.load_bsdf(&child_props)?;
+            let m = self.materials[index as usize];
+            if self.transmits(&m) {
+                bail!("{}: twosided cannot wrap a transmissive BSDF ('{}')", props.loc, child_props.kind);
+            }
+            sides.push((m, entry));
         }
-        let inner_props = self.props(props.src, inner_entry.node)?;
-        let index = self.load_bsdf(&inner_props)?;
-        let mut m = self.materials[index as usize];
-        if self.transmits(&m) {
-            bail!("{}: twosided cannot wrap a transmissive BSDF ('{}')", props.loc, inner_props.kind);
+        match sides.as_slice() {
+            [] => bail!("{}: twosided needs a nested <bsdf>", props.loc),
+            [(front, _)] => Ok(Material { flags: front.flags | MATERIAL_TWO_SIDED, ..*front }),
+            [(front, _), (back, _)] => {
+                for (m, entry) in &sides {
+                    let refusal = if m.flags & MATERIAL_TWO_SIDED != 0 {
+                        Some("a twosided inside a twosided of two BSDFs is not supported")
+                    } else if m.flags & MATERIAL_MASK != 0 {
+                        Some("a mask inside a twosided of two BSDFs is not supported")
+                    } else if m.perturb != 0 {
+                        Some("a normalmap or bumpmap inside a twosided of two BSDFs is not supported")
+                    } else {
+                        None
+                    };
+                    if let Some(why) = refusal {
+                        bail!("{}: {why}", entry.loc);
+                    }
+                }
+                let back_index = self.materials.len() as u32;
+                if back_index >= u32::MAX >> MATERIAL_BACK_SHIFT {
+                    bail!("{}: too many materials for a twosided's back ({back_index})", props.loc);
+                }
+                // The back's own record, mirrored by its flag; the front's names it.
+                self.materials.push(Material { flags: back.flags | MATERIAL_TWO_SIDED, ..*back });
+                let flags = front.flags | MATERIAL_TWO_SIDED | ((back_index + 1) << MATERIAL_BACK_SHIFT);
+                Ok(Material { flags, ..*front })
+            }
+            _ => bail!("{}: twosided takes one or two nested BSDFs (Mitsuba refuses more)", props.loc),
         }
-        m.flags |= MATERIAL_TWO_SIDED;
-        Ok(m)
     }
 
     /// `distribution`, `alpha` / `alpha_u`, `alpha_v` of the rough models (Mitsuba's default: Beckmann,

@@ -12,6 +12,7 @@ use crate::bvh::Accel;
 use crate::camera::Ray;
 use crate::instancing::surface_point;
 use crate::layout::{FrameParams, SceneView, NONE};
+use crate::mask;
 use crate::rng::Sampler;
 use crate::shape::offset_origin;
 use crate::spectrum::Rgb;
@@ -27,28 +28,41 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     sampler.set_dimension(DIM_FIRST_BOUNCE);
 
     let hidden = params.hide_emitters != 0;
-    let found = if hidden {
-        first_hit_past_emitters(scene, &accel, &camera_ray)
-    } else {
-        accel.trace(&camera_ray, false, NONE)
-    };
-    let hit = match found {
-        Some(h) => h,
-        None if hidden => return Rgb::ZERO,
-        None => return environment(scene, params, camera_ray.dir, &camera, counts),
-    };
-    let prim = scene.prims[hit.prim as usize];
-    let sp = surface_point(scene, &prim, &hit, &camera_ray);
+    // The camera ray passes through masks as `path`'s does (`mask`): straight on, emitters it meets
+    // on the way counted as seen directly.
+    let mut ray = camera_ray;
     let mut emitted = Rgb::ZERO;
-    if prim.light != NONE {
-        emitted = area_emission(scene, &prim, &sp, camera_ray.dir, &camera, counts);
-    }
+    let mut passes = 0;
+    let (hit, prim, sp) = loop {
+        let found = if hidden {
+            first_hit_past_emitters(scene, &accel, &ray)
+        } else {
+            accel.trace(&ray, false, NONE)
+        };
+        let hit = match found {
+            Some(h) => h,
+            None if hidden => return emitted,
+            None => return emitted + environment(scene, params, ray.dir, &camera, counts),
+        };
+        let prim = scene.prims[hit.prim as usize];
+        let sp = surface_point(scene, &prim, &hit, &ray);
+        if prim.light != NONE {
+            emitted += area_emission(scene, &prim, &sp, ray.dir, &camera, counts);
+        }
+        if !mask::passes(scene, &scene.materials[prim.material as usize], &sp, sampler, &mut passes) {
+            break (hit, prim, sp);
+        }
+        if passes >= mask::MAX_PASSES {
+            return emitted;
+        }
+        ray = mask::onward(&sp, ray.dir);
+    };
 
-    let mut material = scene.materials[prim.material as usize];
+    let mut material = scene.materials[crate::two_sided::seen(scene, prim.material, &sp, ray.dir) as usize];
     let mut lambda = NO_WAVELENGTH;
     let dispersion = disperse(scene, params, &mut material, &mut lambda, sampler, DIM_WAVELENGTH);
     let mut result = Rgb::ZERO;
-    let shading = shading_frame(scene, &material, &prim, &hit, &sp, camera_ray.dir);
+    let shading = shading_frame(scene, &material, &prim, &hit, &sp, ray.dir);
     let (frame, ng, wo) = (shading.frame(), shading.ng, shading.wo);
     let bsdf = Bsdf::new(
         &material,
@@ -93,18 +107,32 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
             continue;
         }
         let wi = frame.to_world(bs.wi);
-        let ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
+        let mut ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
         let from = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta, lt: 0.0 };
-        let le = match accel.trace(&ray, false, NONE) {
-            None => environment(scene, params, wi, &from, counts),
-            Some(h) => {
-                let lit = scene.prims[h.prim as usize];
-                if lit.light == NONE {
-                    continue;
-                }
-                area_emission(scene, &lit, &surface_point(scene, &lit, &h, &ray), wi, &from, counts)
+        // On through masks as the camera ray (emitters met on the way count, weighted from `sp`).
+        let mut le = Rgb::ZERO;
+        loop {
+            let Some(h) = accel.trace(&ray, false, NONE) else {
+                le += environment(scene, params, ray.dir, &from, counts);
+                break;
+            };
+            let lit = scene.prims[h.prim as usize];
+            // (Folds to `lit.light == NONE` in scenes without masks.)
+            let lit_material = scene.materials[lit.material as usize];
+            if lit.light == NONE && !mask::is_mask(scene, &lit_material) {
+                break;
             }
-        };
+            let lit_sp = surface_point(scene, &lit, &h, &ray);
+            if lit.light != NONE {
+                le += area_emission(scene, &lit, &lit_sp, ray.dir, &from, counts);
+            }
+            if !mask::passes(scene, &lit_material, &lit_sp, sampler, &mut passes)
+                || passes >= mask::MAX_PASSES
+            {
+                break;
+            }
+            ray = mask::onward(&lit_sp, ray.dir);
+        }
         result += bs.weight * le / counts.bsdf;
     }
     emitted + dispersion * result

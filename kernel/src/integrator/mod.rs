@@ -29,8 +29,9 @@ pub struct PixelSums {
     pub sum: Rgb,
     /// Sum of the squares of the samples scaled by `layout::square_scale`.
     pub sum_sq: Rgb,
-    /// Samples whose estimate was NaN or infinite; they are counted as black so that the image stays
-    /// finite and unbiased estimates elsewhere are unaffected.
+    /// Samples whose estimate was NaN or infinite, or that the driver cut short (`render_pixel`); they
+    /// are counted as black so that the image stays finite and unbiased estimates elsewhere are
+    /// unaffected.
     pub invalid: u32,
 }
 
@@ -82,41 +83,50 @@ fn primary_ray(
     params.camera.generate_ray(film, u_lens)
 }
 
-/// Renders `params.sample_count` samples of one pixel (row-major index).
-pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32) -> PixelSums {
+/// Renders `params.sample_count` samples of one pixel (row-major index): the path tracer one path
+/// after the other, or, with `regenerate`, as one loop of bounces over all the samples (a path that
+/// ends hands its lane the next sample at once: `path::CameraPath`). Each sample draws the same random
+/// numbers either way and the sums add in the same order, so the two give the same image to the bit;
+/// which runs faster depends on the scene, and the GPU backend measures it (`host`'s
+/// `backend::path_loop`). `direct` has one loop.
+pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32, regenerate: bool) -> PixelSums {
     let mut sums = PixelSums { sum: Rgb::ZERO, sum_sq: Rgb::ZERO, invalid: 0 };
-    if params.sample_count == 0 {
-        return sums;
-    }
+    let mut s = 0;
     // The bit, not `params.integrator`: it is set exactly for `direct` (`features::DIRECT_INTEGRATOR`).
-    if features::has(scene.features, features::DIRECT_INTEGRATOR) {
-        let mut s = 0;
+    let direct = features::has(scene.features, features::DIRECT_INTEGRATOR);
+    if direct || !regenerate {
         while s < params.sample_count {
             let (mut sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
-            let l = direct::li(scene, params, ray, &mut sampler);
+            let l = if direct {
+                direct::li(scene, params, ray, &mut sampler)
+            } else {
+                path::li(scene, params, ray, &mut sampler, 1.0)
+            };
             add_sample(&mut sums, scene, params, l, film_sample.weight);
             s += 1;
         }
-        return sums;
-    }
-    // One loop of bounces over all the pixel's samples rather than a loop of paths: a path that ends
-    // hands its lane the next sample at once (`path::CameraPath`). Each sample draws the random
-    // numbers it drew as a path of its own, and the sums add in the same order.
-    let mut s = 0;
-    let (mut sampler, mut film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base);
-    let mut path = path::CameraPath::new(ray, 1.0);
-    loop {
-        if !path.bounce(scene, params, &mut sampler) {
-            add_sample(&mut sums, scene, params, path.result, film_sample.weight);
-            s += 1;
-            if s >= params.sample_count {
-                break;
+    } else if params.sample_count > 0 {
+        let (mut sampler, mut film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base);
+        let mut path = path::CameraPath::new(ray, 1.0);
+        loop {
+            if !path.bounce(scene, params, &mut sampler) {
+                add_sample(&mut sums, scene, params, path.result, film_sample.weight);
+                s += 1;
+                if s >= params.sample_count {
+                    break;
+                }
+                let ray;
+                (sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
+                path = path::CameraPath::new(ray, 1.0);
             }
-            let ray;
-            (sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
-            path = path::CameraPath::new(ray, 1.0);
         }
     }
+    // Zero, unless the driver cut a loop short: llvmpipe (lavapipe) ends every loop of an invocation
+    // once all its loops together have run 65535 iterations (Mesa's `LP_MAX_TGSI_LOOP_ITERATIONS`),
+    // and a pass of 128 samples through the facing mirrors of `stiff.rs` lost up to half of some
+    // pixels' samples that way without a trace. Counted as invalid they are reported; the GPU backend
+    // splits passes on software adapters so that it rarely happens.
+    sums.invalid += params.sample_count - s;
     sums
 }
 

@@ -48,7 +48,7 @@ pub fn li(
 }
 
 /// A camera path in flight: what one vertex hands the next. `li` follows one to its end;
-/// `render_pixel` runs a pixel's samples as one loop of bounces, so that on the GPU a lane whose
+/// `render_pixel` may run a pixel's samples as one loop of bounces, so that on the GPU a lane whose
 /// path ended starts its next sample at once instead of idling until the longest path of its warp
 /// ends (path regeneration).
 #[derive(Clone, Copy)]
@@ -135,7 +135,8 @@ impl CameraPath {
         }
 
         // A mask lets the path through with probability 1 − opacity: straight on, no bounce (`mask`).
-        let mut material = scene.materials[prim.material as usize];
+        let mut material =
+            scene.materials[crate::two_sided::seen(scene, prim.material, &sp, ray.dir) as usize];
         if mask::is_mask(scene, &material) {
             sampler.set_dimension(DIM_MASK + self.mask_passes);
             let u_mask = sampler.next_1d();

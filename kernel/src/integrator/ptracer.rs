@@ -8,7 +8,8 @@
 //! pixel's sum by the samples per pixel, as for camera paths. Each connection is splatted into every
 //! pixel whose reconstruction filter covers it, weighted as that pixel's camera samples are.
 //! `max_depth` counts segments as in `path`: a vertex `d` segments from the emitter is connected
-//! only if `d + 1 ≤ max_depth`; `hide_emitters` drops the emitter-to-camera connection.
+//! only if `d + 1 ≤ max_depth`; `hide_emitters` drops the emitter-to-camera connection. Masks: light
+//! paths pass through them as camera paths do, and connections are attenuated by them (`mask`).
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
@@ -124,12 +125,18 @@ fn splat_to_camera<W: AtomicWords>(
     let shadow = Ray { origin, dir: d / dist, t_min: 0.0, t_max: dist * (1.0 - SHADOW_EPSILON) };
     // With `hide_emitters` camera rays pass through emitters (`path`), so the segment to the camera
     // does too: otherwise IBPT's weights would count a light-tracing strategy that cannot happen.
-    let blocked = if params.hide_emitters != 0 {
-        first_hit_past_emitters(scene, accel, &shadow).is_some()
+    // Masks on the way attenuate the connection (`mask::transmittance`; the host refuses masks
+    // together with `hide_emitters` here).
+    let transmittance = if params.hide_emitters != 0 {
+        if first_hit_past_emitters(scene, accel, &shadow).is_some() {
+            0.0
+        } else {
+            1.0
+        }
     } else {
-        accel.occluded(&shadow, skip)
+        crate::mask::transmittance(scene, accel, &shadow, skip)
     };
-    if blocked {
+    if transmittance <= 0.0 {
         return;
     }
     let importance = c.importance * film_scale(params);
@@ -147,7 +154,7 @@ fn splat_to_camera<W: AtomicWords>(
                 } else {
                     density
                 };
-                splat(words, pixel, value * (importance * filter * weight), u);
+                splat(words, pixel, value * (importance * filter * weight * transmittance), u);
             }
             x += 1;
         }
@@ -217,6 +224,7 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
     // Segments from the emitter to the vertex about to be found.
     let mut depth = 1u32;
     let mut lambda = NO_WAVELENGTH;
+    let mut mask_passes = 0u32;
     // As in `path`: the cheaper maximum where no channel can turn negative.
     let dispersion = crate::features::has(scene.features, crate::features::DISPERSION);
     let magnitude = |t: Rgb| if dispersion { max_abs_component(t) } else { max_component(t) };
@@ -229,7 +237,22 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         };
         let prim = scene.prims[hit.prim as usize];
         let sp = surface_point(scene, &prim, &hit, &ray);
-        let mut material = scene.materials[prim.material as usize];
+        // Through a mask as camera paths go (`mask`): no vertex, so depth and MIS state stay as they are.
+        if crate::mask::passes(
+            scene,
+            &scene.materials[prim.material as usize],
+            &sp,
+            sampler,
+            &mut mask_passes,
+        ) {
+            if mask_passes >= crate::mask::MAX_PASSES {
+                break;
+            }
+            ray = crate::mask::onward(&sp, ray.dir);
+            continue;
+        }
+        let mut material =
+            scene.materials[crate::two_sided::seen(scene, prim.material, &sp, ray.dir) as usize];
         let dim_wavelength = bounce_dims + DIM_WAVELENGTH;
         beta *= disperse(scene, params, &mut material, &mut lambda, sampler, dim_wavelength);
         let shading = shading_frame(scene, &material, &prim, &hit, &sp, ray.dir);
