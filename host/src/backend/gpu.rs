@@ -127,7 +127,7 @@ impl GpuBackend {
         let trial = if loops.len() == 2 { Trial::default() } else { Trial::fixed(loops[0]) };
         // Each loop's module and whether its constants are still open: the scene's paths alone
         // (`prune`) have the mask and the loop frozen in, no constant left.
-        let prune = super::prune::wanted(software);
+        let prune = super::prune::wanted();
         let modules: Vec<(PathLoop, wgpu::ShaderModule, bool)> = loops
             .iter()
             .map(|&choice| {
