@@ -42,3 +42,31 @@ fn parameters_stand_in_any_attribute() {
     let e = format!("{:#}", undefined.expect_err("$spin is undefined"));
     assert!(e.contains("$spin") && e.contains(".xml:6"), "{e}");
 }
+
+/// `$name` in a reference's `id` picks the object by parameter, as in Mitsuba 3.9.1 (checked there:
+/// `mi.load_file(..., material="blue")` renders this sphere blue); a duplicate id is found after
+/// substitution, and an undefined parameter in an id names its line.
+#[test]
+fn references_take_parameters_too() {
+    let scene = |extra: &str| {
+        format!(
+            r#"<scene version="3.0.0">
+    <default name="material" value="red"/>
+    <bsdf type="diffuse" id="red"><rgb name="reflectance" value="0.8, 0.1, 0.1"/></bsdf>
+    <bsdf type="diffuse" id="blue"><rgb name="reflectance" value="0.1, 0.1, 0.8"/></bsdf>
+    {extra}
+    <shape type="sphere"><ref id="$material"/></shape>
+</scene>"#
+        )
+    };
+    let red = |s: &caustic::scene::Scene| s.materials[s.shapes[0].material as usize].reflectance[0];
+    assert_eq!(red(&load_xml(&scene(""), "ref-default")), 0.8, "the default names the red BSDF");
+    let blue = try_load_xml(&scene(""), "ref-d", &[("material", "blue")]).expect("loads");
+    assert_eq!(red(&blue), 0.1, "-D material=blue names the blue BSDF");
+    let twice = try_load_xml(&scene(r#"<bsdf type="diffuse" id="$material"/>"#), "ref-twice", &[]);
+    let e = format!("{:#}", twice.expect_err("red is given twice"));
+    assert!(e.contains("duplicate id \"red\"") && e.contains(".xml:5"), "{e}");
+    let undefined = try_load_xml(&scene(r#"<bsdf type="diffuse" id="$colour"/>"#), "ref-undefined", &[]);
+    let e = format!("{:#}", undefined.expect_err("$colour is undefined"));
+    assert!(e.contains("$colour") && e.contains(".xml:5"), "{e}");
+}

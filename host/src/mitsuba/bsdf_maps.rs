@@ -21,10 +21,10 @@ impl Loader {
                 "texture" => true,
                 "bsdf" => false,
                 _ => {
-                    let id = e.node.attribute("id").unwrap_or_default();
-                    if self.named_textures.contains_key(id) {
+                    let id = self.attribute(e.node, "id", &e.loc)?.unwrap_or_default();
+                    if self.named_textures.contains_key(&id) {
                         true
-                    } else if self.named_bsdfs.contains_key(id) {
+                    } else if self.named_bsdfs.contains_key(&id) {
                         false
                     } else {
                         bail!("{}: <ref id=\"{id}\"> names no BSDF or texture defined before it", e.loc);

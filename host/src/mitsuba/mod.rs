@@ -185,14 +185,23 @@ impl Loader {
 
     /// Refuses an `id` given twice (here or in an earlier file of the scene), as Mitsuba does;
     /// `<ref id>` refers to an id and does not give one.
+    /// Ids are compared after `$name` substitution, with this file's own `<default>`s (read before
+    /// anything else in it) known.
     fn check_ids(&mut self, src: &Source) -> Result<()> {
+        let mut params = self.params.clone();
+        let root = src.doc.root_element();
+        for d in root.children().filter(|n| n.is_element() && n.tag_name().name() == "default") {
+            if let (Some(name), Some(value)) = (d.attribute("name"), d.attribute("value")) {
+                params.entry(name.to_string()).or_insert_with(|| value.to_string());
+            }
+        }
         for node in src.doc.descendants().filter(|n| n.is_element() && n.tag_name().name() != "ref") {
-            let Some(id) = node.attribute("id") else { continue };
             let loc = src.loc(node);
-            if let Some(first) = self.ids.get(id) {
+            let Some(id) = xml::attribute(node, "id", &params, &loc)? else { continue };
+            if let Some(first) = self.ids.get(&id) {
                 bail!("{loc}: duplicate id \"{id}\" (first given at {first})");
             }
-            self.ids.insert(id.to_string(), loc);
+            self.ids.insert(id, loc);
         }
         Ok(())
     }
@@ -225,8 +234,8 @@ impl Loader {
                 "bsdf" => {
                     let props = self.props(src, node)?;
                     let index = self.load_bsdf(&props)?;
-                    if let Some(id) = node.attribute("id") {
-                        self.named_bsdfs.insert(id.to_string(), index);
+                    if let Some(id) = props.id {
+                        self.named_bsdfs.insert(id, index);
                     }
                 }
                 "shape" => {
@@ -236,14 +245,14 @@ impl Loader {
                 "texture" => {
                     let props = self.props(src, node)?;
                     let index = self.load_texture(&props)?;
-                    if let Some(id) = node.attribute("id") {
-                        self.named_textures.insert(id.to_string(), index);
+                    if let Some(id) = props.id {
+                        self.named_textures.insert(id, index);
                     }
                 }
                 "emitter" => {
                     let props = self.props(src, node)?;
                     let surface = matches!(props.kind.as_str(), "area" | "directionalarea");
-                    if !(surface && node.attribute("id").is_some()) {
+                    if !(surface && props.id.is_some()) {
                         self.load_emitter(&props)?;
                     }
                 }
@@ -278,10 +287,10 @@ impl Loader {
                 && matches!(n.attribute("type"), Some("area" | "directionalarea"))
         });
         for node in named {
-            if let Some(id) = node.attribute("id") {
-                let props = self.props(src, node)?;
+            let props = self.props(src, node)?;
+            if let Some(id) = props.id.clone() {
                 if let Some(radiance) = self.load_shape_emitter(&props)? {
-                    self.named_area_emitters.insert(id.to_string(), radiance);
+                    self.named_area_emitters.insert(id, radiance);
                 }
             }
         }
@@ -291,6 +300,12 @@ impl Loader {
     /// Replaces `$name` references by their values.
     pub(crate) fn substitute(&self, value: &str, loc: &Loc) -> Result<String> {
         xml::substitute(&self.params, value, loc)
+    }
+
+    /// Attribute `name` of `node` with its `$name` references substituted, as Mitsuba substitutes in
+    /// every attribute (`<ref id="$material"/>` picks a BSDF by parameter).
+    pub(crate) fn attribute(&self, node: roxmltree::Node, name: &str, loc: &Loc) -> Result<Option<String>> {
+        xml::attribute(node, name, &self.params, loc)
     }
 
     /// The scene's parameters as read so far.

@@ -21,7 +21,7 @@ pub struct Props<'a, 'input> {
     pub tag: String,
     /// The plugin type (`type` attribute), empty for `<ref>`.
     pub kind: String,
-    /// The `id` attribute (the target of a `<ref>`).
+    /// The `id` attribute (the target of a `<ref>`), `$name` substituted as every attribute.
     pub id: Option<String>,
     /// The file it was read from.
     pub src: &'a Source<'input>,
@@ -47,7 +47,7 @@ impl<'a, 'input> Props<'a, 'input> {
             };
             entries.push(Entry {
                 tag: child.tag_name().name().to_string(),
-                name: child.attribute("name").map(str::to_string),
+                name: loader.attribute(child, "name", &child_loc)?,
                 value,
                 node: child,
                 loc: child_loc,
@@ -58,11 +58,12 @@ impl<'a, 'input> Props<'a, 'input> {
             None => String::new(),
         };
         let n = entries.len();
+        let id = loader.attribute(node, "id", &loc)?;
         Ok(Props {
             loc,
             tag: node.tag_name().name().to_string(),
             kind,
-            id: node.attribute("id").map(str::to_string),
+            id,
             src,
             entries,
             params: loader.params().clone(),
