@@ -114,6 +114,16 @@ impl Loader {
             "pplastic" => self.pplastic(props)?,
             "twosided" => self.twosided(props)?,
             "mask" => self.mask(props)?,
+            // Mitsuba's `null`: a surface light passes straight through (the boundary of an emitter
+            // or of nothing). A mask of opacity 0 is exactly that (`kernel/src/mask.rs`), its nested
+            // model never evaluated.
+            "null" => Material {
+                kind: BSDF_DIFFUSE,
+                flags: MATERIAL_MASK,
+                opacity: 0.0,
+                opacity_texture: NONE,
+                ..Default::default()
+            },
             "normalmap" | "bumpmap" => self.normal_or_bump_map(props)?,
             other => {
                 let message = format!(
