@@ -625,14 +625,6 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         tables.extend(caustic_kernel::wavelength::build_table(&cie_xyz_table(), XYZ_TO_SRGB));
     }
 
-    // Light tracing's connections to the camera see through masks (`caustic_kernel::mask`) but not
-    // past hidden emitters and masks both: that combination would render the masks opaque there.
-    if materials.iter().any(|m| m.flags & MATERIAL_MASK != 0)
-        && scene.integrator.hide_emitters
-        && matches!(scene.integrator.kind, IntegratorKind::Ptracer | IntegratorKind::Ibpt)
-    {
-        bail!("the mask BSDF with hide_emitters is not rendered by ptracer or ibpt yet (render this scene with path)");
-    }
     let s = &scene.sensor;
     let crop = s.crop.unwrap_or(crate::scene::Crop { x: 0, y: 0, width: s.width, height: s.height });
     let (integrator_kind, emitter_samples, bsdf_samples) = match scene.integrator.kind {

@@ -117,7 +117,7 @@ impl GpuBackend {
         // The path tracer's two loops, where the choice is open: timed on the first passes on a
         // hardware GPU; on a software adapter (the tests' lavapipe) the regenerating loop alone, to
         // compile one kernel rather than two. Other integrators have one loop each.
-        let path_tracer = integrator == INTEGRATOR_PATH && !splats(integrator);
+        let path_tracer = integrator == INTEGRATOR_PATH;
         let loops: Vec<PathLoop> = match path_loop::requested()? {
             Request::Fixed(choice) => vec![choice],
             Request::Measure if path_tracer => PathLoop::BOTH.to_vec(),

@@ -10,6 +10,7 @@ use super::{disperse, shading_frame, NO_WAVELENGTH};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::Ray;
+use crate::features;
 use crate::instancing::surface_point;
 use crate::layout::{FrameParams, SceneView, NONE};
 use crate::mask;
@@ -28,34 +29,53 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     sampler.set_dimension(DIM_FIRST_BOUNCE);
 
     let hidden = params.hide_emitters != 0;
-    // The camera ray passes through masks as `path`'s does (`mask`): straight on, emitters it meets
-    // on the way counted as seen directly.
+    let masks = features::has(scene.features, features::MASK);
+    let trace_camera = |ray: &Ray| {
+        if hidden {
+            first_hit_past_emitters(scene, &accel, ray)
+        } else {
+            accel.trace(ray, false, NONE)
+        }
+    };
     let mut ray = camera_ray;
     let mut emitted = Rgb::ZERO;
     let mut passes = 0;
-    let (hit, prim, sp) = loop {
-        let found = if hidden {
-            first_hit_past_emitters(scene, &accel, &ray)
-        } else {
-            accel.trace(&ray, false, NONE)
-        };
-        let hit = match found {
+    let (hit, prim, sp) = if !masks {
+        // One trace, no loop, where the scene has no masks (the frozen constant leaves this branch
+        // alone in the pruned kernel).
+        let hit = match trace_camera(&ray) {
             Some(h) => h,
             None if hidden => return emitted,
-            None => return emitted + environment(scene, params, ray.dir, &camera, counts),
+            None => return environment(scene, params, ray.dir, &camera, counts),
         };
         let prim = scene.prims[hit.prim as usize];
         let sp = surface_point(scene, &prim, &hit, &ray);
         if prim.light != NONE {
-            emitted += area_emission(scene, &prim, &sp, ray.dir, &camera, counts);
+            emitted = area_emission(scene, &prim, &sp, ray.dir, &camera, counts);
         }
-        if !mask::passes(scene, &scene.materials[prim.material as usize], &sp, sampler, &mut passes) {
-            break (hit, prim, sp);
+        (hit, prim, sp)
+    } else {
+        // The camera ray passes through masks as `path`'s does (`mask`): straight on, emitters it
+        // meets on the way counted as seen directly.
+        loop {
+            let hit = match trace_camera(&ray) {
+                Some(h) => h,
+                None if hidden => return emitted,
+                None => return emitted + environment(scene, params, ray.dir, &camera, counts),
+            };
+            let prim = scene.prims[hit.prim as usize];
+            let sp = surface_point(scene, &prim, &hit, &ray);
+            if prim.light != NONE {
+                emitted += area_emission(scene, &prim, &sp, ray.dir, &camera, counts);
+            }
+            if !mask::passes(scene, &scene.materials[prim.material as usize], &sp, sampler, &mut passes) {
+                break (hit, prim, sp);
+            }
+            if passes >= mask::MAX_PASSES {
+                return emitted;
+            }
+            ray = mask::onward(&sp, ray.dir);
         }
-        if passes >= mask::MAX_PASSES {
-            return emitted;
-        }
-        ray = mask::onward(&sp, ray.dir);
     };
 
     let mut material = scene.materials[crate::two_sided::seen(scene, prim.material, &sp, ray.dir) as usize];
@@ -109,30 +129,43 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         let wi = frame.to_world(bs.wi);
         let mut ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
         let from = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta, lt: 0.0 };
-        // On through masks as the camera ray (emitters met on the way count, weighted from `sp`).
-        let mut le = Rgb::ZERO;
-        loop {
-            let Some(h) = accel.trace(&ray, false, NONE) else {
-                le += environment(scene, params, ray.dir, &from, counts);
-                break;
-            };
-            let lit = scene.prims[h.prim as usize];
-            // (Folds to `lit.light == NONE` in scenes without masks.)
-            let lit_material = scene.materials[lit.material as usize];
-            if lit.light == NONE && !mask::is_mask(scene, &lit_material) {
-                break;
+        let le = if !masks {
+            match accel.trace(&ray, false, NONE) {
+                None => environment(scene, params, wi, &from, counts),
+                Some(h) => {
+                    let lit = scene.prims[h.prim as usize];
+                    if lit.light == NONE {
+                        continue;
+                    }
+                    area_emission(scene, &lit, &surface_point(scene, &lit, &h, &ray), wi, &from, counts)
+                }
             }
-            let lit_sp = surface_point(scene, &lit, &h, &ray);
-            if lit.light != NONE {
-                le += area_emission(scene, &lit, &lit_sp, ray.dir, &from, counts);
+        } else {
+            // On through masks as the camera ray (emitters met on the way count, weighted from `sp`).
+            let mut le = Rgb::ZERO;
+            loop {
+                let Some(h) = accel.trace(&ray, false, NONE) else {
+                    le += environment(scene, params, ray.dir, &from, counts);
+                    break;
+                };
+                let lit = scene.prims[h.prim as usize];
+                let lit_material = scene.materials[lit.material as usize];
+                if lit.light == NONE && !mask::is_mask(scene, &lit_material) {
+                    break;
+                }
+                let lit_sp = surface_point(scene, &lit, &h, &ray);
+                if lit.light != NONE {
+                    le += area_emission(scene, &lit, &lit_sp, ray.dir, &from, counts);
+                }
+                if !mask::passes(scene, &lit_material, &lit_sp, sampler, &mut passes)
+                    || passes >= mask::MAX_PASSES
+                {
+                    break;
+                }
+                ray = mask::onward(&lit_sp, ray.dir);
             }
-            if !mask::passes(scene, &lit_material, &lit_sp, sampler, &mut passes)
-                || passes >= mask::MAX_PASSES
-            {
-                break;
-            }
-            ray = mask::onward(&lit_sp, ray.dir);
-        }
+            le
+        };
         result += bs.weight * le / counts.bsdf;
     }
     emitted + dispersion * result

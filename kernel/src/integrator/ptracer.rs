@@ -20,6 +20,7 @@ use super::{disperse, shading_frame, NO_WAVELENGTH};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::{CameraConnection, Ray};
+use crate::features;
 use crate::film;
 use crate::glam::{Vec2, Vec3};
 use crate::instancing::surface_point;
@@ -123,19 +124,7 @@ fn splat_to_camera<W: AtomicWords>(
     let d = c.point - origin;
     let dist = d.length();
     let shadow = Ray { origin, dir: d / dist, t_min: 0.0, t_max: dist * (1.0 - SHADOW_EPSILON) };
-    // With `hide_emitters` camera rays pass through emitters (`path`), so the segment to the camera
-    // does too: otherwise IBPT's weights would count a light-tracing strategy that cannot happen.
-    // Masks on the way attenuate the connection (`mask::transmittance`; the host refuses masks
-    // together with `hide_emitters` here).
-    let transmittance = if params.hide_emitters != 0 {
-        if first_hit_past_emitters(scene, accel, &shadow).is_some() {
-            0.0
-        } else {
-            1.0
-        }
-    } else {
-        crate::mask::transmittance(scene, accel, &shadow, skip)
-    };
+    let transmittance = to_camera(scene, params, accel, &shadow, skip);
     if transmittance <= 0.0 {
         return;
     }
@@ -160,6 +149,42 @@ fn splat_to_camera<W: AtomicWords>(
         }
         y += 1;
     }
+}
+
+/// The fraction of light that crosses `shadow`, a segment from a light vertex to the camera
+/// (ignoring primitive `skip`): blocked by any surface, attenuated by `1 − opacity` at each mask
+/// (`mask::transmittance`). With `hide_emitters` camera rays pass through emitters (`path`), so the
+/// segment does too: otherwise IBPT's weights would count a light-tracing strategy that cannot happen.
+fn to_camera(scene: &SceneView, params: &FrameParams, accel: &Accel, shadow: &Ray, skip: u32) -> f32 {
+    if params.hide_emitters == 0 {
+        return crate::mask::transmittance(scene, accel, shadow, skip);
+    }
+    if !features::has(scene.features, features::MASK) {
+        return if first_hit_past_emitters(scene, accel, shadow).is_some() { 0.0 } else { 1.0 };
+    }
+    // Surface by surface, nearest first, as the camera ray would meet them: emitters skipped, masks
+    // attenuating, anything else blocking.
+    let mut r = *shadow;
+    let mut t = 1.0f32;
+    let mut steps = 0;
+    while steps < crate::mask::MAX_PASSES {
+        let Some(hit) = accel.trace(&r, false, skip) else { return t };
+        let prim = scene.prims[hit.prim as usize];
+        if prim.light == NONE {
+            let m = scene.materials[prim.material as usize];
+            if !crate::mask::is_mask(scene, &m) {
+                return 0.0;
+            }
+            let sp = surface_point(scene, &prim, &hit, &r);
+            t *= 1.0 - crate::mask::opacity(scene, &m, sp.uv);
+            if t <= 0.0 {
+                return 0.0;
+            }
+        }
+        r.t_min = hit.t;
+        steps += 1;
+    }
+    0.0
 }
 
 /// The aperture point of a thin lens that the emitter's connections reach: a dimension past the
