@@ -26,7 +26,7 @@ fn a_pruned_kernel_renders_the_specialised_image() {
         bytemuck::pod_collect_to_vec(include_bytes!("../../host/shaders/caustic-kernel.spv"));
     // (The regenerating path loop: what lavapipe runs unless asked otherwise, `backend::path_loop`.)
     let regenerate = caustic::backend::path_loop::PathLoop::Regenerate.spec_value();
-    let pruned = caustic::backend::prune::pruned(&words, buffers.features, regenerate)
+    let pruned = caustic::backend::prune::pruned(&words, buffers.features, regenerate, true)
         .expect("spirv-opt prunes the kernel");
     assert!(pruned.len() < words.len() / 2, "pruned {} words of {}", pruned.len(), words.len());
 

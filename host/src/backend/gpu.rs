@@ -134,8 +134,12 @@ impl GpuBackend {
                 let mut words = words.clone();
                 let mut specialisable = declares_spec_constant(&words, 0);
                 if specialisable && prune {
-                    if let Some(pruned) = super::prune::pruned(&words, buffers.features, choice.spec_value())
-                    {
+                    if let Some(pruned) = super::prune::pruned(
+                        &words,
+                        buffers.features,
+                        choice.spec_value(),
+                        override_spv.is_none(),
+                    ) {
                         words = pruned;
                         specialisable = declares_spec_constant(&words, 0);
                     }
