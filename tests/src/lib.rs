@@ -106,6 +106,13 @@ pub fn test_data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
 }
 
+/// Asserts that an image agrees with its reference, from `against_mitsuba_reference`'s (fraction of
+/// pixels passing the z-test, mean-luminance z-score): at least 99% of the pixels and |z| < 4.
+pub fn assert_agrees_with_reference((pass, z): (f64, f64), what: &str) {
+    assert!(pass >= 0.99, "{what}: only {:.2}% of pixels agree with Mitsuba", pass * 100.0);
+    assert!(z.abs() < 4.0, "{what}: mean luminance differs from Mitsuba by {z:.2} standard errors");
+}
+
 /// Renders `tests/data/{scene}` with `defines` on `choice` and compares it with the Mitsuba reference
 /// `tests/data/{reference}` (rendered at `reference_spp`); prints `label` with the figures and returns
 /// (fraction of pixels passing the z-test, mean-luminance z-score).

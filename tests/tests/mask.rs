@@ -29,9 +29,7 @@ fn check(choice: BackendChoice, spp: u32, opacity: &str) -> (f64, f64) {
 
 #[test]
 fn mask_cpu_matches_mitsuba_volpath() {
-    let (pass, z) = check(BackendChoice::Cpu, 1024, "0.3");
-    assert!(pass >= 0.99, "only {:.2}% of pixels agree with Mitsuba", pass * 100.0);
-    assert!(z.abs() < 4.0, "mean luminance differs from Mitsuba by {z:.2} standard errors");
+    assert_agrees_with_reference(check(BackendChoice::Cpu, 1024, "0.3"), "CPU");
     // Negative control: the first card 0.05 less opaque must be caught.
     let (pass, z) = check(BackendChoice::Cpu, 1024, "0.25");
     assert!(pass < 0.99 || z.abs() >= 4.0, "opacity 0.25 for 0.3 went unnoticed (pass {pass:.4}, z {z:+.2})");
@@ -39,9 +37,7 @@ fn mask_cpu_matches_mitsuba_volpath() {
 
 #[test]
 fn mask_gpu_matches_mitsuba_volpath() {
-    let (pass, z) = check(BackendChoice::Gpu, 256, "0.3");
-    assert!(pass >= 0.99, "only {:.2}% of pixels agree with Mitsuba", pass * 100.0);
-    assert!(z.abs() < 4.0, "mean luminance differs from Mitsuba by {z:.2} standard errors");
+    assert_agrees_with_reference(check(BackendChoice::Gpu, 256, "0.3"), "GPU");
 }
 
 /// `mask_cards.xml` at `opacity` rendered by `direct` on `choice`, compared with Mitsuba's `volpath`
@@ -63,9 +59,7 @@ fn check_direct(choice: BackendChoice, spp: u32, opacity: &str) -> (f64, f64) {
 
 #[test]
 fn direct_cpu_matches_mitsuba_volpath_at_depth_2() {
-    let (pass, z) = check_direct(BackendChoice::Cpu, 4096, "0.3");
-    assert!(pass >= 0.99, "only {:.2}% of pixels agree with Mitsuba", pass * 100.0);
-    assert!(z.abs() < 4.0, "mean luminance differs from Mitsuba by {z:.2} standard errors");
+    assert_agrees_with_reference(check_direct(BackendChoice::Cpu, 4096, "0.3"), "direct, CPU");
     // Negative control: the first card 10% less opaque must be caught.
     let (pass, z) = check_direct(BackendChoice::Cpu, 4096, "0.27");
     assert!(pass < 0.99 || z.abs() >= 4.0, "opacity 0.27 for 0.3 went unnoticed (pass {pass:.4}, z {z:+.2})");
@@ -73,7 +67,5 @@ fn direct_cpu_matches_mitsuba_volpath_at_depth_2() {
 
 #[test]
 fn direct_gpu_matches_mitsuba_volpath_at_depth_2() {
-    let (pass, z) = check_direct(BackendChoice::Gpu, 256, "0.3");
-    assert!(pass >= 0.99, "only {:.2}% of pixels agree with Mitsuba", pass * 100.0);
-    assert!(z.abs() < 4.0, "mean luminance differs from Mitsuba by {z:.2} standard errors");
+    assert_agrees_with_reference(check_direct(BackendChoice::Gpu, 256, "0.3"), "direct, GPU");
 }
