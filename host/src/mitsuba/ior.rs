@@ -138,7 +138,8 @@ fn ior_from_tagged_value(tag: &str, name: &str, value: &str, loc: &Loc) -> Resul
 /// The measured complex IOR of a conductor `material` (e.g. `Au`) as linear sRGB `(η, k)`.
 ///
 /// Looks for `ior/<material>.eta.spd` (and its `.k.spd` sibling) in each of `search_dirs` in order,
-/// then in `$CAUSTIC_DATA_DIR/ior/`. The name is case-sensitive, as the file names are.
+/// then in `$CAUSTIC_DATA_DIR/ior/`, then among Mitsuba's own (`conductor_table`). The name is
+/// case-sensitive, as the file names are.
 pub fn conductor_eta_k(material: &str, search_dirs: &[PathBuf]) -> Result<([f32; 3], [f32; 3])> {
     if material == PERFECT_MIRROR {
         return Ok(([0.0; 3], [1.0; 3]));
@@ -149,7 +150,8 @@ pub fn conductor_eta_k(material: &str, search_dirs: &[PathBuf]) -> Result<([f32;
     let ior_dirs = ior_data_dirs(search_dirs);
     let eta_name = format!("{material}.eta.spd");
     let Some(dir) = ior_dirs.iter().find(|d| d.join(&eta_name).is_file()) else {
-        bail!("{}", missing_material_message(material, &ior_dirs));
+        return super::conductor_table::built_in(material)
+            .with_context(|| missing_material_message(material, &ior_dirs));
     };
     let eta = spd_file_to_rgb(&dir.join(eta_name))?;
     let k = spd_file_to_rgb(&dir.join(format!("{material}.k.spd")))?;
@@ -185,9 +187,11 @@ pub fn with_ancestors(dirs: &[PathBuf]) -> Vec<PathBuf> {
     out
 }
 
-/// The conductor materials found in the `ior/` folders (those with both spectra), plus `none`.
+/// The conductor materials found in the `ior/` folders (those with both spectra) and built in,
+/// plus `none`.
 pub fn conductor_materials(search_dirs: &[PathBuf]) -> Vec<String> {
     let mut names = vec![PERFECT_MIRROR.to_string()];
+    names.extend(super::conductor_table::BUILT_IN.iter().map(|e| e.0.to_string()));
     for dir in ior_data_dirs(search_dirs) {
         let Ok(entries) = std::fs::read_dir(&dir) else { continue };
         for entry in entries.flatten() {
@@ -212,13 +216,7 @@ fn missing_material_message(material: &str, ior_dirs: &[PathBuf]) -> String {
     if let Some(near) = available.iter().find(|n| n.eq_ignore_ascii_case(material)) {
         message.push_str(&format!(" (names are case-sensitive: did you mean '{near}'?)"));
     }
-    if available.len() > 1 {
-        message.push_str(&format!("; available: {}", available.join(", ")));
-    } else {
-        message.push_str(&format!(
-            "; no IOR data found at all (set {DATA_DIR_VARIABLE} to a folder holding ior/*.spd)"
-        ));
-    }
+    message.push_str(&format!("; nor is it one of Mitsuba's, built in; available: {}", available.join(", ")));
     message
 }
 
@@ -333,6 +331,18 @@ mod tests {
         assert_eq!(conductor_eta_k("none", &[]).unwrap(), ([0.0; 3], [1.0; 3]));
     }
 
+    /// Mitsuba's named conductors need no data beside the scene (its package ships them; caustic
+    /// carries them built in); an unknown name still fails, listing what exists.
+    #[test]
+    fn named_conductors_need_no_data() {
+        let scratch = scratch_dir("no-data");
+        let (eta, k) = conductor_eta_k("Au", std::slice::from_ref(&scratch)).unwrap();
+        assert_close(eta, [0.143036, 0.3753071, 1.442045], "built-in Au eta");
+        assert_close(k, [3.982997, 2.385556, 1.603359], "built-in Au k");
+        let message = conductor_eta_k("Unobtainium", &[scratch]).unwrap_err().to_string();
+        assert!(message.contains("'Unobtainium'") && message.contains("Cu_palik"), "{message}");
+    }
+
     // Reference values: Mitsuba 3.9.1, variant scalar_rgb, `conductor` with `material` set,
     // read back through `mi.traverse(bsdf)['eta.value']` / `['k.value']`.
     #[test]
@@ -355,6 +365,51 @@ mod tests {
             let (eta, k) = conductor_eta_k(&material, std::slice::from_ref(&dir)).unwrap();
             assert!(eta.iter().chain(&k).all(|c| c.is_finite() && *c >= 0.0), "{material}: {eta:?} {k:?}");
         }
+    }
+
+    /// Every spectrum pair beside the scenes gives the built-in entry of its name, bit for bit, and
+    /// the table lists no other material.
+    #[test]
+    fn built_in_conductors_are_the_spectra() {
+        let Some(dir) = shared_mitsuba_dir() else { return };
+        let ior = dir.join("ior");
+        let mut names: Vec<String> = conductor_materials(std::slice::from_ref(&dir));
+        names.retain(|n| n != PERFECT_MIRROR && ior.join(format!("{n}.eta.spd")).is_file());
+        let table: Vec<&str> = super::super::conductor_table::BUILT_IN.iter().map(|e| e.0).collect();
+        assert_eq!(table, names, "the table lists exactly the shared spectra");
+        for name in &names {
+            let from_files = (
+                spd_file_to_rgb(&ior.join(format!("{name}.eta.spd"))).unwrap(),
+                spd_file_to_rgb(&ior.join(format!("{name}.k.spd"))).unwrap(),
+            );
+            assert_eq!(super::super::conductor_table::built_in(name), Some(from_files), "{name}");
+        }
+    }
+
+    /// Writes `conductor_table.rs` from the shared spectra (run by hand, `--ignored`).
+    #[test]
+    #[ignore]
+    fn write_conductor_table() {
+        let dir = shared_mitsuba_dir().expect("../shared's scenes/mitsuba/ior");
+        let ior = dir.join("ior");
+        let mut names: Vec<String> = std::fs::read_dir(&ior)
+            .unwrap()
+            .flatten()
+            .filter_map(|e| e.file_name().to_str()?.strip_suffix(".eta.spd").map(str::to_string))
+            .collect();
+        names.sort();
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src/mitsuba/conductor_table.rs");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let start = text.find("pub const BUILT_IN").unwrap();
+        let end = start + text[start..].find("];").unwrap() + 2;
+        let mut table = String::from("pub const BUILT_IN: &[(&str, [f32; 3], [f32; 3])] = &[\n");
+        for name in names {
+            let eta = spd_file_to_rgb(&ior.join(format!("{name}.eta.spd"))).unwrap();
+            let k = spd_file_to_rgb(&ior.join(format!("{name}.k.spd"))).unwrap();
+            table.push_str(&format!("    (\"{name}\", {eta:?}, {k:?}),\n"));
+        }
+        table.push_str("];");
+        std::fs::write(&path, format!("{}{table}{}", &text[..start], &text[end..])).unwrap();
     }
 
     #[test]

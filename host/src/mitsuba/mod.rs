@@ -14,6 +14,7 @@ mod blend;
 mod bsdf_maps;
 mod bsdfs;
 pub mod cie_tables;
+mod conductor_table;
 mod deviations;
 mod emitters;
 mod integrators;
