@@ -511,7 +511,7 @@ pub fn camera(scene: &Scene) -> Camera {
         ..Default::default()
     };
     match s.projection {
-        Projection::Perspective => {}
+        Projection::Perspective => camera.principal_offset = s.principal_point_offset,
         Projection::ThinLens { aperture_radius, focus_distance } => {
             camera.kind = CAMERA_THIN_LENS;
             camera.aperture_radius = aperture_radius;
@@ -614,6 +614,11 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         if let Some(table) = caustic_kernel::bsdf::precompute(m) {
             m.table = tables.len() as u32;
             tables.extend(table);
+        } else if matches!(m.kind, BSDF_PRINCIPLED | BSDF_PRINCIPLED_THIN) && m.table != NONE {
+            // From its index into the scene's list to its place in the table buffer.
+            let weights = scene.weight_tables[m.table as usize];
+            m.table = tables.len() as u32;
+            tables.extend(weights);
         }
     }
 

@@ -196,6 +196,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
             fov_x,
             near_clip: distance * 1e-3,
             far_clip: distance * 1e3,
+            principal_point_offset: [0.0; 2],
             width: 512,
             height: 512,
             filter: Filter::Gaussian { stddev: 0.5, radius: 2.0 },
@@ -208,6 +209,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
         instancing: Default::default(),
         emitters: vec![],
         textures: vec![],
+        weight_tables: vec![],
         aovs: None,
         warnings,
     })

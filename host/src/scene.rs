@@ -136,6 +136,9 @@ pub struct Sensor {
     pub fov_x: f32,
     pub near_clip: f32,
     pub far_clip: f32,
+    /// Mitsuba's `principal_point_offset_x/y` (perspective only): fractions of the film's width and
+    /// height by which the image window's centre moves.
+    pub principal_point_offset: [f32; 2],
     /// Size of the full image; `crop` selects what is rendered.
     pub width: u32,
     pub height: u32,
@@ -336,6 +339,10 @@ pub struct Scene {
     pub instancing: crate::instancing::Instancing,
     pub emitters: Vec<Emitter>,
     pub textures: Vec<SceneTexture>,
+    /// The textured weights of `principled` and `principledthin` records beyond the record's own
+    /// slots (`caustic_kernel::bsdf::textured_weights`): such a record's `table` indexes this list
+    /// here, and `buffers::build` moves the entry into the table buffer.
+    pub weight_tables: Vec<[f32; caustic_kernel::bsdf::textured_weights::SLOTS]>,
     /// Mitsuba's `aov` or `depth` integrator: what is rendered beside (or instead of) the image.
     pub aovs: Option<crate::aov::AovSpec>,
     /// Non-fatal problems found while loading (unsupported elements, clamped values), already printed.

@@ -37,6 +37,12 @@ pub struct Camera {
     pub focus_distance: f32,
     /// Irradiance meter: where its shape's primitives start in `tables` (`crate::irradiance_meter`).
     pub meter_table: u32,
+    /// Mitsuba's `principal_point_offset_x/y` (perspective only; zero otherwise): the image window's
+    /// centre moves by this much of the full film's width and height, towards larger film coordinates
+    /// (Mitsuba adds it to the film sample before projecting, so a positive x shows more of the image's
+    /// right).
+    pub principal_offset: [f32; 2],
+    pub _pad: [u32; 2],
 }
 
 /// A connection from a scene point to the camera (`Camera::connect`).
@@ -66,8 +72,8 @@ impl Camera {
     /// The primary ray through `film` (fractions of the image width and height, origin top-left);
     /// `u_lens` picks the point on a thin lens's aperture.
     pub fn generate_ray(&self, film: Vec2, u_lens: Vec2) -> Ray {
-        let x = (1.0 - 2.0 * film.x) * self.tan_half_x;
-        let y = (1.0 - 2.0 * film.y) * self.tan_half_y;
+        let x = (1.0 - 2.0 * (film.x + self.principal_offset[0])) * self.tan_half_x;
+        let y = (1.0 - 2.0 * (film.y + self.principal_offset[1])) * self.tan_half_y;
         let (local_origin, local_dir) = if self.kind == CAMERA_ORTHOGRAPHIC {
             // tan_half_* hold the half extents of the view volume.
             (Vec3::new(x, y, 0.0), Vec3::Z)
@@ -133,7 +139,10 @@ impl Camera {
             x += lens.x / self.focus_distance;
             y += lens.y / self.focus_distance;
         }
-        let film = Vec2::new(0.5 * (1.0 - x / self.tan_half_x), 0.5 * (1.0 - y / self.tan_half_y));
+        let film = Vec2::new(
+            0.5 * (1.0 - x / self.tan_half_x) - self.principal_offset[0],
+            0.5 * (1.0 - y / self.tan_half_y) - self.principal_offset[1],
+        );
         if !(film.x >= 0.0 && film.x < 1.0 && film.y >= 0.0 && film.y < 1.0) {
             return None;
         }
@@ -154,13 +163,13 @@ impl Camera {
     }
 
     #[inline]
-    #[allow(clippy::wrong_self_convention)] // a 96-byte camera: by reference, like the other methods
+    #[allow(clippy::wrong_self_convention)] // a 112-byte camera: by reference, like the other methods
     fn to_world_vector(&self, v: Vec3) -> Vec3 {
         vec3(self.axis_x) * v.x + vec3(self.axis_y) * v.y + vec3(self.axis_z) * v.z
     }
 
     #[inline]
-    #[allow(clippy::wrong_self_convention)] // a 96-byte camera: by reference, like the other methods
+    #[allow(clippy::wrong_self_convention)] // a 112-byte camera: by reference, like the other methods
     fn to_world_point(&self, p: Vec3) -> Vec3 {
         vec3(self.origin) + self.to_world_vector(p)
     }

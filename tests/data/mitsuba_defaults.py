@@ -89,6 +89,15 @@ def sensor_cases():
          + film(64, 48, '<integer name="crop_offset_x" value="10"/><integer name="crop_offset_y" value="4"/>'
                 '<integer name="crop_width" value="20"/><integer name="crop_height" value="30"/>')
          + '</sensor>'),
+        ("sensor_principal_point",
+         '<sensor type="perspective"><float name="principal_point_offset_x" value="0.1"/>'
+         f'<float name="principal_point_offset_y" value="-0.2"/>{LOOKAT}{film(64, 48)}</sensor>'),
+        ("sensor_principal_point_crop",
+         '<sensor type="perspective"><float name="fov" value="30"/><float name="principal_point_offset_x" value="-0.15"/>'
+         '<float name="principal_point_offset_y" value="0.05"/>'
+         + film(64, 48, '<integer name="crop_offset_x" value="10"/><integer name="crop_offset_y" value="4"/>'
+                '<integer name="crop_width" value="20"/><integer name="crop_height" value="30"/>')
+         + '</sensor>'),
         ("sensor_crop_offset_only",
          '<sensor type="perspective">' + film(64, 48, '<integer name="crop_offset_x" value="0"/>') + '</sensor>'),
         ("sensor_thinlens_default_focus",

@@ -113,6 +113,12 @@ pub fn assert_agrees_with_reference((pass, z): (f64, f64), what: &str) {
     assert!(z.abs() < 4.0, "{what}: mean luminance differs from Mitsuba by {z:.2} standard errors");
 }
 
+/// The negative control's side of `assert_agrees_with_reference`: a change the comparison must catch
+/// (fewer than 99% of the pixels passing, or |z| ≥ 4); `what` names the change.
+pub fn assert_disagrees_with_reference((pass, z): (f64, f64), what: &str) {
+    assert!(pass < 0.99 || z.abs() >= 4.0, "{what} went unnoticed (pass {pass:.4}, z {z:+.2})");
+}
+
 /// Renders `tests/data/{scene}` with `defines` on `choice` and compares it with the Mitsuba reference
 /// `tests/data/{reference}` (rendered at `reference_spp`); prints `label` with the figures and returns
 /// (fraction of pixels passing the z-test, mean-luminance z-score).
@@ -128,7 +134,20 @@ pub fn against_mitsuba_reference(
     label: &str,
 ) -> (f64, f64) {
     let loaded = caustic::load_scene(&test_data(scene), &defines(defines_)).expect("loads");
-    let film = render_scene(&loaded, choice, spp, seed);
+    scene_against_reference(&loaded, reference, reference_spp, choice, spp, seed, label)
+}
+
+/// `against_mitsuba_reference` for a scene already loaded (and perhaps changed by the test).
+pub fn scene_against_reference(
+    loaded: &Scene,
+    reference: &str,
+    reference_spp: f64,
+    choice: BackendChoice,
+    spp: u32,
+    seed: u32,
+    label: &str,
+) -> (f64, f64) {
+    let film = render_scene(loaded, choice, spp, seed);
     let reference = Film::load_exr(&test_data(reference)).expect("reference loads");
     let c = caustic::compare::compare(&film, &reference, spp as f64 / reference_spp).expect("same size");
     let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());

@@ -35,19 +35,11 @@ fn blend_spheres_match_mitsuba() {
         (BackendChoice::Cpu, "ptracer", 1024),
     ] {
         let (pass, z) = check(choice, integrator, "0.8", spp);
-        assert!(
-            pass >= 0.99,
-            "{choice:?} {integrator}: only {:.2}% of pixels agree with Mitsuba",
-            pass * 100.0
-        );
-        assert!(
-            z.abs() < 4.0,
-            "{choice:?} {integrator}: mean luminance {z:.2} standard errors from Mitsuba's"
-        );
+        assert_agrees_with_reference((pass, z), &format!("{choice:?} {integrator}"));
     }
     // Negative control: the first sphere's plastic red 0.6 for 0.8 must be caught.
     let (pass, z) = check(BackendChoice::Cpu, "path", "0.6", 1024);
-    assert!(pass < 0.99 || z.abs() >= 4.0, "red 0.6 for 0.8 went unnoticed (pass {pass:.4}, z {z:+.2})");
+    assert_disagrees_with_reference((pass, z), "red 0.6 for 0.8");
 }
 
 fn scene(bsdf: &str) -> String {

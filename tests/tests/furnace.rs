@@ -21,6 +21,7 @@ fn furnace(inner: Material) -> Scene {
             fov_x: 50.0,
             near_clip: 0.01,
             far_clip: 100.0,
+            principal_point_offset: [0.0; 2],
             width: 24,
             height: 24,
             filter: Filter::Box { radius: 0.5 },
@@ -52,6 +53,7 @@ fn furnace(inner: Material) -> Scene {
         instancing: Default::default(),
         emitters: vec![],
         textures: vec![],
+        weight_tables: vec![],
         aovs: None,
         warnings: vec![],
     }

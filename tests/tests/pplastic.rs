@@ -28,12 +28,11 @@ fn pplastic_spheres_match_mitsuba() {
     // Lavapipe is several times slower than the CPU backend: fewer samples there.
     for (choice, spp) in [(BackendChoice::Cpu, 1024), (BackendChoice::Gpu, 256)] {
         let (pass, z) = check(choice, "0.8", spp);
-        assert!(pass >= 0.99, "{choice:?}: only {:.2}% of pixels agree with Mitsuba", pass * 100.0);
-        assert!(z.abs() < 4.0, "{choice:?}: mean luminance {z:.2} standard errors from Mitsuba's");
+        assert_agrees_with_reference((pass, z), &format!("{choice:?}"));
     }
     // Negative control: the first sphere's red 0.6 for 0.8 must be caught.
     let (pass, z) = check(BackendChoice::Cpu, "0.6", 1024);
-    assert!(pass < 0.99 || z.abs() >= 4.0, "red 0.6 for 0.8 went unnoticed (pass {pass:.4}, z {z:+.2})");
+    assert_disagrees_with_reference((pass, z), "red 0.6 for 0.8");
 }
 
 fn pplastic(body: &str) -> String {

@@ -238,11 +238,19 @@ fn light_tracing_stiff_cases_stay_finite_and_agree() {
 
 /// Light paths splat into every pixel their reconstruction filter covers, weighted as the pixel's camera
 /// samples are (truncated at the image border), so ptracer and ibpt estimate the same filtered image as
-/// path tracing with Mitsuba's default Gaussian filter, also in a crop window.
+/// path tracing with Mitsuba's default Gaussian filter, also in a crop window, and where the
+/// principal point is moved (`principal_point_offset_x/y`: connections land where camera rays leave).
 #[test]
 fn light_tracing_matches_path_with_a_gaussian_filter_and_a_crop() {
+    const FOV: &str = r#"<float name="fov" value="50"/>"#;
+    const OFFSET: &str = r#"<float name="principal_point_offset_x" value="0.12"/><float name="principal_point_offset_y" value="-0.08"/>"#;
     // Lanczos (negative lobes): splats weighted by the signed filter, camera samples by its sign.
-    for (filter, crop) in [("gaussian", false), ("gaussian", true), ("lanczos", true)] {
+    for (filter, crop, offset) in [
+        ("gaussian", false, false),
+        ("gaussian", true, false),
+        ("lanczos", true, false),
+        ("gaussian", true, true),
+    ] {
         let film = if crop {
             format!(
                 r#"<rfilter type="{filter}"/><integer name="crop_offset_x" value="5"/><integer name="crop_offset_y" value="3"/><integer name="crop_width" value="14"/><integer name="crop_height" value="16"/>"#
@@ -252,18 +260,21 @@ fn light_tracing_matches_path_with_a_gaussian_filter_and_a_crop() {
         };
         let scene = |integrator: &str| {
             load_xml(
-                &corner(integrator, EMITTERS[0].1, 24).replace(r#"<rfilter type="box"/>"#, &film),
-                &format!("{filter}-{integrator}-{crop}"),
+                &corner(integrator, EMITTERS[0].1, 24)
+                    .replace(r#"<rfilter type="box"/>"#, &film)
+                    .replace(FOV, &if offset { format!("{FOV}{OFFSET}") } else { FOV.to_string() }),
+                &format!("{filter}-{integrator}-{crop}-{offset}"),
             )
         };
         let path = render_scene(&scene("path"), BackendChoice::Cpu, 512, 11);
         for integrator in ["ptracer", "ibpt"] {
             let film = render_replicated(&scene(integrator), 256, 12);
             let (z, worst) = agreement(&film, &path);
-            println!("{filter} filter, crop {crop}: {integrator} vs path: image z {z:+.2}, worst pixel |z| {worst:.2}");
+            let case = format!("{filter} filter, crop {crop}, principal point moved {offset}");
+            println!("{case}: {integrator} vs path: image z {z:+.2}, worst pixel |z| {worst:.2}");
             assert!(
                 z.abs() < 4.5 && worst < 5.0,
-                "{integrator} ({filter}, crop {crop}): disagrees with path (z {z:+.2}, worst {worst:.2})"
+                "{integrator} ({case}): disagrees with path (z {z:+.2}, worst {worst:.2})"
             );
         }
     }

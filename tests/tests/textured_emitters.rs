@@ -26,17 +26,13 @@ fn check(scene: &str, defines_: &[(&str, &str)], choice: BackendChoice, spp: u32
 fn assert_matches(scene: &str, defines_: &[(&str, &str)], choice: BackendChoice, spp: u32) {
     let label = format!("{scene} {defines_:?}");
     let (pass, z) = check(scene, defines_, choice, spp, &label);
-    assert!(pass >= 0.99, "{label} {choice:?}: only {:.2}% of pixels agree with Mitsuba", pass * 100.0);
-    assert!(
-        z.abs() < 4.0,
-        "{label} {choice:?}: mean luminance differs from Mitsuba by {z:.2} standard errors"
-    );
+    assert_agrees_with_reference((pass, z), &format!("{label} {choice:?}"));
 }
 
 fn assert_caught(scene: &str, defines_: &[(&str, &str)]) {
     let label = format!("{scene} {defines_:?} (negative control)");
     let (pass, z) = check(scene, defines_, BackendChoice::Cpu, 1024, &label);
-    assert!(pass < 0.99 || z.abs() >= 4.0, "{label}: went unnoticed (pass {pass:.4}, z {z:+.2})");
+    assert_disagrees_with_reference((pass, z), &label);
 }
 
 #[test]

@@ -10,6 +10,7 @@ use crate::buffers::rgba;
 use anyhow::{bail, Result};
 use caustic_kernel::bsdf::principled::{eta_from_specular, PrincipledParams};
 use caustic_kernel::bsdf::principled_thin::ThinParams;
+use caustic_kernel::bsdf::textured_weights::{self, SLOTS, SLOT_ETA};
 use caustic_kernel::layout::*;
 
 fn set_reflectance(m: &mut Material, c: ColorParam) {
@@ -425,9 +426,9 @@ impl Loader {
     }
 
     /// Mitsuba's `principled` (`caustic_kernel::bsdf::principled`): `base_color` (colour or
-    /// texture), `roughness`, `anisotropic` and `metallic` (numbers or textures, read as their
-    /// luminance), the other weights as numbers (a texture there is replaced by its mean: a
-    /// substitution), `eta` or `specular` (not both, as Mitsuba), and the three sampling rates.
+    /// texture), every weight a number or a texture (read as its luminance, as Mitsuba's `eval_1`;
+    /// those beyond the record's slots through `weight_tables`), `eta` or `specular` (numbers, not
+    /// both, as Mitsuba), and the three sampling rates.
     fn principled(&mut self, props: &Props) -> Result<Material> {
         let base = self.color_param(props, "base_color", SpectrumUse::Reflectance, [0.5; 3])?;
         let mut m = Material { kind: BSDF_PRINCIPLED, ..Default::default() };
@@ -440,17 +441,17 @@ impl Loader {
         (metallic, m.specular_texture) = self.principled_weight(props, "metallic", 0.0)?;
         (m.alpha_u, m.alpha_v) = (roughness, anisotropic);
         m.specular_reflectance = [metallic, metallic, metallic, 0.0];
-        let (spec_trans, spec_trans_textured) = self.principled_number(props, "spec_trans", 0.0)?;
-        let mut number =
-            |name: &str, default: f32| -> Result<f32> { Ok(self.principled_number(props, name, default)?.0) };
+        let mut slots = [None; SLOTS];
+        let mut weight = |slot, name, default| self.slot_weight(props, &mut slots, slot, name, default);
+        // The slots' order is `PrincipledParams::pack`'s.
         let p = PrincipledParams {
-            spec_trans,
-            spec_tint: number("spec_tint", 0.0)?,
-            sheen: number("sheen", 0.0)?,
-            sheen_tint: number("sheen_tint", 0.0)?,
-            clearcoat: number("clearcoat", 0.0)?,
-            clearcoat_gloss: number("clearcoat_gloss", 0.0)?,
-            flatness: number("flatness", 0.0)?,
+            spec_trans: weight(0, "spec_trans", 0.0)?,
+            spec_tint: weight(1, "spec_tint", 0.0)?,
+            sheen: weight(2, "sheen", 0.0)?,
+            sheen_tint: weight(3, "sheen_tint", 0.0)?,
+            clearcoat: weight(4, "clearcoat", 0.0)?,
+            clearcoat_gloss: weight(5, "clearcoat_gloss", 0.0)?,
+            flatness: weight(6, "flatness", 0.0)?,
             spec_rate: props.float("main_specular_sampling_rate", 1.0)?,
             clearcoat_rate: props.float("clearcoat_sampling_rate", 1.0)?,
             diffuse_rate: props.float("diffuse_reflectance_sampling_rate", 1.0)?,
@@ -466,7 +467,7 @@ impl Loader {
         // Mitsuba's lobe switch: a weight given (as a texture, or a number other than 0) turns its
         // lobe on; that of the transmission also nudges an index of 1 (`eta` 1, `specular` 0), which
         // cannot refract, to a plausible one.
-        let has_spec_trans = spec_trans_textured || spec_trans != 0.0;
+        let has_spec_trans = slots[0].is_some() || p.spec_trans != 0.0;
         m.eta = match (props.has("eta"), props.has("specular")) {
             (true, true) => bail!(
                 "{}: principled takes 'eta' or 'specular' (the same reflectance), not both, as Mitsuba",
@@ -499,29 +500,30 @@ impl Loader {
             bail!("{}: principled weights must be finite numbers", props.loc);
         }
         p.pack(&mut m);
+        self.place_weight_textures(&mut m, slots);
         Ok(m)
     }
 
     /// Mitsuba's `principledthin` (`caustic_kernel::bsdf::principled_thin`): `base_color` (colour or
-    /// texture), `roughness` and `anisotropic` (numbers or textures, their luminance), the other
-    /// weights and `eta` as numbers (a texture there is replaced by its mean: a substitution), and the
-    /// four sampling rates; Mitsuba's defaults.
+    /// texture), every weight and `eta` a number or a texture (its luminance; as `principled`), and
+    /// the four sampling rates; Mitsuba's defaults.
     fn principled_thin(&mut self, props: &Props) -> Result<Material> {
         let base = self.color_param(props, "base_color", SpectrumUse::Reflectance, [0.5; 3])?;
         let mut m = Material { kind: BSDF_PRINCIPLED_THIN, ..Default::default() };
         set_reflectance(&mut m, base);
         (m.alpha_u, m.alpha_u_texture) = self.principled_weight(props, "roughness", 0.5)?;
         (m.alpha_v, m.alpha_v_texture) = self.principled_weight(props, "anisotropic", 0.0)?;
-        let mut number =
-            |name: &str, default: f32| -> Result<f32> { Ok(self.principled_number(props, name, default)?.0) };
-        m.eta = number("eta", 1.5)?;
+        let mut slots = [None; SLOTS];
+        let mut weight = |slot, name, default| self.slot_weight(props, &mut slots, slot, name, default);
+        // The slots' order is `ThinParams::pack`'s.
+        m.eta = weight(SLOT_ETA, "eta", 1.5)?;
         let p = ThinParams {
-            spec_trans: number("spec_trans", 0.0)?,
-            spec_tint: number("spec_tint", 0.0)?,
-            sheen: number("sheen", 0.0)?,
-            sheen_tint: number("sheen_tint", 0.0)?,
-            flatness: number("flatness", 0.0)?,
-            diff_trans: number("diff_trans", 0.0)?,
+            spec_trans: weight(0, "spec_trans", 0.0)?,
+            spec_tint: weight(1, "spec_tint", 0.0)?,
+            sheen: weight(2, "sheen", 0.0)?,
+            sheen_tint: weight(3, "sheen_tint", 0.0)?,
+            flatness: weight(4, "flatness", 0.0)?,
+            diff_trans: weight(5, "diff_trans", 0.0)?,
             spec_refl_rate: props.float("specular_reflectance_sampling_rate", 1.0)?,
             spec_trans_rate: props.float("specular_transmittance_sampling_rate", 1.0)?,
             diff_refl_rate: props.float("diffuse_reflectance_sampling_rate", 1.0)?,
@@ -551,21 +553,32 @@ impl Loader {
             bail!("{}: principledthin weights must be finite numbers", props.loc);
         }
         p.pack(&mut m);
+        self.place_weight_textures(&mut m, slots);
         Ok(m)
     }
 
-    /// A principled weight the kernel reads as one number: a texture is replaced by its mean (a
-    /// substitution). Also says whether it was a texture.
-    fn principled_number(&mut self, props: &Props, name: &str, default: f32) -> Result<(f32, bool)> {
+    /// A principled weight beyond the record's own slots (`principled_weight`): a texture is noted
+    /// in `slots[slot]`.
+    fn slot_weight(
+        &mut self,
+        props: &Props,
+        slots: &mut [Option<u32>; SLOTS],
+        slot: usize,
+        name: &str,
+        default: f32,
+    ) -> Result<f32> {
         let (value, texture) = self.principled_weight(props, name, default)?;
-        if texture != NONE {
-            let message = format!(
-                "{}: a textured principled '{name}' is not supported; using the texture's mean, {value}",
-                props.loc
-            );
-            self.substituted(format!("textured principled {name}"), &props.loc, message);
+        slots[slot] = (texture != NONE).then_some(texture);
+        Ok(value)
+    }
+
+    /// Lists a principled record's textured weights beyond its own slots, if it has any, in
+    /// `weight_tables` (the record's numbers keep the textures' means).
+    fn place_weight_textures(&mut self, m: &mut Material, slots: [Option<u32>; SLOTS]) {
+        if slots.iter().any(Option::is_some) {
+            m.table = self.weight_tables.len() as u32;
+            self.weight_tables.push(textured_weights::table(slots));
         }
-        Ok((value, texture != NONE))
     }
 
     /// A principled weight: a number, or a texture (its luminance, as Mitsuba's `eval_1`) with its mean.

@@ -9,7 +9,9 @@ use super::props::Props;
 use super::Loader;
 use crate::scene::Geometry;
 use anyhow::{bail, Result};
-use caustic_kernel::layout::{Material, BSDF_BLEND, BSDF_PRINCIPLED, NONE, TEXTURE_MESH_ATTRIBUTE};
+use caustic_kernel::layout::{
+    Material, BSDF_BLEND, BSDF_PRINCIPLED, BSDF_PRINCIPLED_THIN, NONE, TEXTURE_MESH_ATTRIBUTE,
+};
 
 impl Loader {
     fn is_mesh_attribute(&self, texture: u32) -> bool {
@@ -35,7 +37,7 @@ impl Loader {
         }
         let mut reads = Vec::new();
         for r in records {
-            reads.extend(fields(r));
+            reads.extend(self.fields(r));
         }
         reads.retain(|&(t, _)| self.is_mesh_attribute(t));
         reads
@@ -115,18 +117,26 @@ impl Loader {
     }
 }
 
-/// The textures of one record the kernel reads (`caustic_kernel::bsdf::Component::new` and the
-/// blend weight), each with whether it is read as one number.
-fn fields(m: &Material) -> Vec<(u32, bool)> {
-    if m.kind == BSDF_BLEND {
-        // The weight; `specular_texture` holds a child's index there.
-        return vec![(m.reflectance_texture, true)];
+impl Loader {
+    /// The textures of one record the kernel reads (`caustic_kernel::bsdf::Component::new` and the
+    /// blend weight), each with whether it is read as one number.
+    fn fields(&self, m: &Material) -> Vec<(u32, bool)> {
+        if m.kind == BSDF_BLEND {
+            // The weight; `specular_texture` holds a child's index there.
+            return vec![(m.reflectance_texture, true)];
+        }
+        let mut fields = vec![
+            (m.reflectance_texture, false),
+            // The principled model's metallic weight.
+            (m.specular_texture, m.kind == BSDF_PRINCIPLED),
+            (m.alpha_u_texture, true),
+            (m.alpha_v_texture, true),
+        ];
+        // The principled models' other textured weights (`textured_weights`).
+        if matches!(m.kind, BSDF_PRINCIPLED | BSDF_PRINCIPLED_THIN) && m.table != NONE {
+            let slots = self.weight_tables[m.table as usize].iter().filter(|&&t| t >= 0.0);
+            fields.extend(slots.map(|&t| (t as u32, true)));
+        }
+        fields
     }
-    vec![
-        (m.reflectance_texture, false),
-        // The principled model's metallic weight.
-        (m.specular_texture, m.kind == BSDF_PRINCIPLED),
-        (m.alpha_u_texture, true),
-        (m.alpha_v_texture, true),
-    ]
 }

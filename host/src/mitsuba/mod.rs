@@ -51,6 +51,8 @@ pub(crate) struct Loader {
     shapes: Vec<crate::scene::Shape>,
     emitters: Vec<crate::scene::Emitter>,
     textures: Vec<crate::scene::SceneTexture>,
+    /// `Scene::weight_tables`.
+    weight_tables: Vec<[f32; caustic_kernel::bsdf::textured_weights::SLOTS]>,
     /// Named area emitters (`id`) defined at the top level, for shapes that `<ref>` them.
     named_area_emitters: HashMap<String, emitters::AreaEmission>,
     /// `shapegroup`s by id, as indices into `instancing.groups` (their triangles and disks, in the
@@ -96,6 +98,7 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         shapes: Vec::new(),
         emitters: Vec::new(),
         textures: Vec::new(),
+        weight_tables: Vec::new(),
         named_textures: HashMap::new(),
         named_area_emitters: HashMap::new(),
         shape_groups: HashMap::new(),
@@ -141,6 +144,7 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         instancing: loader.instancing,
         emitters: loader.emitters,
         textures: loader.textures,
+        weight_tables: loader.weight_tables,
         aovs: loader.aovs.take(),
         warnings: loader.warnings,
     };

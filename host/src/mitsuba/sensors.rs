@@ -32,6 +32,7 @@ pub fn default_sensor() -> Sensor {
         fov_x: focal_length_fov(50.0, 768.0 / 576.0) as f32,
         near_clip: 0.01,
         far_clip: 10_000.0,
+        principal_point_offset: [0.0; 2],
         width: 768,
         height: 576,
         crop: None,
@@ -167,6 +168,18 @@ impl Loader {
             }
             _ => {
                 props.float("focus_distance", 0.0)?; // meaningful only for thin-lens cameras
+                                                     // Mitsuba reads these for `perspective` only.
+                let offset = [
+                    props.float("principal_point_offset_x", 0.0)?,
+                    props.float("principal_point_offset_y", 0.0)?,
+                ];
+                if !offset.iter().all(|o| o.is_finite()) {
+                    bail!(
+                        "{}: principal_point_offset_x/y must be finite numbers (got {offset:?})",
+                        props.loc
+                    );
+                }
+                sensor.principal_point_offset = offset;
                 Projection::Perspective
             }
         };

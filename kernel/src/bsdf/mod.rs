@@ -18,6 +18,7 @@ pub mod principled_thin;
 pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod rough_plastic;
+pub mod textured_weights;
 pub mod thin_dielectric;
 
 use crate::features;
@@ -236,6 +237,14 @@ impl Component {
             }
             if conductor && m.reflectance_texture != NONE {
                 material.conductor_k = [reflectance.x, reflectance.y, reflectance.z, 0.0];
+            }
+            // The principled models' other weights, where given as textures (`textured_weights`).
+            let principled = (m.kind == BSDF_PRINCIPLED
+                && features::has(features, features::bsdf(BSDF_PRINCIPLED)))
+                || (m.kind == BSDF_PRINCIPLED_THIN
+                    && features::has(features, features::bsdf(BSDF_PRINCIPLED_THIN)));
+            if principled && m.table != NONE {
+                textured_weights::apply(&mut material, textures, tables, at, features);
             }
         }
         Component { material, reflectance, specular }
