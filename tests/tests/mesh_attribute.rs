@@ -80,6 +80,17 @@ fn attributes_are_kept_only_where_read() {
     assert!(features::has(read_buffers.features, features::MESH_ATTRIBUTES));
     // Nine floats (three corners, RGB) per triangle of the grid's 18, and nothing more.
     assert_eq!(read_buffers.tables.len() - plain_buffers.tables.len(), 18 * 9);
+
+    // A principled weight beyond the record's slots reads it too (`textured_weights`).
+    let sheen = load_xml(
+        &scene(r#"<rgb name="reflectance" value="0.5"/>"#).replace(
+            r#"<bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>"#,
+            r#"<bsdf type="principled"><texture type="mesh_attribute" name="sheen"><string name="name" value="face_wear"/></texture></bsdf>"#,
+        ),
+        "attr-sheen",
+    );
+    let Geometry::Triangles { attributes, .. } = &sheen.shapes[0].geometry else { panic!("a mesh") };
+    assert_eq!(attributes.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), ["face_wear"]);
 }
 
 /// A missing attribute (on a mesh, on a rectangle), a three-channel attribute read as one number, a
@@ -135,6 +146,11 @@ fn bad_mesh_attributes_are_refused_with_file_and_line() {
             mesh(&ply, &format!(r#"<bsdf type="mask">{}<bsdf type="diffuse"/></bsdf>"#, texture("face_wear", "opacity"))),
             "'face_wear'",
             "not by masks",
+        ),
+        (
+            mesh(&ply, &format!(r#"<bsdf type="principled">{}</bsdf>"#, texture("face_tint_color", "clearcoat"))),
+            "'face_tint_color'",
+            "3 channels where one number",
         ),
         (
             mesh(&ply, &format!(r#"<bsdf type="roughplastic">{}</bsdf>"#, texture("face_wear", "alpha"))),
