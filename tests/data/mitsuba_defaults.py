@@ -62,6 +62,15 @@ def film(w=None, h=None, extra=""):
     return f'<film type="hdrfilm">{body}{extra}</film>'
 
 
+# Spectra in Mitsuba's .spd format (`wavelength value` per line, `#` comments) for the
+# `<spectrum filename=...>` cases: made-up but smooth, over and beyond the visible range.
+SPD_FILES = {
+    "eta.spd": "# eta\n360 0.3\n450 0.45\n550 0.9\n650 1.3\n830 1.8\n",
+    "k.spd": "360 1.8\n450 2.4\n550 3.1\n650 3.9\n830 5.0\n",
+    "refl.spd": "# a reflectance\n380 0.1\n480 0.25\n530 0.6\n600 0.4\n700 0.8\n780 0.7\n",
+}
+FILES = {"bent.obj": BENT_OBJ, **SPD_FILES}
+
 LOOKAT = '<transform name="to_world"><lookat origin="1, 2, 3" target="0, 0.5, 0" up="0, 1, 0"/></transform>'
 
 
@@ -176,6 +185,9 @@ def bsdf_cases():
          '<bsdf type="roughdielectric"><string name="distribution" value="ggx"/><float name="alpha_u" value="0.05"/><float name="alpha_v" value="0.3"/></bsdf>'),
         ("conductor_default", '<bsdf type="conductor"/>'),
         ("conductor_eta_only", '<bsdf type="conductor"><rgb name="eta" value="0.2, 0.9, 1.1"/></bsdf>'),
+        ("conductor_spectrum_files",
+         '<bsdf type="conductor"><spectrum name="eta" filename="eta.spd"/><spectrum name="k" filename="k.spd"/></bsdf>'),
+        ("diffuse_spectrum_file", '<bsdf type="diffuse"><spectrum name="reflectance" filename="refl.spd"/></bsdf>'),
         ("roughconductor_default", '<bsdf type="roughconductor"/>'),
         ("roughconductor_ggx", '<bsdf type="roughconductor"><string name="distribution" value="GGX"/><float name="alpha" value="0.3"/></bsdf>'),
         ("plastic_default", '<bsdf type="plastic"/>'),
@@ -215,6 +227,8 @@ def error_cases():
         # refuses it under --strict): the box filter has no radius parameter.
         ("error_unreferenced_box_radius",
          '<sensor type="perspective"><film type="hdrfilm"><rfilter type="box"><float name="radius" value="2"/></rfilter></film></sensor>'),
+        ("error_spectrum_file_missing",
+         '<shape type="sphere"><bsdf type="diffuse"><spectrum name="reflectance" filename="missing.spd"/></bsdf></shape>'),
         ("error_fov_and_focal_length",
          '<sensor type="perspective"><float name="fov" value="40"/><string name="focal_length" value="35mm"/></sensor>'),
         ("error_bad_fov_axis", '<sensor type="perspective"><float name="fov" value="40"/><string name="fov_axis" value="z"/></sensor>'),
@@ -382,7 +396,7 @@ def compute(name, xml, files):
 def all_cases():
     cases = []
     for name, body in sensor_cases() + integrator_cases() + emitter_cases() + bsdf_cases() + shape_cases() + error_cases():
-        files = {"bent.obj": BENT_OBJ} if "bent.obj" in body else {}
+        files = {f: text for f, text in FILES.items() if f in body}
         cases.append({"name": name, "xml": scene_xml(body), "files": files})
     return cases
 

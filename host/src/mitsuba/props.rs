@@ -41,10 +41,15 @@ impl<'a, 'input> Props<'a, 'input> {
         let mut entries = Vec::new();
         for child in node.children().filter(|n| n.is_element()) {
             let child_loc = src.loc(child);
-            let value = match child.attribute("value") {
+            let mut value = match child.attribute("value") {
                 Some(v) => Some(loader.substitute(v, &child_loc)?),
                 None => None,
             };
+            if child.tag_name().name() == "spectrum" {
+                if let Some(file) = loader.attribute(child, "filename", &child_loc)? {
+                    value = Some(spectrum_file_value(loader, &file, value.is_some(), &child_loc)?);
+                }
+            }
             entries.push(Entry {
                 tag: child.tag_name().name().to_string(),
                 name: loader.attribute(child, "name", &child_loc)?,
@@ -206,6 +211,20 @@ impl<'a, 'input> Props<'a, 'input> {
             })
             .collect()
     }
+}
+
+/// `<spectrum filename="…"/>` (Mitsuba's irregular spectrum from a file): the file's `wavelength
+/// value` pairs (`ior::read_spd`, the format of Mitsuba's `.spd` files) as the `value="λ:v, …"` they
+/// stand for, so that both forms are converted alike.
+fn spectrum_file_value(loader: &Loader, file: &str, has_value: bool, loc: &Loc) -> Result<String> {
+    if has_value {
+        bail!("{loc}: <spectrum> takes a 'value' or a 'filename', not both");
+    }
+    let path = loader.resolve(file, loc)?;
+    let (wavelengths, values) =
+        super::ior::read_spd(&path).with_context(|| format!("{loc}: spectrum file"))?;
+    let pairs: Vec<String> = wavelengths.iter().zip(&values).map(|(w, v)| format!("{w}:{v}")).collect();
+    Ok(pairs.join(", "))
 }
 
 /// `<spectrum value="0.5"/>` or `value="400:0.1, 500:0.2, …"`.
