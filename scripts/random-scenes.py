@@ -4,15 +4,43 @@
 Each integer seed deterministically makes one small Mitsuba 3 scene out of plugins and parameters
 that README.md's plugin table marks supported or partial, keeping clear of the divergences it
 documents (no anisotropic roughness, no textured `alpha` on `roughplastic`, no `mask`/`null`, no
-dispersion; `direct` with one emitter and one BSDF sample): a `perspective`, `thinlens` or
-`orthographic` camera looking at the origin (random fov and fov_axis, or a focal length, or
-Mitsuba's default lens), a 32x24 or 24x32 film with a box, tent or gaussian filter, the `path`
-(random max_depth, rr_depth, hide_emitters) or `direct` integrator, a floor and 2-4 shapes
-(sphere, rectangle, disk, cube, cylinder; random translate/rotate/scale) with random BSDFs
-(diffuse, twosided diffuse, plastic, roughplastic, conductor, roughconductor with named or explicit
-IORs, dielectric, roughdielectric, thindielectric; some reflectances a `checkerboard`), lit by one
-light placed to light the floor plus up to two more (an area lamp, a shape of the scene made
-emissive, point, spot, directional, constant).
+dispersion, no blend of a Dirac lobe and a smooth one, no `twosided` on interpolated normals;
+`direct` with one emitter and one BSDF sample): a `perspective`, `thinlens` or `orthographic`
+camera looking at the origin (random fov and fov_axis, or a focal length, or Mitsuba's default
+lens), a 32x24 or 24x32 film with a box, tent or gaussian filter, the `path` (random max_depth,
+rr_depth, hide_emitters) or `direct` integrator, a floor and 2-4 shapes (sphere, rectangle, disk,
+cube, cylinder; random translate/rotate/scale) with random BSDFs (diffuse, twosided diffuse,
+plastic, roughplastic, conductor, roughconductor with named or explicit IORs, dielectric,
+roughdielectric, thindielectric; some reflectances a `checkerboard`), lit by one light placed to
+light the floor plus up to two more (an area lamp, a shape of the scene made emissive, point, spot,
+directional, constant).
+
+The extended generator (the default; --no-extended gives the scenes above, draw for draw, so that
+old seeds reproduce) adds, each with some probability and each left out by naming it in
+--without (--help lists them): `principled` (weights left out, numbers or checkerboards;
+`eta` or `specular`), `principledthin` on rectangles and disks, `pplastic`, `blendbsdf` of two
+smooth one-sided BSDFs (weight a number, a checkerboard or a bitmap), `normalmap` and `bumpmap`
+(tests/data's normalmap_normals.png and normalmap_height.png) around a BSDF on shapes with uv,
+`bitmap` reflectances (8- and 16-bit PNGs, a BMP; filter_type, wrap_mode, raw, to_uv),
+checkerboards with unequal, turned and shifted to_uv, `obj` and `ply` meshes (their own or face
+normals; uniform or unequal scales), `instance`s of one `shapegroup` (spheres under uniform
+scales only), area emitters whose radiance is a checkerboard of greys or an HDR bitmap, a spot with
+a `texture`, `projector` (irradiance a colour, a bitmap or a checkerboard), `envmap` (two tiny EXRs
+of tests/data and the shared museum.exr; `mis_compensation` except under ptracer), perspective
+`principal_point_offset_x/y`, the mitchell, catmullrom and lanczos filters, the multijitter,
+orthogonal and ldsampler samplers, and the `ptracer` integrator (perspective and thinlens cameras).
+Files are named by absolute path: tests/data and scenes/meshes of this repository, and the shared
+Mitsuba scenes in $CAUSTIC_SHARED (default ../shared), whose files are left out where missing.
+Kept clear of too, faults of Mitsuba 3.9.1 (its renderers disagreeing with each other, or
+failing): its `path` with hide_emitters dies (segmentation fault) where a camera ray meets an
+`instance`; its `ptracer` never ends where the sampler rounds the sample count (stratified at 512
+spp: 529), refuses a checkerboard on an emitter (Texture::sample_spectrum(): not implemented),
+lights wrongly from a turned `envmap`, and with any filter but the box loses the part of a splat's
+filter that falls off the image (its border pixels render darker than its path tracer's; caustic's
+renormalises the filter there): so ptracer gets the independent sampler, the box filter, bitmap
+emitter textures and unturned environment maps; and it samples a textured area emitter in uv
+space, which takes a one-to-one uv map (a cube's six faces share one, and only one is sampled), so
+cubes and meshes without uv emit a plain colour.
 
 Mitsuba 3.9.1 (`scalar_rgb`) renders the reference at `--spp` x `--ref-factor` samples per pixel,
 in --ref-batches renders with seeds 1, 2, ... whose spread gives the reference's own variance;
@@ -39,6 +67,8 @@ Run with a Python that has mitsuba==3.9.1 and numpy, from the repository root af
 `cargo build --release`:
     python scripts/random-scenes.py --seeds 0-29
     python scripts/random-scenes.py --seeds 3,7 --spp 1024 --keep --caustic path/to/caustic
+    python scripts/random-scenes.py --seeds 0-99 --no-extended       # the original generator
+    python scripts/random-scenes.py --seeds 0-59 --without ptracer,envmap
 To look at a failure again by hand, in --out:
     caustic render seed-0007.xml --backend cpu --spp 256 \\
         --strict --variance -o c.exr
@@ -46,6 +76,8 @@ To look at a failure again by hand, in --out:
 Both renderers are limited to --threads threads (default 2) and run one after the other.
 """
 import argparse
+import collections
+import functools
 import math
 import os
 import random
@@ -61,6 +93,8 @@ import numpy as np
 mi.set_variant("scalar_rgb")
 # Mitsuba's cylinder warns of shearing at 1e-6, which the rounding of a rotated to_world exceeds.
 mi.set_log_level(mi.LogLevel.Error)
+# Nor are its progress bars (ptracer draws them on stdout); its errors come as exceptions.
+mi.logger().clear_appenders()
 
 # Pass criteria (those of the repository's Mitsuba conformance tests).
 MIN_PASS_FRACTION = 0.99
@@ -68,6 +102,59 @@ MAX_LUMINANCE_Z = 4.0
 
 NAMED_CONDUCTORS = ["Au", "Cu", "Al", "Ag", "Cr"]
 NAMED_IORS = ["bk7", "water", "diamond", "polypropylene", "acrylic glass", "pyrex"]
+
+# The extended generator's kinds of scene element, each on unless --without names it; --no-extended
+# leaves out all of them, and the scenes are the original generator's, draw for draw.
+EXTENDED = {
+    "principled": "principled, each weight left out, a number or a checkerboard; eta or specular",
+    "principledthin": "principledthin on rectangles and disks (the floor included)",
+    "pplastic": "pplastic, isotropic",
+    "blendbsdf": "blendbsdf of two smooth one-sided BSDFs, weight a number, checkerboard or bitmap",
+    "normalmap": "normalmap (normalmap_normals.png) around a BSDF on a shape with uv",
+    "bumpmap": "bumpmap (normalmap_height.png, bilinear) around a BSDF on a shape with uv",
+    "bitmap": "bitmap reflectances (PNG, BMP): filter_type, wrap_mode, raw, to_uv",
+    "uv": "checkerboards' to_uv with unequal scales, a turn and an offset",
+    "meshes": "obj and ply meshes, their own or face normals",
+    "instances": "instances of a shapegroup (spheres under uniform scales only)",
+    "emitter-textures": "area emitters' radiance a checkerboard or an HDR bitmap, a spot's texture",
+    "projector": "projector, irradiance a colour, an HDR bitmap or a checkerboard",
+    "envmap": "envmap of a small EXR or museum.exr, sometimes mis_compensation",
+    "principal-point": "principal_point_offset_x/y on perspective cameras",
+    "filters": "mitchell, catmullrom and lanczos filters",
+    "samplers": "multijitter, orthogonal and ldsampler samplers",
+    "ptracer": "the ptracer integrator (perspective and thinlens cameras)",
+}
+
+# Files the extended generator uses, by absolute path (the saved scenes render from anywhere): the
+# repository's test data and, where present, the shared Mitsuba scenes.
+REPOSITORY = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SHARED = os.environ.get("CAUSTIC_SHARED", os.path.join(os.path.dirname(REPOSITORY), "shared"))
+
+
+def test_data(name):
+    return os.path.join(REPOSITORY, "tests", "data", name)
+
+
+def shared_scene_file(name):
+    return os.path.join(SHARED, "scenes", "mitsuba", "common", name)
+
+
+REFLECTANCE_IMAGES = [path for path in [  # 8- and 16-bit PNGs, grey and RGB; a BMP
+    test_data("normalmap_height.png"), test_data("normalmap_normals.png"), test_data("bitmap_format_8.png"),
+    test_data("bitmap_format_16.png"), shared_scene_file("textures/flower.bmp")] if os.path.exists(path)]
+EMISSION_IMAGES = [test_data("emitter_area_tex.exr"), test_data("emitter_image.exr")]  # 4x4, 6x4; up to 4
+ENVIRONMENT_IMAGES = EMISSION_IMAGES + [path for path in [shared_scene_file("textures/museum.exr")]
+                                        if os.path.exists(path)]
+NORMAL_MAP = test_data("normalmap_normals.png")  # 16x16 waves of the tangent-space normal
+HEIGHT_MAP = test_data("normalmap_height.png")  # 16x16 grey crossed sines
+# Meshes: plugin, file, the centre and radius of a sphere that holds it, whether it has uv.
+MESHES = [mesh for mesh in [
+    ("obj", test_data("aov_mesh.obj"), (0, 0, 0), 0.35, True),  # a 64-face sphere with normals and uv
+    ("obj", os.path.join(REPOSITORY, "scenes", "meshes", "prism.obj"), (0, 0, 0), 0.69, False),
+    ("ply", shared_scene_file("meshes/sphere.ply"), (0, 0, 0), 128.0, False),
+    ("ply", shared_scene_file("meshes/teapot.ply"), (0.21, 0, 1.58), 4.1, False),
+    ("obj", shared_scene_file("meshes/cbox/smallbox.obj"), (186, 82.5, 168.5), 169.0, False),
+] if os.path.exists(mesh[1])]
 
 
 # --- XML helpers ---------------------------------------------------------------------------------
@@ -132,14 +219,46 @@ def lookat(origin, target, up):
 
 # --- The random scene ----------------------------------------------------------------------------
 
-class SceneMaker:
-    """One scene drawn from `random.Random(seed)`: `xml()` writes it, `description` says what it holds."""
+# What a shape's surface allows: `flat` (principledthin), `uv` (normal and bump maps), `smooth`
+# (interpolated normals: no `twosided`, whose side caustic takes from the geometric normal and
+# Mitsuba from the shading normal).
+Surface = collections.namedtuple("Surface", "flat uv smooth")
+# A shape's plugin, what the description calls it, its bounding radius, a function of its centre
+# that gives its XML children, and its surface.
+Shape = collections.namedtuple("Shape", "plugin label bound geometry surface")
 
-    def __init__(self, seed):
+OBJECT_MATERIALS = ["diffuse", "twosided", "plastic", "roughplastic", "conductor", "roughconductor",
+                    "dielectric", "roughdielectric", "thindielectric"]
+FLOOR_MATERIALS = ["diffuse", "diffuse", "twosided", "roughplastic", "roughconductor"]
+# blendbsdf's children: smooth lobes only (a Dirac lobe beside a smooth one renders differently by
+# design), one-sided (a two-sided child beside a one-sided one is refused).
+BLEND_MATERIALS = ["diffuse", "roughplastic", "roughconductor", "roughdielectric"]
+
+
+@functools.lru_cache(maxsize=None)
+def mean_luminance(path):
+    """An image's mean luminance (linear), to scale the emitters textured with it."""
+    bitmap = mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, False)
+    return float((np.array(bitmap) @ [0.2126, 0.7152, 0.0722]).mean())
+
+
+class SceneMaker:
+    """One scene drawn from `random.Random(seed)` with the extended kinds in `features` (none: the
+    original generator, draw for draw): `xml()` writes it, `description` says what it holds."""
+
+    def __init__(self, seed, features=frozenset()):
         self.r = random.Random(seed)
+        self.features = features
         self.parts = []  # what the description lists, in order
         self.has_environment = False
+        self.light_tracing = False  # ptracer (see `sensor` and `light` for what it changes)
+        self.path_hides_emitters = False  # Mitsuba 3.9.1's `path` then crashes on an instance
         self.placed = []  # (centre, bounding radius) of the shapes
+        self.definitions = []  # elements the shapes refer to (the shapegroup)
+        self.group = None  # the shapegroup's (XML, bounding radius, description, holds a sphere)
+
+    def has(self, feature):
+        return feature in self.features
 
     # Small random helpers.
     def uniform(self, a, b):
@@ -157,16 +276,63 @@ class SceneMaker:
         s = math.sqrt(1 - z * z)
         return [s * math.cos(phi), s * math.sin(phi), z]
 
+    # Textures.
+    def uv_transform(self):
+        """A checkerboard's to_uv: k x k checks, and (feature "uv", sometimes) unequal scales, a turn
+        and an offset."""
+        k = self.r.choice([2, 3, 4, 6])
+        ops = [f'<scale x="{k}" y="{k}"/>']
+        if self.has("uv") and self.r.random() < 0.5:
+            ops = [f'<scale x="{k}" y="{self.r.choice([1, 2, 3, 4, 6])}"/>']
+            if self.r.random() < 0.5:
+                ops.append(f'<rotate z="1" angle="{num(self.uniform(0, 90))}"/>')
+            if self.r.random() < 0.5:
+                ops.append(f'<translate x="{num(self.uniform(-1, 1))}" y="{num(self.uniform(-1, 1))}"/>')
+        return '<transform name="to_uv">' + "".join(ops) + "</transform>"
+
+    def bitmap(self, name, path):
+        """A `bitmap` of `path` with a random filter, wrap mode and to_uv (scaled and shifted past
+        [0, 1]² so that the wrap mode shows); 8-bit files sometimes `raw`."""
+        children = [string("filename", path)]
+        notes = [os.path.splitext(os.path.basename(path))[0]]
+        filter_type = self.r.choice([None, "bilinear", "nearest"])
+        wrap_mode = self.r.choice([None, "repeat", "mirror", "clamp"])
+        for key, value in [("filter_type", filter_type), ("wrap_mode", wrap_mode)]:
+            if value:
+                children.append(string(key, value))
+                notes.append(value)
+        if not path.endswith(".exr") and self.r.random() < 0.2:
+            children.append(boolean("raw", True))
+            notes.append("raw")
+        if self.r.random() < 0.7:
+            ops = [f'<scale x="{self.r.choice([1, 2, 3])}" y="{self.r.choice([1, 2, 3])}"/>']
+            if self.r.random() < 0.5:
+                x, y = self.uniform(-0.5, 0.5), self.uniform(-0.5, 0.5)
+                ops.append(f'<translate x="{num(x)}" y="{num(y)}"/>')
+            children.append('<transform name="to_uv">' + "".join(ops) + "</transform>")
+        return element("texture", "bitmap", children, name=name), "bitmap(" + "/".join(notes) + ")"
+
     # Materials.
     def reflectance(self, name, textured_chance=0.3):
-        """A colour parameter: an RGB, or (sometimes) a checkerboard of two colours."""
+        """A colour parameter: an RGB, or (sometimes) a checkerboard of two colours, or (feature
+        "bitmap") an image."""
         if self.r.random() < textured_chance:
+            if self.has("bitmap") and self.r.random() < 0.4:
+                return self.bitmap(name, self.r.choice(REFLECTANCE_IMAGES))
             children = [rgb("color0", self.colour()), rgb("color1", self.colour())]
             if self.r.random() < 0.6:
-                k = self.r.choice([2, 3, 4, 6])
-                children.append(f'<transform name="to_uv"><scale x="{k}" y="{k}"/></transform>')
+                children.append(self.uv_transform())
             return element("texture", "checkerboard", children, name=name), "checker"
         return rgb(name, self.colour()), None
+
+    def weight(self, name, lo, hi, textured_chance=0.3):
+        """A scalar parameter: a number in [lo, hi], or (sometimes) a checkerboard of two."""
+        if self.r.random() < textured_chance:
+            children = [flt("color0", self.uniform(lo, hi)), flt("color1", self.uniform(lo, hi)),
+                        self.uv_transform()]
+            return element("texture", "checkerboard", children, name=name), f"{name}=checker"
+        value = self.uniform(lo, hi)
+        return flt(name, value), f"{name}={num(value)}"
 
     def ior(self, name="int_ior"):
         if self.r.random() < 0.4:
@@ -188,9 +354,108 @@ class SceneMaker:
         k = [self.uniform(1.5, 5.0) for _ in range(3)]
         return [rgb("eta", eta), rgb("k", k)], "eta/k"
 
+    def materials(self, base, surface):
+        """`base` and the extended BSDFs that suit `surface`."""
+        kinds = base + [k for k in ["principled", "pplastic", "blendbsdf"] if self.has(k)]
+        if surface.flat and self.has("principledthin"):
+            kinds.append("principledthin")
+        if surface.smooth:
+            kinds = [k for k in kinds if k != "twosided"]
+        return kinds
+
+    def surface_bsdf(self, kinds, surface):
+        """`bsdf(kinds)`, on a shape with uv sometimes under a normal or bump map."""
+        bsdf, text = self.bsdf(kinds)
+        maps = [kind for kind in ["normalmap", "bumpmap"] if self.has(kind)] if surface.uv else []
+        if maps and self.r.random() < 0.2:
+            return self.perturbed(self.r.choice(maps), bsdf, text)
+        return bsdf, text
+
+    def perturbed(self, kind, inner, text):
+        """`inner` under a `normalmap` (normalmap_normals.png) or `bumpmap` (normalmap_height.png,
+        bilinear: caustic's nearest-filtered heights have no gradient)."""
+        notes = []
+        image = [string("filename", NORMAL_MAP if kind == "normalmap" else HEIGHT_MAP)]
+        if self.r.random() < 0.8:
+            image.append(boolean("raw", True))
+        else:
+            notes.append("srgb")
+        k = self.r.choice([1, 2, 3])
+        image.append(f'<transform name="to_uv"><scale x="{k}" y="{k}"/></transform>')
+        children = []
+        if kind == "bumpmap":
+            children.append(element("texture", "bitmap", image))
+            bump = self.uniform(0.05, 0.5)
+            children.append(flt("scale", bump))
+            notes.append(f"scale={num(bump)}")
+        else:
+            if self.r.random() < 0.3:
+                image.append(string("filter_type", "nearest"))
+                notes.append("nearest")
+            children.append(element("texture", "bitmap", image, name="normalmap"))
+        for flag in ["flip_invalid_normals", "use_shadowing_function"]:
+            if self.r.random() < 0.2:
+                children.append(boolean(flag, False))
+                notes.append(f"no-{flag}")
+        return element("bsdf", kind, children + [inner]), f"{kind}({','.join(notes + [text])})"
+
+    def principled(self, kind):
+        """`principled` or `principledthin`: each weight left out, a number or a checkerboard."""
+        thin = kind == "principledthin"
+        refl, tex = self.reflectance("base_color")
+        children, notes = [refl], [tex] if tex else []
+        weights = [("roughness", 0.05, 0.9), ("spec_trans", 0, 1), ("spec_tint", 0, 1), ("sheen", 0, 1),
+                   ("sheen_tint", 0, 1), ("flatness", 0, 1)]
+        if thin:
+            weights += [("diff_trans", 0, 2), ("eta", 1.2, 1.9)]
+        else:
+            weights += [("metallic", 0, 1), ("clearcoat", 0, 1), ("clearcoat_gloss", 0, 1)]
+        for name, lo, hi in weights:
+            if self.r.random() < 0.5:
+                child, note = self.weight(name, lo, hi)
+                children.append(child)
+                notes.append(note)
+        if not thin and self.r.random() < 0.4:  # principled's eta, or its Schlick `specular`: numbers
+            if self.r.random() < 0.5:
+                name, value = "eta", self.uniform(1.2, 1.9)
+            else:
+                name, value = "specular", self.uniform(0, 1)
+            children.append(flt(name, value))
+            notes.append(f"{name}={num(value)}")
+        return element("bsdf", kind, children), f"{kind}({','.join(notes)})"
+
+    def pplastic(self):
+        refl, tex = self.reflectance("diffuse_reflectance")
+        children, notes = [refl], [tex] if tex else []
+        if self.r.random() < 0.25:
+            children.append(rgb("specular_reflectance", self.colour(0.5, 1.0)))
+        if self.r.random() < 0.5:
+            ior, ior_text = self.ior()
+            children.append(ior)
+            notes.append(ior_text)
+        rough, rough_text = self.roughness()
+        return element("bsdf", "pplastic", children + rough), f"pplastic({','.join(notes + [rough_text])})"
+
+    def blend(self):
+        """`blendbsdf` of two smooth one-sided BSDFs, weight a number, a checkerboard or a bitmap."""
+        if self.has("bitmap") and self.r.random() < 0.2:
+            weight, weight_text = self.bitmap("weight", HEIGHT_MAP)
+        else:
+            weight, weight_text = self.weight("weight", 0, 1, textured_chance=0.4)
+        kinds = BLEND_MATERIALS + [k for k in ["principled", "pplastic"] if self.has(k)]
+        (first, first_text), (second, second_text) = self.bsdf(kinds), self.bsdf(kinds)
+        return (element("bsdf", "blendbsdf", [weight, first, second]),
+                f"blendbsdf({weight_text},{first_text},{second_text})")
+
     def bsdf(self, kinds):
         """A random BSDF among `kinds`: its XML and a short description."""
         kind = self.r.choice(kinds)
+        if kind in ("principled", "principledthin"):
+            return self.principled(kind)
+        if kind == "pplastic":
+            return self.pplastic()
+        if kind == "blendbsdf":
+            return self.blend()
         if kind == "diffuse":
             refl, tex = self.reflectance("reflectance")
             return element("bsdf", "diffuse", [refl]), "diffuse" + (f"({tex})" if tex else "")
@@ -272,25 +537,98 @@ class SceneMaker:
         return bound, lambda c: [to_world(translate([0, 0, -0.5]), scale([radius, radius, 2 * half]),
                                           turn, translate(c))]
 
+    def mesh(self):
+        """An `obj` or `ply` of MESHES, centred, sized (sometimes unequally), turned; its own or
+        (sometimes) face normals."""
+        plugin, path, centre, radius, uv = self.r.choice(MESHES)
+        size = self.uniform(0.3, 0.55)
+        factors = [size / radius] * 3
+        if self.r.random() < 0.4:
+            factors = [f * self.uniform(0.6, 1.0) for f in factors]
+        turn = rotate(self.unit_vector(), self.uniform(0, 360))
+        children = [string("filename", path)]
+        face_normals = self.r.random() < 0.3
+        if face_normals:
+            children.append(boolean("face_normals", True))
+        label = f"{plugin}({os.path.splitext(os.path.basename(path))[0]}{',faces' if face_normals else ''})"
+        centring = [translate([-x for x in centre])] if any(centre) else []
+        geometry = lambda c: children + [to_world(*centring, scale(factors), turn, translate(c))]
+        return Shape(plugin, label, size, geometry, Surface(flat=False, uv=uv, smooth=not face_normals))
+
     def shape_geometry(self, kind):
+        if kind == "mesh":
+            return self.mesh()
         if kind == "sphere":
-            return self.sphere()
-        if kind in ("rectangle", "disk"):
-            return self.flat(kind)
-        if kind == "cube":
-            return self.cube()
-        return self.cylinder()
+            bound, geometry = self.sphere()
+        elif kind in ("rectangle", "disk"):
+            bound, geometry = self.flat(kind)
+        elif kind == "cube":
+            bound, geometry = self.cube()
+        else:
+            bound, geometry = self.cylinder()
+        flat = kind in ("rectangle", "disk")
+        return Shape(kind, kind, bound, geometry, Surface(flat=flat, uv=True, smooth=False))
+
+    def shape_kinds(self):
+        return (["sphere", "rectangle", "disk", "cube", "cylinder"] + (["mesh"] if self.has("meshes") else [])
+                + (["instance"] if self.has("instances") and not self.path_hides_emitters else []))
+
+    def shapegroup(self):
+        """The scene's `shapegroup`: one or two shapes about its origin, with BSDFs (no emitters:
+        Mitsuba refuses them there). Its XML, bounding radius, description, whether it holds a sphere."""
+        members, texts, bound, has_sphere = [], [], 0.0, False
+        kinds = [k for k in self.shape_kinds() if k != "instance"]
+        direction = self.unit_vector()
+        offset = 0.0
+        for _ in range(self.r.choice([1, 2, 2])):
+            shape = self.shape_geometry(self.r.choice(kinds))
+            if members:  # the second beside the first
+                offset += shape.bound + 0.05
+            centre = [offset * d for d in direction]
+            offset += shape.bound
+            bound = max(bound, math.sqrt(sum(x * x for x in centre)) + shape.bound)
+            has_sphere |= shape.plugin == "sphere"
+            bsdf, text = self.surface_bsdf(self.materials(OBJECT_MATERIALS, shape.surface), shape.surface)
+            members.append(element("shape", shape.plugin, shape.geometry(centre) + [bsdf]))
+            texts.append(f"{shape.label}:{text}")
+        xml = f'<shape type="shapegroup" id="group">{"".join(members)}</shape>'
+        return xml, bound, "+".join(texts), has_sphere
+
+    def instance(self):
+        """An `instance` of the shapegroup (made at the first call), turned and sized (unequally or
+        mirrored where it holds no sphere): its bounding radius, and a function of its centre that
+        gives its XML and description."""
+        if self.group is None:
+            self.group = self.shapegroup()
+        group_xml, group_bound, group_text, has_sphere = self.group
+        size = self.uniform(0.35, 0.7)
+        factors = [size / group_bound] * 3
+        if not has_sphere and self.r.random() < 0.5:
+            factors = [f * self.uniform(0.6, 1.0) for f in factors]
+            if self.r.random() < 0.4:
+                factors[0] = -factors[0]
+        turn = rotate(self.unit_vector(), self.uniform(0, 360))
+        notes = ",mirrored" if factors[0] < 0 else "" if factors[0] == factors[1] == factors[2] else ",unequal"
+
+        def place(c):
+            if group_xml not in self.definitions:
+                self.definitions.append(group_xml)
+            children = ['<ref id="group"/>', to_world(scale(factors), turn, translate(c))]
+            return element("shape", "instance", children), f"instance[{group_text}{notes}]"
+        return size, place
 
     def place_objects(self):
         """2-4 shapes floating above the floor around the origin, their bounding spheres apart."""
         placed = self.placed
         shapes = []
         emissive_left = 1 if self.r.random() < 0.2 else 0
-        materials = ["diffuse", "twosided", "plastic", "roughplastic", "conductor", "roughconductor",
-                     "dielectric", "roughdielectric", "thindielectric"]
         for _ in range(self.r.randint(2, 4)):
-            kind = self.r.choice(["sphere", "rectangle", "disk", "cube", "cylinder"])
-            bound, geometry = self.shape_geometry(kind)
+            kind = self.r.choice(self.shape_kinds())
+            if kind == "instance":
+                bound, place = self.instance()
+            else:
+                shape = self.shape_geometry(kind)
+                bound = shape.bound
             for _attempt in range(50):
                 ring, angle = self.uniform(0, 1.6), self.uniform(0, 2 * math.pi)
                 c = [ring * math.cos(angle), ring * math.sin(angle), bound + self.uniform(0.03, 0.6)]
@@ -299,27 +637,68 @@ class SceneMaker:
             else:
                 continue  # no room left: one shape fewer
             placed.append((c, bound))
-            children = geometry(c)
-            if emissive_left and kind in ("sphere", "cube", "cylinder"):
+            if kind == "instance":
+                xml, text = place(c)
+                shapes.append(xml)
+                self.parts.append(text)
+                continue
+            children = shape.geometry(c)
+            if emissive_left and kind in ("sphere", "cube", "cylinder", "mesh"):
                 emissive_left = 0
                 children.append(element("bsdf", "diffuse", [rgb("reflectance", self.colour())]))
-                radiance = rgb("radiance", self.tint(self.uniform(0.5, 3.0)))
+                power = self.uniform(0.5, 3.0)
+                # Mitsuba samples a textured emitter in uv space, which takes a one-to-one uv map:
+                # not a cube's (six faces on one square: it samples one) nor a mesh's without uv.
+                if shape.surface.uv and kind != "cube":
+                    radiance, tex = self.radiance("radiance", power, images=True)
+                else:
+                    radiance, tex = rgb("radiance", self.tint(power)), None
                 children.append(element("emitter", "area", [radiance]))
-                shapes.append(element("shape", kind, children))
-                self.parts.append(f"{kind}:emitter")
+                shapes.append(element("shape", shape.plugin, children))
+                self.parts.append(f"{shape.label}:emitter" + (f"({tex})" if tex else ""))
                 continue
-            bsdf, text = self.bsdf(materials)
-            shapes.append(element("shape", kind, children + [bsdf]))
-            self.parts.append(f"{kind}:{text}")
+            bsdf, text = self.surface_bsdf(self.materials(OBJECT_MATERIALS, shape.surface), shape.surface)
+            shapes.append(element("shape", shape.plugin, children + [bsdf]))
+            self.parts.append(f"{shape.label}:{text}")
         return shapes
 
     def floor(self):
         size = self.uniform(3.0, 6.0)
-        bsdf, text = self.bsdf(["diffuse", "diffuse", "twosided", "roughplastic", "roughconductor"])
+        surface = Surface(flat=True, uv=True, smooth=False)
+        bsdf, text = self.surface_bsdf(self.materials(FLOOR_MATERIALS, surface), surface)
         self.parts.append(f"floor:{text}")
         return element("shape", "rectangle", [to_world(scale([size, size, 1])), bsdf])
 
     # Lights.
+    def emission_checkerboard(self, name, a, b):
+        """A checkerboard of the greys `a` and `b`: numbers, which Mitsuba does not bound (its RGB
+        colours in a texture are reflectances, at most 1, even in an emitter)."""
+        children = [flt("color0", a), flt("color1", b), self.uv_transform()]
+        return element("texture", "checkerboard", children, name=name)
+
+    def radiance(self, name, power, images):
+        """An emitted colour of about `power`: an RGB or (feature "emitter-textures", sometimes) a
+        checkerboard of two greys, or where `images`, an HDR image (values up to 4). Under ptracer
+        no checkerboard: Mitsuba's light tracer samples an emitter's spectrum, which its
+        checkerboard cannot (Texture::sample_spectrum(): not implemented)."""
+        if self.has("emitter-textures") and self.r.random() < 0.4:
+            if images and (self.light_tracing or self.r.random() < 0.5):
+                return self.bitmap(name, self.r.choice(EMISSION_IMAGES))
+            if not self.light_tracing:
+                a, b = power * self.uniform(0.6, 1.0), power * self.uniform(0.2, 1.0)
+                return self.emission_checkerboard(name, a, b), "checker"
+        return rgb(name, self.tint(power)), None
+
+    def emitted_image(self, name):
+        """A texture for a spot's `texture` or a projector's `irradiance`: an HDR image or (not under
+        ptracer: see `radiance`) a checkerboard; and its mean luminance."""
+        if self.light_tracing or self.r.random() < 0.7:
+            path = self.r.choice(EMISSION_IMAGES)
+            texture, text = self.bitmap(name, path)
+            return texture, text, mean_luminance(path)
+        a, b = self.uniform(0.2, 2.0), self.uniform(0.2, 2.0)
+        return self.emission_checkerboard(name, a, b), "checker", (a + b) / 2
+
     def light(self, kind, key):
         """An emitter of `kind`; the key light is brighter and aimed at the middle of the floor."""
         irradiance = self.uniform(1.0, 3.0) if key else self.uniform(0.2, 1.2)
@@ -336,12 +715,38 @@ class SceneMaker:
         if kind == "spot":
             target = [self.uniform(-0.7, 0.7), self.uniform(-0.7, 0.7), 0]
             cutoff = self.uniform(20, 60)
-            children = [to_world(lookat(position, target, [0, 1, 0])),
-                        rgb("intensity", self.tint(irradiance * distance2)), flt("cutoff_angle", cutoff)]
+            intensity = self.tint(irradiance * distance2)
+            children = [to_world(lookat(position, target, [0, 1, 0])), None, flt("cutoff_angle", cutoff)]
             if self.r.random() < 0.7:
                 children.append(flt("beam_width", cutoff * self.uniform(0.3, 0.95)))
-            self.parts.append(f"spot({num(cutoff)})")
+            notes = [num(cutoff)]
+            if self.has("emitter-textures") and self.r.random() < 0.35:
+                texture, text, mean = self.emitted_image("texture")
+                intensity = [x / mean for x in intensity]
+                children.append(texture)
+                notes.append(text)
+            children[1] = rgb("intensity", intensity)
+            self.parts.append(f"spot({','.join(notes)})")
             return element("emitter", "spot", children)
+        if kind == "projector":
+            target = [self.uniform(-0.7, 0.7), self.uniform(-0.7, 0.7), 0]
+            fov = self.uniform(20, 50)
+            children = [to_world(lookat(position, target, [0, 1, 0])), flt("fov", fov)]
+            notes = [f"fov={num(fov)}"]
+            if self.r.random() < 0.3:
+                axis = self.r.choice(["x", "y", "diagonal", "smaller", "larger"])
+                children.append(string("fov_axis", axis))
+                notes.append(axis)
+            # Mitsuba's projector gives pi * irradiance * scale / d^2 at distance d.
+            power = irradiance * math.dist(position, target) ** 2 / math.pi
+            if self.r.random() < 0.5:
+                texture, text, mean = self.emitted_image("irradiance")
+                children += [texture, flt("scale", power / mean)]
+                notes.append(text)
+            else:
+                children += [rgb("irradiance", self.tint(1.0)), flt("scale", power)]
+            self.parts.append(f"projector({','.join(notes)})")
+            return element("emitter", "projector", children)
         if kind == "directional":
             theta, phi = math.radians(self.uniform(0, 60)), self.uniform(0, 2 * math.pi)
             direction = [math.sin(theta) * math.cos(phi), math.sin(theta) * math.sin(phi), -math.cos(theta)]
@@ -352,6 +757,21 @@ class SceneMaker:
             self.has_environment = True
             self.parts.append("constant")
             return element("emitter", "constant", [rgb("radiance", self.tint(irradiance / math.pi))])
+        if kind == "envmap":
+            self.has_environment = True
+            path = self.r.choice(ENVIRONMENT_IMAGES)
+            children = [string("filename", path), flt("scale", irradiance / (math.pi * mean_luminance(path)))]
+            notes = [os.path.splitext(os.path.basename(path))[0]]
+            # Under ptracer the map keeps Mitsuba's orientation: Mitsuba 3.9.1's light tracer emits
+            # from a turned map wrongly (its ptracer and path images differ up to 15x per pixel). And
+            # there caustic leaves compensation off (light tracing samples emission from the map alone).
+            if not self.light_tracing:
+                children.append(to_world(rotate(self.unit_vector(), self.uniform(0, 360))))
+                if self.r.random() < 0.3:
+                    children.append(boolean("mis_compensation", True))
+                    notes.append("mis_compensation")
+            self.parts.append(f"envmap({','.join(notes)})")
+            return element("emitter", "envmap", children)
         # An area lamp above the scene: a sphere, or a rectangle or disk facing down.
         shape = self.r.choice(["sphere", "rectangle", "disk"])
         size = self.uniform(0.15, 0.45)
@@ -362,18 +782,20 @@ class SceneMaker:
             tilt = rotate(self.unit_vector(), self.uniform(0, 25))
             geometry = [to_world(scale([size, size, 1]), rotate([1, 0, 0], 180), tilt, translate(position))]
             area = 4 * size * size if shape == "rectangle" else math.pi * size * size
-        radiance = rgb("radiance", self.tint(irradiance * distance2 / area))
+        radiance, tex = self.radiance("radiance", irradiance * distance2 / area, images=False)
         children = geometry + [element("emitter", "area", [radiance])]
         if self.r.random() < 0.5:
             children.append(element("bsdf", "diffuse", [rgb("reflectance", self.colour())]))
-        self.parts.append(f"area-{shape}")
+        self.parts.append(f"area-{shape}" + (f"({tex})" if tex else ""))
         return element("shape", shape, children)
 
     def lights(self):
-        key = self.r.choice(["area", "area", "point", "spot", "directional", "constant"])
+        extra = [kind for kind in ["projector", "envmap"] if self.has(kind)]
+        key = self.r.choice(["area", "area", "point", "spot", "directional", "constant"] + extra)
         emitters = [self.light(key, True)]
         for _ in range(self.r.choice([0, 0, 1, 2])):
             kinds = ["area", "point", "spot", "directional"] + ([] if self.has_environment else ["constant"])
+            kinds += [kind for kind in extra if kind == "projector" or not self.has_environment]
             emitters.append(self.light(self.r.choice(kinds), False))
         return emitters
 
@@ -387,7 +809,9 @@ class SceneMaker:
                   distance * math.sin(elevation)]
         target = [self.uniform(-0.3, 0.3), self.uniform(-0.3, 0.3), self.uniform(0.2, 0.6)]
         view = lookat(origin, target, [0, 0, 1])
-        kind = self.r.choice(["perspective", "perspective", "thinlens", "orthographic"])
+        # caustic's light tracing has no orthographic camera.
+        kinds = ["perspective", "perspective", "thinlens"] + ([] if self.light_tracing else ["orthographic"])
+        kind = self.r.choice(kinds)
         children = []
         if kind == "orthographic":
             half = self.uniform(2.0, 3.5)
@@ -414,29 +838,56 @@ class SceneMaker:
                 focus = math.dist(origin, target) * self.uniform(0.8, 1.2)
                 children += [flt("aperture_radius", aperture), flt("focus_distance", focus)]
                 lens += f",aperture={num(aperture)}"
+            if kind == "perspective" and self.has("principal-point") and self.r.random() < 0.3:
+                x, y = self.uniform(-0.2, 0.2), self.uniform(-0.2, 0.2)
+                children += [flt("principal_point_offset_x", x), flt("principal_point_offset_y", y)]
+                lens += f",offset={num(x)}/{num(y)}"
         rfilter = self.r.choice(["box", "tent", "gaussian"])
+        if self.has("filters") and self.r.random() < 0.3:
+            rfilter = self.r.choice(["mitchell", "catmullrom", "lanczos"])
+        if self.light_tracing:
+            # Mitsuba's light tracer drops the part of a splat's filter that falls off the image (its
+            # border pixels render darker than its path tracer's); caustic's renormalises it.
+            rfilter = "box"
         filter_children = []
         if rfilter == "gaussian" and self.r.random() < 0.5:
             filter_children.append(flt("stddev", self.uniform(0.3, 0.8)))
+        if rfilter == "mitchell" and self.r.random() < 0.5:
+            filter_children += [flt("B", self.uniform(0, 1)), flt("C", self.uniform(0, 1))]
+        if rfilter == "lanczos" and self.r.random() < 0.5:
+            filter_children.append(integer("lobes", self.r.choice([2, 4])))
         film = element("film", "hdrfilm", [integer("width", width), integer("height", height),
                                            element("rfilter", rfilter, filter_children)])
         sampler_kind = self.r.choice(["independent", "independent", "stratified"])
+        if self.has("samplers") and self.r.random() < 0.3:
+            sampler_kind = self.r.choice(["multijitter", "orthogonal", "ldsampler"])
+        if self.light_tracing:
+            # Mitsuba 3.9.1's ptracer never ends where its sampler rounds the sample count (stratified
+            # at 512 spp: 529).
+            sampler_kind = "independent"
         sampler = element("sampler", sampler_kind, [integer("sample_count", 16)])
         self.parts.insert(0, f"{kind}({lens}) {width}x{height} {rfilter} {sampler_kind}")
         return element("sensor", kind, children + [film, sampler])
 
+    def depths(self, children, notes):
+        depth = self.r.choice([2, 3, 4, 5, 6, 7, 8, -1])
+        children.append(integer("max_depth", depth))
+        notes.append(f"depth={depth}")
+        if self.r.random() < 0.3:
+            rr = self.r.randint(1, 6)
+            children.append(integer("rr_depth", rr))
+            notes.append(f"rr={rr}")
+
     def integrator(self):
         children = []
         notes = []
-        if self.r.random() < 0.75:
+        if self.has("ptracer") and self.r.random() < 0.15:
+            kind = "ptracer"
+            self.light_tracing = True
+            self.depths(children, notes)
+        elif self.r.random() < 0.75:
             kind = "path"
-            depth = self.r.choice([2, 3, 4, 5, 6, 7, 8, -1])
-            children.append(integer("max_depth", depth))
-            notes.append(f"depth={depth}")
-            if self.r.random() < 0.3:
-                rr = self.r.randint(1, 6)
-                children.append(integer("rr_depth", rr))
-                notes.append(f"rr={rr}")
+            self.depths(children, notes)
         else:
             # One emitter and one BSDF sample: Mitsuba's `direct` is known to differ from caustic's
             # with more emitter samples and delta emitters.
@@ -445,6 +896,7 @@ class SceneMaker:
         if self.r.random() < 0.15:
             children.append(boolean("hide_emitters", True))
             notes.append("hide_emitters")
+            self.path_hides_emitters = kind == "path"
         self.parts.insert(0, f"{kind}({','.join(notes)})" if notes else kind)
         return element("integrator", kind, children)
 
@@ -454,7 +906,7 @@ class SceneMaker:
         floor = self.floor()
         shapes = self.place_objects()
         emitters = self.lights()
-        body = "\n    ".join([integrator, sensor, floor] + shapes + emitters)
+        body = "\n    ".join([integrator, sensor, floor] + self.definitions + shapes + emitters)
         return f'<scene version="3.0.0">\n    {body}\n</scene>\n'
 
     @property
@@ -462,8 +914,8 @@ class SceneMaker:
         return " | ".join(self.parts)
 
 
-def make_scene(seed):
-    maker = SceneMaker(seed)
+def make_scene(seed, features=frozenset(EXTENDED)):
+    maker = SceneMaker(seed, features)
     xml = maker.xml()
     return xml, maker.description
 
@@ -565,7 +1017,10 @@ def remove(paths):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog="extended kinds (--without):\n" +
+                                        "\n".join(f"  {kind:17} {what}" for kind, what in EXTENDED.items()))
     ap.add_argument("--seeds", default="0-29", help="seeds to test: a range 0-29, a list 1,5,9, or both")
     ap.add_argument("--spp", type=int, default=256, help="caustic's samples per pixel")
     ap.add_argument("--ref-factor", type=int, default=16, help="Mitsuba's spp as a multiple of caustic's")
@@ -578,7 +1033,17 @@ def main():
     ap.add_argument("--recheck", type=int, default=4,
                     help="render a failing scene again at this multiple of --spp (0: don't)")
     ap.add_argument("--threads", type=int, default=2, help="threads for each renderer")
+    ap.add_argument("--extended", action=argparse.BooleanOptionalAction, default=True,
+                    help="add the extended kinds of scene element (--no-extended: the original generator, "
+                         "whose seeds make the scenes they made before)")
+    ap.add_argument("--without", default="", metavar="KIND,...",
+                    help="extended kinds to leave out (listed below)")
     args = ap.parse_args()
+    without = {kind for kind in args.without.split(",") if kind}
+    if without - EXTENDED.keys():
+        sys.exit(f"--without: unknown kinds {', '.join(sorted(without - EXTENDED.keys()))} "
+                 f"(known: {', '.join(EXTENDED)})")
+    features = frozenset(EXTENDED.keys() - without) if args.extended else frozenset()
 
     if not os.access(args.caustic, os.X_OK):
         sys.exit(f"no caustic binary at {args.caustic} (cargo build --release, or --caustic)")
@@ -589,12 +1054,14 @@ def main():
     reference_spp = args.spp * args.ref_factor
     print(f"caustic {args.spp} spp (cpu) against Mitsuba {mi.__version__} scalar_rgb {reference_spp} spp; "
           f"pass: fraction >= {MIN_PASS_FRACTION} and |z| < {MAX_LUMINANCE_Z}", flush=True)
+    print("generator: " + ("original (--no-extended)" if not features else "extended" +
+          (f" without {', '.join(sorted(without))}" if without else "")), flush=True)
     print(f"{'seed':>4} {'pass':>7} {'lum z':>7} verdict {'secs':>5}  scene", flush=True)
 
     failures = []
     seeds = parse_seeds(args.seeds)
     for seed in seeds:
-        xml, description = make_scene(seed)
+        xml, description = make_scene(seed, features)
         stem = os.path.join(args.out, f"seed-{seed:04d}")
         xml_path = stem + ".xml"
         with open(xml_path, "w") as f:
