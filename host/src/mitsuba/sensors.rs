@@ -167,8 +167,9 @@ impl Loader {
                 Projection::Orthographic { half_width, half_height }
             }
             _ => {
-                props.float("focus_distance", 0.0)?; // meaningful only for thin-lens cameras
-                                                     // Mitsuba reads these for `perspective` only.
+                // Mitsuba reads the principal point for `perspective` only (and `focus_distance`
+                // is meaningful only for thin-lens cameras).
+                props.float("focus_distance", 0.0)?;
                 let offset = [
                     props.float("principal_point_offset_x", 0.0)?,
                     props.float("principal_point_offset_y", 0.0)?,
