@@ -60,11 +60,26 @@ pub fn defines(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
 /// Loads a Mitsuba scene given as text (written to a temporary `scene.xml` in a folder named after
 /// `tag`, then removed) with `defines` (`-D`); the loader's result, errors naming that file.
 pub fn try_load_xml(xml: &str, tag: &str, defines_: &[(&str, &str)]) -> anyhow::Result<Scene> {
+    load_xml_file(xml, tag, |path| caustic::load_scene(path, &defines(defines_)))
+}
+
+/// `try_load_xml` under `--strict` (without defines): a substitution is an error.
+pub fn try_load_xml_strict(xml: &str, tag: &str) -> anyhow::Result<Scene> {
+    load_xml_file(xml, tag, |path| caustic::load_scene_with(path, &[], caustic::LoadOptions { strict: true }))
+}
+
+/// Writes `xml` to a temporary `scene.xml` (in a folder named after `tag`), loads it with `load`,
+/// removes it.
+fn load_xml_file(
+    xml: &str,
+    tag: &str,
+    load: impl FnOnce(&std::path::Path) -> anyhow::Result<Scene>,
+) -> anyhow::Result<Scene> {
     let dir = std::env::temp_dir().join(format!("caustic-test-{}-{tag}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temporary folder");
     let path = dir.join("scene.xml");
     std::fs::write(&path, xml).expect("scene written");
-    let scene = caustic::load_scene(&path, &defines(defines_));
+    let scene = load(&path);
     std::fs::remove_dir_all(&dir).ok();
     scene
 }

@@ -152,13 +152,7 @@ fn blend_refuses_with_file_and_line() {
 #[test]
 fn a_dirac_child_beside_a_smooth_one_is_a_substitution() {
     let strict = |bsdf: &str, tag: &str| {
-        let dir = std::env::temp_dir().join(format!("caustic-blend-{tag}-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("scene.xml");
-        std::fs::write(&path, scene(bsdf)).unwrap();
-        let loaded = caustic::load_scene_with(&path, &[], caustic::LoadOptions { strict: true });
-        std::fs::remove_dir_all(&dir).ok();
-        loaded.map_err(|e| format!("{e:#}"))
+        try_load_xml_strict(&scene(bsdf), &format!("blend-{tag}")).map_err(|e| format!("{e:#}"))
     };
     let blend = |a: &str, b: &str| {
         format!(r#"<bsdf type="blendbsdf"><float name="weight" value="0.5"/>{a}{b}</bsdf>"#)

@@ -82,13 +82,7 @@ fn principled_refuses_what_mitsuba_refuses() {
     let textured = principled(
         r#"<texture type="checkerboard" name="sheen"><float name="color0" value="0.2"/><float name="color1" value="0.6"/></texture>"#,
     );
-    let dir = std::env::temp_dir().join(format!("caustic-principled-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, &textured).unwrap();
-    let strict = caustic::load_scene_with(&path, &[], caustic::LoadOptions { strict: true });
-    std::fs::remove_dir_all(&dir).ok();
-    let scene = strict.expect("--strict loads a textured sheen");
+    let scene = try_load_xml_strict(&textured, "principled-sheen").expect("--strict loads a textured sheen");
     let m = scene.materials[0];
     assert!((PrincipledParams::unpack(&m).sheen - 0.4).abs() < 1e-6, "the record keeps the mean sheen");
     let sheen_slot = scene.weight_tables[m.table as usize][2];

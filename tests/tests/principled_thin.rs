@@ -86,13 +86,8 @@ fn principled_thin_refuses_with_file_and_line() {
     let textured = thin(
         r#"<texture type="checkerboard" name="diff_trans"><float name="color0" value="0.2"/><float name="color1" value="0.6"/></texture>"#,
     );
-    let dir = std::env::temp_dir().join(format!("caustic-thin-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, &textured).unwrap();
-    let strict = caustic::load_scene_with(&path, &[], caustic::LoadOptions { strict: true });
-    std::fs::remove_dir_all(&dir).ok();
-    let scene = strict.expect("--strict loads a textured diff_trans");
+    let scene =
+        try_load_xml_strict(&textured, "thin-diff-trans").expect("--strict loads a textured diff_trans");
     let m = scene.materials[0];
     assert!((ThinParams::unpack(&m).diff_trans - 0.4).abs() < 1e-6, "the record keeps the mean diff_trans");
     assert!(scene.weight_tables[m.table as usize][5] >= 0.0, "diff_trans's texture is listed");

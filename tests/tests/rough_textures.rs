@@ -44,12 +44,7 @@ fn textured_roughplastic_alpha_is_a_substitution() {
         (caustic_kernel::layout::NONE, caustic_kernel::layout::NONE)
     );
     assert!((m.alpha_u - 0.2).abs() < 1e-6, "mean alpha {}", m.alpha_u);
-    let dir = std::env::temp_dir().join(format!("caustic-rough-textures-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, xml).unwrap();
-    let strict = caustic::load_scene_with(&path, &[], caustic::LoadOptions { strict: true });
-    std::fs::remove_dir_all(&dir).ok();
+    let strict = try_load_xml_strict(xml, "rough-textures-strict");
     let Err(e) = strict else { panic!("--strict accepted a substituted roughplastic alpha") };
     let message = format!("{e:#}");
     assert!(message.contains("roughplastic"), "{message}");

@@ -55,12 +55,7 @@ fn textures_go_to_their_slots() {
     // pplastic's eta is read as a number: the loader's grey copy of the checkerboard (`scalar_texture`).
     assert_eq!((m[2].kind, m[2].param_texture), (BSDF_PPLASTIC, 4));
     assert!((m[2].eta - 1.05).abs() < 1e-6, "mean eta {}", m[2].eta);
-    let dir = std::env::temp_dir().join(format!("caustic-textured-params-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, xml).unwrap();
-    let strict = caustic::load_scene_with(&path, &[], caustic::LoadOptions { strict: true });
-    std::fs::remove_dir_all(&dir).ok();
+    let strict = try_load_xml_strict(xml, "textured-params-strict");
     if let Err(e) = strict {
         panic!("--strict refused textured parameters that are supported: {e:#}");
     }

@@ -85,12 +85,8 @@ fn the_front_record_names_the_back() {
     let m = *one.materials.last().unwrap();
     assert!(m.flags & MATERIAL_TWO_SIDED != 0 && back_plus_one(&m) == 0);
 
-    let dir = std::env::temp_dir().join(format!("caustic-pair-strict-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, scene(&format!(r#"<bsdf type="twosided">{RED}{GOLD}</bsdf>"#))).unwrap();
-    let loaded = caustic::load_scene_with(&path, &[], caustic::LoadOptions { strict: true });
-    std::fs::remove_dir_all(&dir).ok();
+    let loaded =
+        try_load_xml_strict(&scene(&format!(r#"<bsdf type="twosided">{RED}{GOLD}</bsdf>"#)), "pair-strict");
     loaded.map_err(|e| format!("{e:#}")).expect("--strict loads a twosided of two BSDFs");
 }
 

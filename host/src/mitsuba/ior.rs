@@ -378,10 +378,8 @@ mod tests {
         let table: Vec<&str> = super::super::conductor_table::BUILT_IN.iter().map(|e| e.0).collect();
         assert_eq!(table, names, "the table lists exactly the shared spectra");
         for name in &names {
-            let from_files = (
-                spd_file_to_rgb(&ior.join(format!("{name}.eta.spd"))).unwrap(),
-                spd_file_to_rgb(&ior.join(format!("{name}.k.spd"))).unwrap(),
-            );
+            // The files come first: this reads them.
+            let from_files = conductor_eta_k(name, std::slice::from_ref(&dir)).unwrap();
             assert_eq!(super::super::conductor_table::built_in(name), Some(from_files), "{name}");
         }
     }
@@ -404,8 +402,7 @@ mod tests {
         let end = start + text[start..].find("];").unwrap() + 2;
         let mut table = String::from("pub const BUILT_IN: &[(&str, [f32; 3], [f32; 3])] = &[\n");
         for name in names {
-            let eta = spd_file_to_rgb(&ior.join(format!("{name}.eta.spd"))).unwrap();
-            let k = spd_file_to_rgb(&ior.join(format!("{name}.k.spd"))).unwrap();
+            let (eta, k) = conductor_eta_k(&name, std::slice::from_ref(&dir)).unwrap();
             table.push_str(&format!("    (\"{name}\", {eta:?}, {k:?}),\n"));
         }
         table.push_str("];");
