@@ -19,7 +19,8 @@ The extended generator (the default; --no-extended gives the scenes above, draw 
 old seeds reproduce) adds, each with some probability and each left out by naming it in
 --without (--help lists them): `principled` (weights left out, numbers or checkerboards;
 `eta` or `specular`), `principledthin` on rectangles and disks, `pplastic`, `blendbsdf` of two
-smooth one-sided BSDFs (weight a number, a checkerboard or a bitmap), `normalmap` and `bumpmap`
+smooth one-sided BSDFs (weight a number, a checkerboard or a bitmap; blends inside, two levels
+deep), spheres turned by their `to_world`, `normalmap` and `bumpmap`
 (tests/data's normalmap_normals.png and normalmap_height.png) around a BSDF on shapes with uv,
 `bitmap` reflectances (8- and 16-bit PNGs, a BMP; filter_type, wrap_mode, raw, to_uv),
 checkerboards with unequal, turned and shifted to_uv, `obj` and `ply` meshes (their own or face
@@ -110,6 +111,8 @@ EXTENDED = {
     "principledthin": "principledthin on rectangles and disks (the floor included)",
     "pplastic": "pplastic, isotropic",
     "blendbsdf": "blendbsdf of two smooth one-sided BSDFs, weight a number, checkerboard or bitmap",
+    "nested-blends": "blendbsdfs inside blendbsdfs, two levels deep",
+    "sphere-frames": "spheres turned by their to_world (their uv turns with it)",
     "normalmap": "normalmap (normalmap_normals.png) around a BSDF on a shape with uv",
     "bumpmap": "bumpmap (normalmap_height.png, bilinear) around a BSDF on a shape with uv",
     "bitmap": "bitmap reflectances (PNG, BMP): filter_type, wrap_mode, raw, to_uv",
@@ -256,6 +259,7 @@ class SceneMaker:
         self.placed = []  # (centre, bounding radius) of the shapes
         self.definitions = []  # elements the shapes refer to (the shapegroup)
         self.group = None  # the shapegroup's (XML, bounding radius, description, holds a sphere)
+        self.blend_depth = 0  # blends around the BSDF being made
 
     def has(self, feature):
         return feature in self.features
@@ -443,7 +447,12 @@ class SceneMaker:
         else:
             weight, weight_text = self.weight("weight", 0, 1, textured_chance=0.4)
         kinds = BLEND_MATERIALS + [k for k in ["principled", "pplastic"] if self.has(k)]
+        # Blends inside, two levels deep at most (caustic mixes up to eight leaves).
+        if self.has("nested-blends") and self.blend_depth < 2:
+            kinds = kinds + ["blendbsdf"]
+        self.blend_depth += 1
         (first, first_text), (second, second_text) = self.bsdf(kinds), self.bsdf(kinds)
+        self.blend_depth -= 1
         return (element("bsdf", "blendbsdf", [weight, first, second]),
                 f"blendbsdf({weight_text},{first_text},{second_text})")
 
@@ -507,6 +516,9 @@ class SceneMaker:
         radius = self.uniform(0.25, 0.6)
         if self.r.random() < 0.5:
             return radius, lambda c: [point("center", c), flt("radius", radius)]
+        if self.has("sphere-frames") and self.r.random() < 0.7:
+            turn = rotate(self.unit_vector(), self.uniform(0, 360))
+            return radius, lambda c: [to_world(scale([radius] * 3), turn, translate(c))]
         return radius, lambda c: [to_world(scale([radius] * 3), translate(c))]
 
     def flat(self, kind):

@@ -191,13 +191,14 @@ pub(crate) fn primitives(
                     push(prim, attr, area, LIGHT_AREA);
                 }
             }
-            Geometry::Sphere { center, radius } => {
+            Geometry::Sphere { center, radius, frame } => {
+                let (tilt, p2) = sphere_orientation(frame);
                 let prim = Primitive {
                     p0: arr(*center),
                     kind: PRIM_SPHERE,
-                    p1: [*radius, 0.0, 0.0],
+                    p1: [*radius, tilt[0], tilt[1]],
                     material: shape.material,
-                    p2: [0.0; 3],
+                    p2,
                     light: NONE,
                     flags: flags_base,
                     offset_floor: 0.0,
@@ -222,6 +223,19 @@ pub(crate) fn primitives(
         }
     }
     (prims, attributes)
+}
+
+/// The record's words for a sphere's frame (`caustic_kernel::shape::sphere::Orientation`): a
+/// mirrored frame is stored as the rotation of its x-negated self, the quaternion with w ≥ 0 (its
+/// `w − 1` is then small near the identity).
+fn sphere_orientation(frame: &Mat3) -> ([f32; 2], [f32; 3]) {
+    let mirrored = frame.determinant() < 0.0;
+    let rotation = if mirrored { *frame * Mat3::from_diagonal(Vec3::new(-1.0, 1.0, 1.0)) } else { *frame };
+    let mut q = glam::Quat::from_mat3(&rotation).normalize();
+    if q.w < 0.0 {
+        q = -q;
+    }
+    caustic_kernel::shape::sphere::Orientation::words(q.x, q.y, q.z, q.w, mirrored)
 }
 
 fn bounds(p: &Primitive) -> Aabb {

@@ -112,13 +112,17 @@ pub fn transformed(geometry: &Geometry, m: Mat4) -> Result<Geometry> {
                     .collect(),
             }
         }
-        Geometry::Sphere { center, radius } => {
+        Geometry::Sphere { center, radius, frame } => {
             // A mirror keeps a sphere a sphere: compare the scales' magnitudes.
             let scale = m.to_scale_rotation_translation().0.abs();
             if (scale.x - scale.y).abs() > 1e-4 * scale.x || (scale.x - scale.z).abs() > 1e-4 * scale.x {
                 bail!("an instanced sphere may only be scaled uniformly");
             }
-            Geometry::Sphere { center: m.transform_point3(*center), radius: radius * scale.x }
+            Geometry::Sphere {
+                center: m.transform_point3(*center),
+                radius: radius * scale.x,
+                frame: Mat3::from_mat4(m) * (1.0 / scale.x) * *frame,
+            }
         }
         Geometry::Disk { center, u, v } => Geometry::Disk {
             center: m.transform_point3(*center),

@@ -181,7 +181,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
     materials.push(Material { kind: BSDF_DIFFUSE, ..Default::default() });
     shapes.push(Shape {
         origin: "automatic sphere light".into(),
-        geometry: Geometry::Sphere { center: light_pos, radius: light_radius },
+        geometry: Geometry::Sphere { center: light_pos, radius: light_radius, frame: glam::Mat3::IDENTITY },
         material: materials.len() as u32 - 1,
         emission: Some([radiance; 3]),
         emission_texture: None,

@@ -37,7 +37,7 @@ pub fn least_resolved(scene: &Scene) -> Option<(f32, f32)> {
                     }
                 }
             }
-            Geometry::Sphere { center, radius } => {
+            Geometry::Sphere { center, radius, .. } => {
                 consider(*radius, (center.abs() + Vec3::splat(radius.abs())).max_element());
             }
             Geometry::Disk { center, u, v } => {

@@ -222,13 +222,12 @@ pub enum Geometry {
     Sphere {
         center: Vec3,
         radius: f32,
+        /// The orientation of `to_world` (orthonormal, mirrored where its determinant is negative):
+        /// Mitsuba's uv and tangents of a sphere turn with it.
+        frame: Mat3,
     },
     /// Mitsuba's analytic disk: `center + a·u + b·v` for `a² + b² ≤ 1`, facing `u × v`.
-    Disk {
-        center: Vec3,
-        u: Vec3,
-        v: Vec3,
-    },
+    Disk { center: Vec3, u: Vec3, v: Vec3 },
 }
 
 #[derive(Clone, Debug)]

@@ -3,7 +3,7 @@
 //! divergence (Dirac samples), χ² of its sampling against its pdf, reciprocity, and energy in a
 //! white furnace.
 mod common;
-use caustic_kernel::bsdf::TransportMode;
+use caustic_kernel::bsdf::{blend, TransportMode};
 use caustic_kernel::glam::{Vec2, Vec3};
 use caustic_kernel::layout::*;
 use caustic_kernel::rng::Sampler;
@@ -248,6 +248,129 @@ fn every_model_blends_consistently() {
                     smooth_samples + dirac > 50,
                     "{name}: {smooth_samples} smooth and {dirac} Dirac samples"
                 );
+            }
+        }
+    }
+}
+
+/// A tree of blends as the host writes it: `blend(w1, blend(w2, a, b), c)` and
+/// `blend(w1, blend(w2, a, b), blend(w3, c, d))` (material list `a, b, c, d`, then the inner blends).
+fn trees(a: Material, b: Material, c: Material, d: Material) -> Vec<(&'static str, Model, Vec<f32>)> {
+    let (w1, w2, w3) = (0.35f32, 0.6f32, 0.25f32);
+    let mut list = vec![a, b, c, d, blend::record(0, 1, w2, NONE), blend::record(2, 3, w3, NONE)];
+    list.push(blend::record(4, 2, w1, NONE));
+    let three = Model::tree(&blend::record(4, 2, w1, NONE), &list, false);
+    let four = Model::tree(&blend::record(4, 5, w1, NONE), &list, false);
+    // Each leaf's weight in the order a, b, c, d.
+    let three_weights = vec![(1.0 - w1) * (1.0 - w2), (1.0 - w1) * w2, w1, 0.0];
+    let four_weights = vec![(1.0 - w1) * (1.0 - w2), (1.0 - w1) * w2, w1 * (1.0 - w3), w1 * w3];
+    vec![("three leaves", three, three_weights), ("four leaves", four, four_weights)]
+}
+
+/// A tree of blends scatters as its leaves' weighted sum (the weights the products of the blend
+/// weights down the tree): eval, pdf and flags against the leaves' own.
+#[test]
+fn nested_blends_mix_their_leaves() {
+    let leaves = [
+        Material { reflectance: c4(0.8, 0.2, 0.1), ..material(BSDF_DIFFUSE) },
+        copper(rough(BSDF_ROUGH_CONDUCTOR, 0.3, 0.3, false)),
+        rough(BSDF_ROUGH_DIELECTRIC, 0.2, 0.2, false),
+        principled(0.0),
+    ];
+    let dirs = random_dirs(300, 31);
+    for (name, tree, weights) in trees(leaves[0], leaves[1], leaves[2], leaves[3]) {
+        let models: Vec<Model> = leaves.iter().map(|m| Model::new(m, false)).collect();
+        let used = weights.iter().zip(&models).filter(|(w, _)| **w > 0.0);
+        let flags = used.fold(0, |f, (_, m)| f | m.bsdf.flags().0);
+        assert_eq!(tree.bsdf.flags().0, flags, "{name}: flags");
+        let mut nonzero = 0;
+        for (k, wo) in dirs.iter().enumerate() {
+            let wi = dirs[(k * 7 + 3) % dirs.len()];
+            let (mut f, mut pdf) = (Vec3::ZERO, 0.0);
+            for (w, m) in weights.iter().zip(&models) {
+                f += m.eval(*wo, wi) * *w;
+                pdf += m.pdf(*wo, wi) * *w;
+            }
+            let ctx = format!("{name} wo={wo} wi={wi}");
+            assert!(close3(tree.eval(*wo, wi), f, 1e-5, 1e-7), "{ctx}: eval {} vs {f}", tree.eval(*wo, wi));
+            assert!(close(tree.pdf(*wo, wi), pdf, 1e-5, 1e-7), "{ctx}: pdf {} vs {pdf}", tree.pdf(*wo, wi));
+            nonzero += (pdf > 0.0) as u32;
+        }
+        assert!(nonzero > 50, "{name}: only {nonzero} non-zero pairs");
+    }
+}
+
+/// A tree picks the leaf Mitsuba's choices down it pick: at each blend `bsdf_1` where `u_lobe ≤ w`,
+/// `u_lobe` rescaled into the child. The leaf's own sample with the rescaled `u_lobe` has the tree's
+/// direction (the weights of smooth samples are the mixture's: `every_model_blends_consistently`).
+#[test]
+fn nested_blends_choose_as_mitsuba_descends() {
+    let leaves = [
+        Material { reflectance: c4(0.8, 0.2, 0.1), ..material(BSDF_DIFFUSE) },
+        copper(rough(BSDF_ROUGH_CONDUCTOR, 0.3, 0.3, false)),
+        copper(rough(BSDF_ROUGH_CONDUCTOR, 0.05, 0.4, false)),
+        rough(BSDF_ROUGH_PLASTIC, 0.2, 0.2, false),
+    ];
+    let (w1, w2, w3) = (0.35f32, 0.6f32, 0.25f32);
+    let mut rng = Sampler::new(3, 5, 8);
+    for (name, tree, _) in trees(leaves[0], leaves[1], leaves[2], leaves[3]) {
+        let four = name == "four leaves";
+        let mut checked = 0;
+        for _ in 0..2000 {
+            let (wo, ul, u) =
+                (polar(0.2 + 0.8 * rng.next_1d(), 6.0 * rng.next_1d()), rng.next_1d(), rng.next_2d());
+            // Mitsuba's descent: (leaf, u_lobe for it).
+            let (leaf, ul_leaf) = if ul <= w1 {
+                let v = ul / w1;
+                if !four {
+                    (2, v)
+                } else if v <= w3 {
+                    (3, v / w3)
+                } else {
+                    (2, (v - w3) / (1.0 - w3))
+                }
+            } else {
+                let v = (ul - w1) / (1.0 - w1);
+                if v <= w2 {
+                    (1, v / w2)
+                } else {
+                    (0, (v - w2) / (1.0 - w2))
+                }
+            };
+            let s = tree.sample(wo, ul, u);
+            let own = Model::new(&leaves[leaf], false).sample(wo, ul_leaf.min(0.99999994), u);
+            if own.pdf.is_nan() || s.pdf.is_nan() || own.pdf <= 0.0 || s.pdf <= 0.0 {
+                continue;
+            }
+            assert!(
+                close3(s.wi, own.wi, 1e-4, 1e-5),
+                "{name} u_lobe {ul}: wi {} vs leaf {leaf}'s {}",
+                s.wi,
+                own.wi
+            );
+            checked += 1;
+        }
+        assert!(checked > 1500, "{name}: {checked} samples checked");
+    }
+}
+
+/// χ² of the trees' sampling against their pdf, in both transport modes, from above and below.
+#[test]
+fn chi2_of_nested_blends() {
+    let leaves = [
+        material(BSDF_DIFFUSE),
+        copper(rough(BSDF_ROUGH_CONDUCTOR, 0.2, 0.4, false)),
+        rough(BSDF_ROUGH_DIELECTRIC, 0.3, 0.3, false),
+        principled(0.4),
+    ];
+    for (k, (name, tree, _)) in trees(leaves[0], leaves[1], leaves[2], leaves[3]).into_iter().enumerate() {
+        for (j, cos) in [0.7f32, -0.4].iter().enumerate() {
+            for adjoint in [false, true] {
+                let m =
+                    tree.in_mode(if adjoint { TransportMode::Importance } else { TransportMode::Radiance });
+                let wo = polar(*cos, 0.9);
+                let label = format!("{name} wo={wo} adjoint={adjoint}");
+                chi2_model(&label, &m, wo, &sphere_grid(), (100 + k * 8 + j * 2 + adjoint as usize) as u32);
             }
         }
     }

@@ -1,8 +1,8 @@
 //! Mitsuba's `blendbsdf` in whole images and in the loader: three spheres (rough plastic with rough
 //! gold, diffuse with a rough mirror under a checkerboard weight, diffuse with rough glass) and a
 //! two-sided blended floor against Mitsuba 3.9.1's render on both backends and with light tracing,
-//! with a negative control; the record the loader writes, Mitsuba's refusals and caustic's, with file
-//! and line; the feature bit. (The BSDF itself: `kernel/tests/bsdf_blend.rs`.)
+//! with a negative control; trees of blends likewise (`nested_blend.xml`); the record the loader
+//! writes, Mitsuba's refusals and caustic's, with file and line; the feature bit. (The BSDF itself: `kernel/tests/bsdf_blend.rs`.)
 use caustic::backend::BackendChoice;
 use caustic::buffers;
 use caustic_kernel::bsdf::blend;
@@ -106,8 +106,9 @@ fn refused(bsdf: &str, tag: &str) -> String {
     format!("{:#}", try_load_xml(&scene(bsdf), tag, &[]).expect_err(tag))
 }
 
-/// Mitsuba's refusals (no weight, not two children) and caustic's (a blend, mask or dispersive glass
-/// inside; two-sided beside one-sided; twosided around a transmissive blend), each naming the line.
+/// Mitsuba's refusals (no weight, not two children) and caustic's (a tree of more than eight leaves;
+/// a mask or dispersive glass inside; two-sided beside one-sided; twosided around a transmissive
+/// blend), each naming the line.
 #[test]
 fn blend_refuses_with_file_and_line() {
     let e = refused(&format!(r#"<bsdf type="blendbsdf">{DIFFUSE}{MIRROR}</bsdf>"#), "blend-noweight");
@@ -121,11 +122,20 @@ fn blend_refuses_with_file_and_line() {
         r#"<bsdf type="blendbsdf"><float name="weight" value="0.5"/>{DIFFUSE}{MIRROR}{DIFFUSE}</bsdf>"#
     );
     assert!(refused(&three, "blend-three").contains("found 3"));
-    let nested = format!(
-        "<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.5\"/>{DIFFUSE}\n<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.5\"/>{DIFFUSE}{MIRROR}</bsdf></bsdf>"
-    );
-    let e = refused(&nested, "blend-nested");
-    assert!(e.contains("scene.xml:4:") && e.contains("blendbsdf inside a blendbsdf"), "{e}");
+    // Chains of blends: `leaves` diffuse leaves, one more than the kernel mixes, and as many as it does.
+    let chain = |leaves: usize| {
+        let mut tree = DIFFUSE.to_string();
+        for _ in 1..leaves {
+            tree = format!(
+                "<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.5\"/>{DIFFUSE}\n{tree}</bsdf>"
+            );
+        }
+        tree
+    };
+    let e = refused(&chain(9), "blend-nine");
+    assert!(e.contains("scene.xml:3:") && e.contains("mixes 9 BSDFs") && e.contains("at most 8"), "{e}");
+    let loaded = try_load_xml(&scene(&chain(8)), "blend-eight", &[]).expect("eight leaves load");
+    assert_eq!(loaded.materials.iter().filter(|m| m.kind == BSDF_BLEND).count(), 7);
     let mask = format!("<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.5\"/>{DIFFUSE}\n<bsdf type=\"mask\">{DIFFUSE}</bsdf></bsdf>");
     let e = refused(&mask, "blend-mask");
     assert!(e.contains("scene.xml:4:") && e.contains("mask inside"), "{e}");
@@ -163,6 +173,51 @@ fn a_dirac_child_beside_a_smooth_one_is_a_substitution() {
     let rough = r#"<bsdf type="roughconductor"/>"#;
     strict(&blend(DIFFUSE, rough), "smooth").expect("two smooth children");
     strict(&blend(r#"<bsdf type="dielectric"/>"#, MIRROR), "two-dirac").expect("two Dirac children");
+}
+
+fn check_nested(choice: BackendChoice, red: &str, spp: u32) -> (f64, f64) {
+    let label = format!("nested blends, the first leaf's red {red}");
+    against_mitsuba_reference(
+        "nested_blend.xml",
+        &[("red", red)],
+        "nested_blend.exr",
+        REFERENCE_SPP,
+        choice,
+        spp,
+        7,
+        &label,
+    )
+}
+
+/// Trees of blends (three leaves either way down, four leaves, textured weights inside) against
+/// Mitsuba 3.9.1's render on both backends, with a negative control.
+#[test]
+fn nested_blends_match_mitsuba() {
+    for (choice, spp) in [(BackendChoice::Cpu, 1024), (BackendChoice::Gpu, 256)] {
+        let (pass, z) = check_nested(choice, "0.8", spp);
+        assert_agrees_with_reference((pass, z), &format!("nested blends, {choice:?}"));
+    }
+    // The innermost diffuse leaf's red 0.6 for 0.8, weighted 0.6 · 0.7 = 0.42 on its sphere.
+    let (pass, z) = check_nested(BackendChoice::Cpu, "0.6", 1024);
+    assert_disagrees_with_reference((pass, z), "nested blends, red 0.6 for 0.8");
+}
+
+/// A leaf with a Dirac lobe anywhere in a tree beside a smooth one is the substitution, named at the
+/// blend whose subtrees first mix the two.
+#[test]
+fn a_dirac_leaf_deep_in_a_tree_is_a_substitution() {
+    let blend = |a: &str, b: &str| {
+        format!("<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.5\"/>{a}\n{b}</bsdf>")
+    };
+    let rough = r#"<bsdf type="roughconductor"/>"#;
+    // Each inner tree is of one kind; the root mixes them.
+    let deep = blend(&blend(DIFFUSE, rough), &blend(MIRROR, r#"<bsdf type="dielectric"/>"#));
+    let e =
+        try_load_xml_strict(&scene(&deep), "blend-deep-dirac").expect_err("--strict accepted a deep mirror");
+    let e = format!("{e:#}");
+    assert!(e.contains("scene.xml:3:") && e.contains("Dirac"), "{e}");
+    let smooth = blend(&blend(DIFFUSE, rough), &blend(rough, DIFFUSE));
+    try_load_xml_strict(&scene(&smooth), "blend-deep-smooth").expect("a tree of smooth leaves");
 }
 
 /// The blend path is behind its own feature bit: with the scene's mask and with every path compiled

@@ -33,7 +33,7 @@ fn furnace(inner: Material) -> Scene {
         shapes: vec![
             Shape {
                 origin: "object".into(),
-                geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 1.0 },
+                geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 1.0, frame: glam::Mat3::IDENTITY },
                 material: 0,
                 emission: None,
                 emission_texture: None,
@@ -42,7 +42,7 @@ fn furnace(inner: Material) -> Scene {
             },
             Shape {
                 origin: "enclosure".into(),
-                geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 10.0 },
+                geometry: Geometry::Sphere { center: Vec3::ZERO, radius: 10.0, frame: glam::Mat3::IDENTITY },
                 material: 1,
                 emission: Some([1.0; 3]),
                 emission_texture: None,

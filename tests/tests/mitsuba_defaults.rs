@@ -169,7 +169,7 @@ fn shape_values(scene: &Scene) -> Vec<(&'static str, Vec<f64>)> {
             }
             vertex_normals = normals.is_some() as u8 as f64;
         }
-        Geometry::Sphere { center, radius } => {
+        Geometry::Sphere { center, radius, .. } => {
             (lo, hi) = (*center - Vec3::splat(*radius), *center + Vec3::splat(*radius));
             area = 4.0 * std::f64::consts::PI * (*radius as f64).powi(2);
         }

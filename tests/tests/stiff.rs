@@ -56,7 +56,7 @@ fn transformed(scene: &Scene, scale: f32, offset: Vec3) -> Scene {
                     *t = t.map(map);
                 }
             }
-            Geometry::Sphere { center, radius } => {
+            Geometry::Sphere { center, radius, .. } => {
                 *center = map(*center);
                 *radius *= scale;
             }

@@ -164,7 +164,7 @@ fn shading_normal(
 }
 
 /// Mitsuba's `eval_diffuse_reflectance`: the textured diffuse reflectance of `diffuse`, `plastic`,
-/// `roughplastic`, and the base colour of `principled` and `principledthin`; a blend's children
+/// `roughplastic`, and the base colour of `principled` and `principledthin`; a blend's leaves
 /// weighted as the blend weighs them; every other model Mitsuba's default, π·f(viewer, normal)
 /// (the BSDF evaluated towards the shading normal: 0 for smooth conductors and dielectrics, which
 /// are Dirac lobes). `twosided` is the material's flag: seen from behind, the back is the front, or the back's record
@@ -190,22 +190,18 @@ fn albedo(
     let mut plain = *material;
     plain.perturb = 0;
     let wo = shading_frame(&scene, &plain, prim, hit, sp, dir).wo;
-    let of = |c: &caustic_kernel::bsdf::Component| -> Rgb {
-        match c.material.kind {
+    let mut albedo = Rgb::ZERO;
+    for i in 0..bsdf.leaf_count() {
+        let c = bsdf.leaf(i);
+        let value = match c.material.kind {
             BSDF_DIFFUSE | BSDF_PLASTIC | BSDF_ROUGH_PLASTIC | BSDF_PRINCIPLED | BSDF_PRINCIPLED_THIN => {
                 c.reflectance
             }
-            _ => {
-                let single = Bsdf { first: *c, second: *c, weight: 0.0, blended: false, ..bsdf };
-                single.eval(wo, Vec3::Z, TransportMode::Radiance) * std::f32::consts::PI
-            }
-        }
-    };
-    if bsdf.blended {
-        of(&bsdf.first) * (1.0 - bsdf.weight) + of(&bsdf.second) * bsdf.weight
-    } else {
-        of(&bsdf.first)
+            _ => bsdf.only(i).eval(wo, Vec3::Z, TransportMode::Radiance) * std::f32::consts::PI,
+        };
+        albedo += value * bsdf.leaf_weight(i);
     }
+    albedo
 }
 
 /// Mitsuba's numbering of the shapes (`shape_index`, from 1), measured on Mitsuba 3.9.1: its parser

@@ -3,19 +3,20 @@
 //! BSDFs (`<bsdf>` or `<ref>`, in document order: the first is Mitsuba's `bsdf_0`, weighted `1 − w`).
 //! The record (`caustic_kernel::bsdf::blend`) names the two children's places in the material list.
 //!
-//! What the kernel cannot mix is refused with the child's file and line: a blend inside a blend (the
-//! kernel builds two models, with no recursion; flattening would need a list of weights per surface,
-//! textured weights multiplied), a `mask` inside (the kernel reads a mask's opacity on the surface's
-//! own record), a dispersive dielectric inside (its wavelength is drawn on the surface's own record),
-//! a two-sided child beside a one-sided one (a surface's shading frame is mirrored for all of it),
-//! and a `twosided` of two BSDFs (the kernel picks a side on the surface's own record).
-//! A child with a Dirac lobe beside one with a smooth lobe renders differently from Mitsuba
+//! A child may be a blend: the kernel mixes the tree's leaves, up to `MAX_LEAVES` of them.
+//!
+//! What the kernel cannot mix is refused with the child's file and line: a tree of more leaves, a
+//! `mask` inside (the kernel reads a mask's opacity on the surface's own record), a dispersive
+//! dielectric inside (its wavelength is drawn on the surface's own record), a two-sided child beside
+//! a one-sided one (a surface's shading frame is mirrored for all of it), and a `twosided` of two
+//! BSDFs (the kernel picks a side on the surface's own record).
+//! A leaf with a Dirac lobe beside one with a smooth lobe renders differently from Mitsuba
 //! (`caustic_kernel::bsdf::blend`): a substitution, which `--strict` refuses.
 use super::props::{Entry, Props};
 use super::spectrum::SpectrumUse;
 use super::Loader;
 use anyhow::{bail, Result};
-use caustic_kernel::bsdf::blend;
+use caustic_kernel::bsdf::{blend, MAX_LEAVES};
 use caustic_kernel::layout::*;
 
 impl Loader {
@@ -42,9 +43,7 @@ impl Loader {
             let child_props = self.props(props.src, entry.node)?;
             let i = self.load_bsdf(&child_props)?;
             let m = self.materials[i as usize];
-            let refusal = if m.kind == BSDF_BLEND {
-                Some("a blendbsdf inside a blendbsdf is not supported (the kernel mixes two models, no deeper)")
-            } else if caustic_kernel::two_sided::back_plus_one(&m) != 0 {
+            let refusal = if caustic_kernel::two_sided::back_plus_one(&m) != 0 {
                 Some("a twosided of two BSDFs inside a blendbsdf is not supported; blend each side's BSDFs inside the twosided")
             } else if m.flags & MATERIAL_MASK != 0 {
                 Some("a mask inside a blendbsdf is not supported; put the mask around the blendbsdf")
@@ -68,8 +67,22 @@ impl Loader {
                 props.loc
             );
         }
-        let kinds = index.map(|i| self.materials[i as usize].kind);
-        if (dirac(kinds[0]) && smooth(kinds[1])) || (dirac(kinds[1]) && smooth(kinds[0])) {
+        let leaves: Vec<u32> = index.iter().flat_map(|&i| self.blend_leaves(i)).collect();
+        if leaves.len() > MAX_LEAVES {
+            bail!(
+                "{}: this tree of blendbsdfs mixes {} BSDFs; caustic mixes at most {MAX_LEAVES} on one surface",
+                props.loc,
+                leaves.len()
+            );
+        }
+        // Said once, where a tree first mixes the two (a nested blend that does has said so).
+        let mixes = |leaves: &[u32]| {
+            let kinds = leaves.iter().map(|&i| self.materials[i as usize].kind);
+            kinds.clone().any(dirac) && kinds.clone().any(smooth)
+        };
+        let nested = |i: &&u32| self.materials[**i as usize].kind == BSDF_BLEND;
+        let inside = index.iter().filter(nested).any(|&i| mixes(&self.blend_leaves(i)));
+        if mixes(&leaves) && !inside {
             let message = format!(
                 "{}: blendbsdf of a Dirac lobe and a smooth one: Mitsuba weighs the Dirac samples with the \
                  other BSDF's density (biased), caustic does not; the image differs",
@@ -82,6 +95,18 @@ impl Loader {
             m.flags |= MATERIAL_TWO_SIDED;
         }
         Ok(m)
+    }
+
+    /// The leaves of material `i`'s blend tree (itself where it is not a blend), in document order.
+    pub(super) fn blend_leaves(&self, i: u32) -> Vec<u32> {
+        let m = &self.materials[i as usize];
+        if m.kind != BSDF_BLEND {
+            return vec![i];
+        }
+        let (a, b) = blend::children(m);
+        let mut leaves = self.blend_leaves(a);
+        leaves.extend(self.blend_leaves(b));
+        leaves
     }
 
     /// `weight` as Mitsuba's `eval_1` reads it: a texture (its luminance, with its mean), a number,

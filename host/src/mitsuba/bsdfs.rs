@@ -601,7 +601,6 @@ impl Loader {
             BSDF_PRINCIPLED_THIN => true,
             BSDF_BLEND => {
                 let (a, b) = caustic_kernel::bsdf::blend::children(m);
-                // Children are never blends (`blend`): no deeper recursion.
                 self.transmits(&self.materials[a as usize]) || self.transmits(&self.materials[b as usize])
             }
             _ => false,

@@ -30,10 +30,15 @@ impl Loader {
     /// as one number (`eval_1`).
     fn attribute_reads(&self, m: u32) -> Vec<(u32, bool)> {
         let record = &self.materials[m as usize];
+        // A blend tree's nodes (their weights) and leaves.
         let mut records = vec![record];
-        if record.kind == BSDF_BLEND {
-            let (a, b) = caustic_kernel::bsdf::blend::children(record);
-            records.extend([&self.materials[a as usize], &self.materials[b as usize]]);
+        let mut k = 0;
+        while k < records.len() {
+            if records[k].kind == BSDF_BLEND {
+                let (a, b) = caustic_kernel::bsdf::blend::children(records[k]);
+                records.extend([&self.materials[a as usize], &self.materials[b as usize]]);
+            }
+            k += 1;
         }
         let mut reads = Vec::new();
         for r in records {

@@ -49,18 +49,20 @@ impl Loader {
                 let center = props.point("center", Vec3::ZERO)?;
                 let radius = props.float("radius", 1.0)?;
                 // Like Mitsuba, fold a uniform scale and translation of to_world into centre and radius.
-                let (scale, _, _) = to_world.to_scale_rotation_translation();
-                if (scale.x - scale.y).abs() > 1e-4 * scale.x.abs()
-                    || (scale.x - scale.z).abs() > 1e-4 * scale.x.abs()
-                {
+                // A mirror keeps a sphere a sphere: compare the scales' magnitudes.
+                let scale = to_world.to_scale_rotation_translation().0.abs();
+                if (scale.x - scale.y).abs() > 1e-4 * scale.x || (scale.x - scale.z).abs() > 1e-4 * scale.x {
                     bail!("{}: a sphere's to_world may only scale uniformly", props.loc);
                 }
                 let center = to_world.transform_point3(center);
-                let radius = radius * scale.x.abs();
+                let frame = Mat3::from_mat4(to_world) * (1.0 / scale.x);
+                // Mitsuba's sphere keeps a mirror's sign in its radius: its normals face inwards.
+                flip_normals ^= frame.determinant() < 0.0;
+                let radius = radius * scale.x;
                 if !(radius > 0.0 && radius.is_finite() && center.is_finite()) {
                     bail!("{}: sphere needs a finite positive radius and centre", props.loc);
                 }
-                Geometry::Sphere { center, radius }
+                Geometry::Sphere { center, radius, frame }
             }
             other => {
                 refuse_lost_sensor(props)?;

@@ -1,5 +1,6 @@
 //! BSDFs: the `Bxdf` interface every model implements (one model per file) and `Bsdf`, which picks a
-//! material's model (or, for a `blendbsdf`, two models and mixes them: `blend`). Every model works in the local shading frame (normal = +z) with `wo` pointing
+//! material's model (or, for a tree of `blendbsdf`s, its leaves' models and mixes them: `blend`).
+//! Every model works in the local shading frame (normal = +z) with `wo` pointing
 //! towards the viewer (or the previous vertex) and `wi` towards the light; `eval` includes the cosine
 //! factor `|cos θi|` so that sampling weights are `eval / pdf`.
 pub mod blend;
@@ -260,28 +261,39 @@ impl Component {
     }
 }
 
-/// A surface's BSDF: the material record with its textures evaluated at the hit (or a blend's two
-/// children and weight); each call builds the record's model and forwards to it. (The models are
-/// built per call from the record rather than held in a data-carrying enum: rust-gpu 0.11 cannot cast
-/// between variants of different layouts.)
+/// The most models one surface mixes: the leaves of a tree of `blendbsdf`s (the host refuses larger
+/// trees). A leaf costs two words here; its model is rebuilt from its record where a query needs it.
+pub const MAX_LEAVES: usize = 8;
+
+/// A surface's BSDF: the material record with its textures evaluated at the hit, or a blend tree's
+/// leaves with their weights; each call builds the record's model (a blend's every leaf's) and
+/// forwards to it. (The models are built per call from the record rather than held in a
+/// data-carrying enum: rust-gpu 0.11 cannot cast between variants of different layouts.)
 #[derive(Clone, Copy)]
 pub struct Bsdf<'a> {
-    /// The surface's record, or a blend's first child (Mitsuba's `bsdf_0`).
+    /// The surface's record, or a blend's first leaf in `blend::expand`'s order.
     pub first: Component,
-    /// A blend's second child (`bsdf_1`); a copy of `first` otherwise, never read.
-    pub second: Component,
-    /// A blend's weight of `second`, in [0, 1].
-    pub weight: f32,
+    /// A blend's leaves as material-list indices, `count` of them, in `blend::expand`'s order.
+    pub leaves: [u32; MAX_LEAVES],
+    /// Each leaf's weight: the product of the blend weights on its way down (`1 − w` towards a
+    /// `bsdf_0`, `w` towards a `bsdf_1`); together one.
+    pub weights: [f32; MAX_LEAVES],
+    pub count: u32,
     /// The record is a blend (in a scene with `features::BLEND`).
     pub blended: bool,
     /// The surface record's flags (`MATERIAL_TWO_SIDED`; a blend's own, not its children's).
     pub flags: u32,
     /// Precomputed tables some models read (rough plastic).
     pub tables: &'a [f32],
+    /// The scene's material list and textures, where a blend's leaves are built from.
+    pub materials: &'a [Material],
+    pub textures: &'a [Texture],
+    /// Where the leaves' textures are looked up.
+    pub at: Lookup,
     /// The scene's `features`: models it does not use are never dispatched to.
     pub features: u32,
-    /// Normal or bump mapping: where active, the models (a blend's both) are evaluated in its tilted
-    /// frame (`perturb::shading_frame` makes it).
+    /// Normal or bump mapping: where active, the models (a blend's every leaf) are evaluated in its
+    /// tilted frame (`perturb::shading_frame` makes it).
     pub perturbation: perturb::Perturbation,
 }
 
@@ -291,8 +303,8 @@ impl<'a> Bsdf<'a> {
     /// where a blend's children are.
     pub fn new(
         m: &Material,
-        materials: &[Material],
-        textures: &[Texture],
+        materials: &'a [Material],
+        textures: &'a [Texture],
         tables: &'a [f32],
         at: Lookup,
         features: u32,
@@ -302,24 +314,32 @@ impl<'a> Bsdf<'a> {
         // wrote for a `(Component, f32)` ("Structure member[1] at 168 overlaps the previous member")
         // and, before, for a `Bsdf` (it holds a slice) built on two branches ("'&[f32]' is invalid").
         let blended = features::has(features, features::BLEND) && m.kind == BSDF_BLEND;
-        let (i, j) = blend::children(m);
-        let first_record = if blended { materials[i as usize] } else { *m };
-        let first = Component::new(&first_record, textures, tables, at, features);
-        let mut second = first;
-        let mut weight = 0.0;
+        let mut leaves = [0u32; MAX_LEAVES];
+        let mut weights = [0.0f32; MAX_LEAVES];
+        let mut count = 1;
         if blended {
-            second = Component::new(&materials[j as usize], textures, tables, at, features);
-            weight = m.eta;
-            if features::has(features, features::TEXTURES) && m.reflectance_texture != NONE {
-                let t = &textures[m.reflectance_texture as usize];
-                weight = luminance(texture::eval_at(t, tables, at, features)).clamp(0.0, 1.0);
-            }
+            count = blend::expand(m, materials, textures, tables, at, features, &mut leaves, &mut weights);
         }
-        Bsdf { first, second, weight, blended, flags: m.flags, tables, features, perturbation }
+        let first_record = if blended { materials[leaves[0] as usize] } else { *m };
+        let first = Component::new(&first_record, textures, tables, at, features);
+        Bsdf {
+            first,
+            leaves,
+            weights,
+            count,
+            blended,
+            flags: m.flags,
+            tables,
+            materials,
+            textures,
+            at,
+            features,
+            perturbation,
+        }
     }
 
     /// A BSDF without textures (tests, tools); a blend's children are looked up in `materials`.
-    pub fn from_material(m: &Material, materials: &[Material], tables: &'a [f32]) -> Bsdf<'a> {
+    pub fn from_material(m: &Material, materials: &'a [Material], tables: &'a [f32]) -> Bsdf<'a> {
         Bsdf::new(
             m,
             materials,
@@ -331,39 +351,47 @@ impl<'a> Bsdf<'a> {
         )
     }
 
-    /// How many models the surface mixes (two for a blend), and the `i`-th with its weight. Each query
-    /// below answers a record that is not a blend with one dispatch before its loop over a blend's
-    /// children. Without that early return (the loop alone: 6.2 MB of SPIR-V against 8.8 MB) scenes
-    /// without blends ran 10–35% slower on the H100 than before blends existed: the driver no longer
-    /// folded the loop away (BENCHMARKS.md, "What blends cost scenes without them").
+    /// How many models the surface mixes (one unless it is a blend).
     #[inline]
-    fn count(&self) -> u32 {
+    pub fn leaf_count(&self) -> u32 {
         if self.blended {
-            2
+            self.count
         } else {
             1
         }
     }
 
+    /// The `i`-th model's record with its textures evaluated (a blend's leaf is built here).
     #[inline]
-    fn component(&self, i: u32) -> Component {
+    pub fn leaf(&self, i: u32) -> Component {
         if i == 0 {
             self.first
         } else {
-            self.second
+            let m = &self.materials[self.leaves[i as usize] as usize];
+            Component::new(m, self.textures, self.tables, self.at, self.features)
         }
     }
 
+    /// The `i`-th model's weight in the mixture.
     #[inline]
-    fn component_weight(&self, i: u32) -> f32 {
-        if !self.blended {
-            1.0
-        } else if i == 0 {
-            1.0 - self.weight
+    pub fn leaf_weight(&self, i: u32) -> f32 {
+        if self.blended {
+            self.weights[i as usize]
         } else {
-            self.weight
+            1.0
         }
     }
+
+    /// The surface with only its `i`-th model (`leaf`), unweighted.
+    pub fn only(&self, i: u32) -> Bsdf<'a> {
+        Bsdf { first: self.leaf(i), blended: false, count: 1, ..*self }
+    }
+
+    // Each query answers a record that is not a blend with one dispatch before its loop over a
+    // blend's leaves. Without that early return (the loop alone: 6.2 MB of SPIR-V against 8.8 MB)
+    // scenes without blends ran 10–35% slower on the H100 than before blends existed: the driver no
+    // longer folded the loop away (BENCHMARKS.md, "What blends cost scenes without them"). A blend's
+    // `eval` and `pdf` go through `mixture`, so that its leaves are built in three places only.
 
     pub fn flags(&self) -> BsdfFlags {
         if !self.blended {
@@ -371,73 +399,64 @@ impl<'a> Bsdf<'a> {
         }
         let mut bits = 0;
         let mut i = 0;
-        while i < self.count() {
-            let c = self.component(i);
+        while i < self.count {
+            let c = self.leaf(i);
             bits |= with_model!(self, &c, |model| model.flags()).0;
             i += 1;
         }
         BsdfFlags(bits)
     }
 
+    /// A blend's `eval` and `pdf`: its leaves' weighted sums.
+    fn mixture(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> EvalPdf {
+        let mut sum = EvalPdf::ZERO;
+        let mut i = 0;
+        while i < self.count {
+            let w = self.weights[i as usize];
+            if w > 0.0 {
+                let c = self.leaf(i);
+                let e = with_model!(self, &c, |model| model.eval_pdf(wo, wi, mode));
+                sum.f += e.f * w;
+                sum.pdf += e.pdf * w;
+            }
+            i += 1;
+        }
+        sum
+    }
+
     fn eval_flat(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
         if !self.blended {
             return with_model!(self, &self.first, |model| model.eval(wo, wi, mode));
         }
-        let mut f = Rgb::ZERO;
-        let mut i = 0;
-        while i < self.count() {
-            let c = self.component(i);
-            let w = self.component_weight(i);
-            f += with_model!(self, &c, |model| model.eval(wo, wi, mode)) * w;
-            i += 1;
-        }
-        f
+        self.mixture(wo, wi, mode).f
     }
 
     fn pdf_flat(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
         if !self.blended {
             return with_model!(self, &self.first, |model| model.pdf(wo, wi, mode));
         }
-        let mut pdf = 0.0;
-        let mut i = 0;
-        while i < self.count() {
-            let c = self.component(i);
-            let w = self.component_weight(i);
-            pdf += with_model!(self, &c, |model| model.pdf(wo, wi, mode)) * w;
-            i += 1;
-        }
-        pdf
+        self.mixture(wo, wi, mode).pdf
     }
 
     fn eval_pdf_flat(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> EvalPdf {
         if !self.blended {
             return with_model!(self, &self.first, |model| model.eval_pdf(wo, wi, mode));
         }
-        let mut sum = EvalPdf::ZERO;
-        let mut i = 0;
-        while i < self.count() {
-            let c = self.component(i);
-            let w = self.component_weight(i);
-            let e = with_model!(self, &c, |model| model.eval_pdf(wo, wi, mode));
-            sum.f += e.f * w;
-            sum.pdf += e.pdf * w;
-            i += 1;
-        }
-        sum
+        self.mixture(wo, wi, mode)
     }
 
     fn sample_flat(&self, wo: Vec3, u_lobe: f32, u: Vec2, mode: TransportMode) -> BsdfSample {
         if !self.blended {
             return with_model!(self, &self.first, |model| model.sample(wo, u_lobe, u, mode));
         }
-        let (second, p_chosen, u_child) = blend::choose(u_lobe, self.weight);
-        let chosen = if second { self.second } else { self.first };
-        let bs = with_model!(self, &chosen, |model| model.sample(wo, u_child, u, mode));
+        let choice = blend::choose(u_lobe, &self.weights, self.count);
+        let chosen = self.leaf(choice.leaf);
+        let bs = with_model!(self, &chosen, |model| model.sample(wo, choice.u, u, mode));
         if bs.delta || !(bs.pdf > 0.0) {
-            return blend::scale_choice(bs, p_chosen);
+            return blend::scale_choice(bs, choice.probability);
         }
-        // The mixture at the sampled direction (the chosen child's share is `bs`'s `f·cos` and pdf).
-        blend::of_mixture(bs, self.eval_pdf_flat(wo, bs.wi, mode))
+        // The mixture at the sampled direction (the chosen leaf's share is `bs`'s `f·cos` and pdf).
+        blend::of_mixture(bs, self.mixture(wo, bs.wi, mode))
     }
 
     // The four queries: in the shading frame, or, under a normal or bump map, the flat ones above in

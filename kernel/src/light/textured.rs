@@ -39,7 +39,7 @@ pub fn surface_uv(scene: &SceneView, prim: u32, q: Vec3) -> Vec2 {
     let pr = scene.prims[prim as usize];
     let (p0, p1, p2) = (vec3(pr.p0), vec3(pr.p1), vec3(pr.p2));
     if pr.kind == PRIM_SPHERE {
-        return sphere::uv((q - p0).normalize());
+        return sphere::uv(sphere::Orientation::of(&pr).to_local((q - p0).normalize()));
     }
     if pr.kind == PRIM_DISK {
         return disk::uv(disk::coordinates(p0, p1, p2, q));

@@ -75,7 +75,7 @@ pub fn surface_point(
         let p = sphere::reproject(centre, prim.p1[0], ray.origin + ray.dir * hit.t);
         let n = (p - centre).normalize() * flip;
         let error_scale = prim.p1[0];
-        let uv = sphere::uv((p - centre) / prim.p1[0]);
+        let uv = sphere::uv_at(prim, p);
         return SurfacePoint {
             p,
             ng: n,
@@ -139,8 +139,7 @@ pub fn tangents(
     sp: &SurfacePoint,
 ) -> (Vec3, Vec3) {
     if prim.kind == PRIM_SPHERE {
-        let centre = vec3(prim.p0);
-        return sphere::tangents((sp.p - centre) / prim.p1[0], prim.p1[0]);
+        return sphere::tangents_at(prim, sp.p);
     }
     if prim.kind == PRIM_DISK {
         return disk::tangents(vec3(prim.p1), vec3(prim.p2), hit.uv);

@@ -26,8 +26,14 @@ impl Model {
         Model::in_list(&blend, &[*first, *second], adjoint)
     }
 
+    /// A tree of blends: `root` (a blend record) over the material list `materials`, where its
+    /// children and their children are.
+    pub fn tree(root: &Material, materials: &[Material], adjoint: bool) -> Model {
+        Model::in_list(root, materials, adjoint)
+    }
+
     /// The model of `m` in a scene whose material list is `materials` (precomputed here, and leaked
-    /// with the tables: a test builds a few hundred models at most, and `Model` stays `Copy`).
+    /// with the tables: the BSDF keeps both: a test builds a few hundred models at most, and `Model` stays `Copy`).
     fn in_list(m: &Material, materials: &[Material], adjoint: bool) -> Model {
         let mut m = *m;
         let mut materials = materials.to_vec();
@@ -41,8 +47,9 @@ impl Model {
             }
         }
         let tables: &'static [f32] = Box::leak(tables.into_boxed_slice());
+        let materials: &'static [Material] = Box::leak(materials.into_boxed_slice());
         let mode = if adjoint { TransportMode::Importance } else { TransportMode::Radiance };
-        Model { bsdf: Bsdf::from_material(&m, &materials, tables), mode }
+        Model { bsdf: Bsdf::from_material(&m, materials, tables), mode }
     }
 
     /// The same model in transport mode `mode`.
