@@ -290,7 +290,13 @@ fn build_bvh_reordering(
     let aabbs: Vec<Aabb> = prims.iter().map(bounds).collect();
     let mut build_time = std::time::Duration::ZERO;
     let bvh = obvhs::bvh2::builder::build_bvh2(&aabbs, bvh_build_params(), &mut build_time);
-    let order = &bvh.primitive_indices;
+    let (nodes, order) = if bvh.nodes.is_empty() || bvh.depth(0) < STACK_SIZE {
+        let nodes = bvh.nodes.iter().map(|n| node_of(&n.aabb, n.prim_count, n.first_index)).collect();
+        (nodes, bvh.primitive_indices.clone())
+    } else {
+        within_depth(&bvh, STACK_SIZE - 1)
+    };
+    let order = &order;
     let mut new_index = vec![0u32; prims.len()];
     for (new, &old) in order.iter().enumerate() {
         new_index[old as usize] = new as u32;
@@ -303,21 +309,46 @@ fn build_bvh_reordering(
     for l in lights.iter_mut().filter(|l| matches!(l.kind, LIGHT_AREA | LIGHT_SPHERE)) {
         l.prim = new_index[l.prim as usize];
     }
-    let nodes: Vec<BvhNode> = bvh
-        .nodes
-        .iter()
-        .map(|n| BvhNode {
-            min: n.aabb.min.to_array(),
-            prim_count: n.prim_count,
-            max: n.aabb.max.to_array(),
-            first: n.first_index,
-        })
-        .collect();
-    let depth = bvh.depth(0);
-    if depth >= STACK_SIZE {
-        bail!("the BVH is {depth} levels deep; the kernel's traversal stack holds {STACK_SIZE}");
-    }
     Ok((nodes, new_index))
+}
+
+fn node_of(aabb: &Aabb, prim_count: u32, first: u32) -> BvhNode {
+    BvhNode { min: aabb.min.to_array(), prim_count, max: aabb.max.to_array(), first }
+}
+
+/// The BVH laid out again, depth first, with every subtree that reaches `levels` deep collapsed
+/// into one leaf of all its primitives, and the primitive order that goes with it. Triangles that
+/// coincide cannot be told apart by any split: 100 copies of one triangle made obvhs a chain 93
+/// levels deep, past the kernel's traversal stack (`STACK_SIZE`); a leaf of them is what such input
+/// deserves. Trees within the stack keep obvhs's layout untouched.
+fn within_depth(bvh: &obvhs::bvh2::Bvh2, levels: usize) -> (Vec<BvhNode>, Vec<u32>) {
+    let mut nodes = vec![BvhNode::default()];
+    let mut order = Vec::with_capacity(bvh.primitive_indices.len());
+    let mut stack = vec![(0usize, 0usize, 1usize)]; // (node in bvh, node in `nodes`, its level)
+    while let Some((old, new, level)) = stack.pop() {
+        let n = &bvh.nodes[old];
+        if n.is_leaf() || level == levels {
+            let first = order.len() as u32;
+            let mut subtree = vec![old];
+            while let Some(i) = subtree.pop() {
+                let m = &bvh.nodes[i];
+                if m.is_leaf() {
+                    let range = m.first_index as usize..(m.first_index + m.prim_count) as usize;
+                    order.extend_from_slice(&bvh.primitive_indices[range]);
+                } else {
+                    subtree.extend([m.first_index as usize + 1, m.first_index as usize]);
+                }
+            }
+            nodes[new] = node_of(&n.aabb, order.len() as u32 - first, first);
+        } else {
+            let children = nodes.len();
+            nodes.extend([BvhNode::default(); 2]);
+            nodes[new] = node_of(&n.aabb, 0, children as u32);
+            stack.push((n.first_index as usize + 1, children + 1, level + 1));
+            stack.push((n.first_index as usize, children, level + 1));
+        }
+    }
+    (nodes, order)
 }
 
 /// The scene's bounding sphere (centre, radius), slightly enlarged as Mitsuba does for emitters at

@@ -73,8 +73,32 @@ pub fn srgb_to_linear(encoded: f32) -> f32 {
     }
 }
 
+/// A Radiance file whose first line names another program than `RADIANCE` (`#?RGBE`, which
+/// Mitsuba's own writer puts there: the format only asks for `#?`): the same bytes with that line
+/// read as `#?RADIANCE`, which the `image` crate insists on; `None` for every other file.
+fn radiance_with_standard_signature(bytes: &[u8]) -> Option<Vec<u8>> {
+    if !bytes.starts_with(b"#?") || bytes.starts_with(b"#?RADIANCE") {
+        return None;
+    }
+    let line_end = bytes.iter().position(|&b| b == b'\n')?;
+    Some([b"#?RADIANCE".as_slice(), &bytes[line_end..]].concat())
+}
+
 fn load_with_image_crate(path: &Path, raw: bool) -> Result<LinearImage> {
-    let decoded = image::ImageReader::open(path)?.with_guessed_format()?.decode()?;
+    let bytes = std::fs::read(path)?;
+    let reader = match radiance_with_standard_signature(&bytes) {
+        Some(fixed) => image::ImageReader::with_format(std::io::Cursor::new(fixed), image::ImageFormat::Hdr),
+        None => {
+            // As `ImageReader::open`: the extension's format unless the content says otherwise (TGA
+            // has no signature).
+            let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
+            if let Ok(format) = image::ImageFormat::from_path(path) {
+                reader.set_format(format);
+            }
+            reader.with_guessed_format()?
+        }
+    };
+    let decoded = reader.decode()?;
     let (width, height) = (decoded.width(), decoded.height());
     use image::DynamicImage as D;
     use SampleDepth::{Float, Int16, Int8};
@@ -279,6 +303,19 @@ mod tests {
         let linear = load_linear_rgb(&path, false).unwrap();
         assert_eq!(linear.texel(1, 0), [2.0; 3]);
         assert_eq!(linear.texel(1, 1), [8.0; 3]);
+    }
+
+    #[test]
+    fn radiance_files_with_any_program_name_load() {
+        // One texel in the flat (uncompressed) RGBE encoding: (1, 0.5, 0.25) as mantissas 128, 64,
+        // 32 with exponent 129 (2^1).
+        let body = b"FORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 1\n\x80\x40\x20\x81";
+        for signature in ["#?RADIANCE", "#?RGBE"] {
+            let path = scratch_file(&format!("signature-{}.hdr", &signature[2..]));
+            std::fs::write(&path, [signature.as_bytes(), b"\n", body].concat()).unwrap();
+            let image = load_linear_rgb(&path, false).unwrap();
+            assert_eq!(image.texel(0, 0), [1.0, 0.5, 0.25], "{signature}");
+        }
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! Integrator semantics that Mitsuba's scenes rely on beyond what the reference images show:
-//! `hide_emitters` lets camera rays pass through area emitters, on both integrators.
+//! `hide_emitters` lets camera rays pass through area emitters, on both integrators; Mitsuba's `prb`
+//! renders as `path` with its own default depth.
 //!
 //! tests/tests holds end-to-end tests: whole scenes through the `caustic` crate, mostly rendered and
 //! judged by statistics over whole images (against Mitsuba's references, the other backend or an exact
@@ -128,4 +129,22 @@ fn light_and_bsdf_sampling_agree_on_every_emitter_shape() {
             "{name}: light and BSDF sampling disagree (z {z:+.2}, worst {worst:.2})"
         );
     }
+}
+
+/// Mitsuba's `prb` (`tests/data/prb.xml`: a closed box of bright walls, the camera inside) renders as
+/// caustic's path tracer with prb's default `max_depth` of 6, against Mitsuba 3.9.1's own prb
+/// render (`prb.py`, llvm_ad_rgb, 65536 spp); and with `path`'s unbounded depth it would not, which
+/// is what the box is for.
+#[test]
+fn prb_renders_as_mitsubas_prb() {
+    let scene = caustic::load_scene(&test_data("prb.xml"), &[]).expect("loads");
+    assert_eq!((scene.integrator.max_depth, scene.integrator.rr_depth), (6, 5));
+    let label = "prb.xml (prb: path, max_depth 6)";
+    let result = scene_against_reference(&scene, "prb.exr", 65536.0, BackendChoice::Cpu, 1024, 3, label);
+    assert_agrees_with_reference(result, label);
+    let mut unbounded = scene;
+    unbounded.integrator.max_depth = -1;
+    let label = "prb.xml with path's unbounded depth";
+    let result = scene_against_reference(&unbounded, "prb.exr", 65536.0, BackendChoice::Cpu, 1024, 3, label);
+    assert_disagrees_with_reference(result, label);
 }

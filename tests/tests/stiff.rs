@@ -771,3 +771,27 @@ fn coplanar_overlapping_faces() {
         );
     }
 }
+
+/// Coincident triangles: 100 copies of one rectangle, 200 triangles that no split can separate.
+/// obvhs chains such primitives (100 copies of one triangle made it 93 levels deep, past the
+/// kernel's 48-entry traversal stack, and the scene was refused); the loader now collapses what
+/// reaches the stack's depth into one leaf. The image must be the single rectangle's.
+#[test]
+fn coincident_triangles_fit_the_traversal_stack() {
+    let scene = |copies: usize| {
+        let rectangles = r#"<shape type="rectangle"><bsdf type="diffuse"><rgb name="reflectance" value="0.6, 0.4, 0.2"/></bsdf></shape>"#.repeat(copies);
+        format!(
+            r#"<scene version="3.0.0"><integrator type="path"><integer name="max_depth" value="3"/></integrator>
+            <sensor type="perspective"><float name="fov" value="50"/>
+                <transform name="to_world"><lookat origin="0.3, 0.2, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
+                <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/></film></sensor>
+            <emitter type="constant"/>{rectangles}</scene>"#
+        )
+    };
+    let one = render_scene(&load_xml(&scene(1), "coincident-1"), BackendChoice::Cpu, 32, 5);
+    let many_scene = load_xml(&scene(100), "coincident-100");
+    let many = render_scene(&many_scene, BackendChoice::Cpu, 32, 5);
+    assert_clean(&many, "coincident triangles");
+    let (a, b) = (image_mean(&one), image_mean(&many));
+    assert!((a - b).abs() < 0.01 * a, "one rectangle {a}, a hundred in its place {b}");
+}

@@ -13,7 +13,6 @@
 //! A leaf with a Dirac lobe beside one with a smooth lobe renders differently from Mitsuba
 //! (`caustic_kernel::bsdf::blend`): a substitution, which `--strict` refuses.
 use super::props::{Entry, Props};
-use super::spectrum::SpectrumUse;
 use super::Loader;
 use anyhow::{bail, Result};
 use caustic_kernel::bsdf::{blend, MAX_LEAVES};
@@ -109,25 +108,18 @@ impl Loader {
         leaves
     }
 
-    /// `weight` as Mitsuba's `eval_1` reads it: a texture (its luminance, with its mean), a number,
-    /// or a colour's luminance; clipped to [0, 1] (the kernel clips a texture's per hit).
+    /// `weight` as Mitsuba's `eval_1` reads it (`scalar_param`: a texture's luminance, with its
+    /// mean; a number; a colour's channel mean); clipped to [0, 1] (the kernel clips a texture's per
+    /// hit).
     fn blend_weight(&mut self, props: &Props) -> Result<(f32, u32)> {
-        if let Some((texture, mean)) = self.scalar_texture(props, "weight")? {
-            return Ok((mean.clamp(0.0, 1.0), texture));
+        if !props.has("weight") {
+            bail!("{}: blendbsdf needs a 'weight' (Mitsuba has no default)", props.loc);
         }
-        let tag = props.entries.iter().find(|e| e.name.as_deref() == Some("weight")).map(|e| e.tag.as_str());
-        let weight = match tag {
-            None => bail!("{}: blendbsdf needs a 'weight' (Mitsuba has no default)", props.loc),
-            Some("float") => props.float("weight", 0.0)?,
-            Some(_) => {
-                let c = props.color("weight", SpectrumUse::Reflectance, [0.0; 3])?;
-                caustic_kernel::spectrum::luminance(glam::Vec3::from(c))
-            }
-        };
+        let (weight, texture) = self.scalar_param(props, "weight", 0.0)?;
         if !weight.is_finite() {
             bail!("{}: blendbsdf weight must be a finite number, not {weight}", props.loc);
         }
-        Ok((weight.clamp(0.0, 1.0), NONE))
+        Ok((weight.clamp(0.0, 1.0), texture))
     }
 }
 

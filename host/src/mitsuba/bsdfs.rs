@@ -188,15 +188,8 @@ impl Loader {
         if caustic_kernel::two_sided::back_plus_one(&m) != 0 {
             bail!("{}: a mask around a twosided of two BSDFs is not supported", props.loc);
         }
-        // A number as Mitsuba reads it (`Texture::eval_1`: a texture's luminance, a checkerboard's
-        // colours on the other cells than as a colour: `scalar_texture`).
-        let (opacity, texture) = match self.scalar_texture(props, "opacity")? {
-            Some((texture, mean)) => (mean, texture),
-            None => {
-                let c = props.color("opacity", SpectrumUse::Reflectance, [0.5; 3])?;
-                (caustic_kernel::spectrum::luminance(glam::Vec3::from(c)), NONE)
-            }
-        };
+        // A number as Mitsuba reads it (`Texture::eval_1`: `scalar_param`).
+        let (opacity, texture) = self.scalar_param(props, "opacity", 0.5)?;
         m.flags |= MATERIAL_MASK;
         m.opacity = opacity.clamp(0.0, 1.0);
         m.opacity_texture = texture;
@@ -269,13 +262,8 @@ impl Loader {
             bail!("{}: 'alpha_u' and 'alpha_v' must be given together", props.loc);
         }
         // Each may be a texture (its luminance; `caustic_kernel::bsdf::Bsdf::new`), whose mean stands
-        // in where one number is needed.
-        let mut param = |name: &str, default: f32| -> Result<(f32, u32)> {
-            Ok(match self.scalar_texture(props, name)? {
-                Some((texture, mean)) => (mean, texture),
-                None => (props.float(name, default)?, NONE),
-            })
-        };
+        // in where one number is needed, or a colour (its channels' mean: `scalar_param`).
+        let mut param = |name: &str, default: f32| self.scalar_param(props, name, default);
         let alpha = param("alpha", 0.1)?;
         let (alpha_u, alpha_u_texture) = if has_u { param("alpha_u", 0.1)? } else { alpha };
         let (alpha_v, alpha_v_texture) = if has_v { param("alpha_v", 0.1)? } else { alpha };
@@ -581,12 +569,10 @@ impl Loader {
         }
     }
 
-    /// A principled weight: a number, or a texture (its luminance, as Mitsuba's `eval_1`) with its mean.
+    /// A principled weight: a number, a colour or a texture, as Mitsuba's `eval_1` reads it
+    /// (`scalar_param`; Blender's exporter writes `spec_tint` and `sheen_tint` as `<rgb>`).
     fn principled_weight(&mut self, props: &Props, name: &str, default: f32) -> Result<(f32, u32)> {
-        Ok(match self.scalar_texture(props, name)? {
-            Some((texture, mean)) => (mean, texture),
-            None => (props.float(name, default)?, NONE),
-        })
+        self.scalar_param(props, name, default)
     }
 }
 

@@ -1,4 +1,5 @@
-//! Integrator plugins: `path`, `direct`, `ptracer` (light tracing), `ibpt` (caustic's own: path and
+//! Integrator plugins: `path` (and Mitsuba's differentiable `prb`, `prb_basic`, `prb_projective`,
+//! whose images are the path tracer's), `direct`, `ptracer` (light tracing), `ibpt` (caustic's own: path and
 //! light tracing combined by MIS) and `moment` (its nested integrator; caustic always tracks
 //! the variance), and Mitsuba's `aov` and `depth` (`crate::aov`: outputs rendered beside the image).
 use super::props::Props;
@@ -9,8 +10,19 @@ use anyhow::{bail, Result};
 impl Loader {
     pub(crate) fn load_integrator(&mut self, props: &Props) -> Result<Integrator> {
         let integrator = match props.kind.as_str() {
-            "path" => {
-                let (max_depth, rr_depth) = depths(props)?;
+            // Mitsuba's differentiable path tracers (Python plugins of its llvm and cuda variants)
+            // render the path tracer's image: the same estimator up to their Russian roulette
+            // (throughput alone, no η²), with max_depth 6 by default (`tests/tests/integrators.rs`
+            // against Mitsuba 3.9.1's prb); Blender's exporter writes `prb`.
+            "path" | "prb" | "prb_basic" | "prb_projective" => {
+                let default_depth = if props.kind == "path" { -1 } else { 6 };
+                let (max_depth, rr_depth) = depths(props, default_depth)?;
+                if props.kind == "prb_projective" {
+                    // Its visibility-gradient settings do not change the image.
+                    for name in ["sppc", "sppp", "sppi", "guiding", "guiding_proj", "guiding_rounds"] {
+                        props.mark_used(name);
+                    }
+                }
                 Integrator {
                     kind: IntegratorKind::Path,
                     max_depth,
@@ -19,7 +31,7 @@ impl Loader {
                 }
             }
             "ptracer" | "ibpt" => {
-                let (max_depth, rr_depth) = depths(props)?;
+                let (max_depth, rr_depth) = depths(props, -1)?;
                 // Mitsuba's `samples_per_pass` only splits its own work; the image does not depend on it.
                 props.integer("samples_per_pass", -1)?;
                 let kind = if props.kind == "ibpt" { IntegratorKind::Ibpt } else { IntegratorKind::Ptracer };
@@ -132,8 +144,10 @@ impl Loader {
 }
 
 /// `max_depth` (-1: unbounded) and `rr_depth` of `path` and `ptracer`, with Mitsuba's defaults.
-fn depths(props: &Props) -> Result<(i32, u32)> {
-    let max_depth = props.integer("max_depth", -1)?;
+/// `max_depth` (`default_depth` where absent: -1, unbounded, for Mitsuba's C++ integrators, 6 for
+/// its Python ones) and `rr_depth`.
+fn depths(props: &Props, default_depth: i64) -> Result<(i32, u32)> {
+    let max_depth = props.integer("max_depth", default_depth)?;
     let rr_depth = props.integer("rr_depth", 5)?;
     if !(-1..=1_000_000).contains(&max_depth) {
         bail!("{}: max_depth must be -1 (unbounded) or in [0, 1000000], got {max_depth}", props.loc);

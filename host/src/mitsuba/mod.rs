@@ -25,6 +25,7 @@ mod props;
 mod sensors;
 mod shapes;
 pub mod spectrum;
+mod spectrum_plugin;
 mod textures;
 mod transform;
 mod xml;

@@ -23,8 +23,9 @@ pub struct Props<'a, 'input> {
     pub kind: String,
     /// The `id` attribute (the target of a `<ref>`), `$name` substituted as every attribute.
     pub id: Option<String>,
-    /// The file it was read from.
+    /// The file it was read from, and the element itself.
     pub src: &'a Source<'input>,
+    pub node: roxmltree::Node<'a, 'input>,
     pub entries: Vec<Entry<'a, 'input>>,
     /// The scene's parameters when the element was read, for `$name` in attributes other than `value`.
     params: Params,
@@ -70,6 +71,7 @@ impl<'a, 'input> Props<'a, 'input> {
             kind,
             id,
             src,
+            node,
             entries,
             params: loader.params().clone(),
             used: RefCell::new(vec![false; n]),
@@ -117,9 +119,10 @@ impl<'a, 'input> Props<'a, 'input> {
 
     pub fn boolean(&self, name: &str, default: bool) -> Result<bool> {
         let Some(i) = self.find(name) else { return Ok(default) };
+        // Any case, as Mitsuba's parser reads it (Blender's exporter writes `True`).
         match self.value_of(i)?.trim() {
-            "true" | "1" => Ok(true),
-            "false" | "0" => Ok(false),
+            v if v.eq_ignore_ascii_case("true") || v == "1" => Ok(true),
+            v if v.eq_ignore_ascii_case("false") || v == "0" => Ok(false),
             other => bail!("{}: '{name}' must be true or false, not '{other}'", self.entries[i].loc),
         }
     }
@@ -139,6 +142,12 @@ impl<'a, 'input> Props<'a, 'input> {
     pub fn color(&self, name: &str, usage: SpectrumUse, default: [f32; 3]) -> Result<[f32; 3]> {
         let Some(i) = self.find(name) else { return Ok(default) };
         let e = &self.entries[i];
+        // `<spectrum type="…">`: a spectrum plugin written out as an object (no `value` attribute).
+        if let (Some(kind), "spectrum") = (e.node.attribute("type"), e.tag.as_str()) {
+            let kind = super::xml::substitute(&self.params, kind, &e.loc)?;
+            let rgb = super::spectrum_plugin::to_rgb(self.src, e.node, &kind, usage, &self.params, &e.loc)?;
+            return checked_color(rgb, name, &e.loc);
+        }
         let value = self.value_of(i)?;
         let rgb = match e.tag.as_str() {
             "rgb" => expand_value_to_xyz(e.node, Some(value), 0.0, &self.params, &e.loc)
@@ -154,10 +163,7 @@ impl<'a, 'input> Props<'a, 'input> {
             "spectrum" => parse_spectrum(value, usage, &e.loc)?,
             other => bail!("{}: '{name}' must be <rgb>, <spectrum> or <float>, not <{other}> (textures are not supported yet)", e.loc),
         };
-        if rgb.iter().any(|c| !c.is_finite() || *c < 0.0) {
-            bail!("{}: '{name}' must be finite and non-negative, got {rgb:?}", e.loc);
-        }
-        Ok(rgb)
+        checked_color(rgb, name, &e.loc)
     }
 
     pub fn transform(&self, name: &str) -> Result<Mat4> {
@@ -211,6 +217,14 @@ impl<'a, 'input> Props<'a, 'input> {
             })
             .collect()
     }
+}
+
+/// A colour property's value, refused where not finite or negative.
+fn checked_color(rgb: [f32; 3], name: &str, loc: &Loc) -> Result<[f32; 3]> {
+    if rgb.iter().any(|c| !c.is_finite() || *c < 0.0) {
+        bail!("{loc}: '{name}' must be finite and non-negative, got {rgb:?}");
+    }
+    Ok(rgb)
 }
 
 /// `<spectrum filename="…"/>` (Mitsuba's irregular spectrum from a file): the file's `wavelength

@@ -235,6 +235,22 @@ impl Loader {
         let mut children: Vec<_> = bsdfs.iter().chain(&emitters).chain(&refs).collect();
         children.sort_by_key(|e| e.node.range().start);
         for e in children {
+            // `<ref name="interior|exterior" id="…"/>` binds a participating medium, which caustic
+            // does not render (its top-level `<medium>` is already reported as ignored).
+            if e.tag == "ref" && matches!(e.name.as_deref(), Some("interior" | "exterior")) {
+                let (side, id) =
+                    (e.name.as_deref().unwrap_or_default(), e.node.attribute("id").unwrap_or("?"));
+                let message = format!(
+                    "{}: the {side} medium '{id}' is not supported (no participating media); ignored",
+                    e.loc
+                );
+                self.ignored(
+                    format!("<ref name=\"{side}\"> (a medium) of shape '{}'", props.kind),
+                    &e.loc,
+                    message,
+                );
+                continue;
+            }
             let p = self.props(props.src, e.node)?;
             let named_emitter = match e.tag.as_str() {
                 "ref" => self.named_area_emitters.get(&p.doc_attr_id()?).copied(),

@@ -1,10 +1,11 @@
 //! Texture plugins: `bitmap` (image files, sRGB-decoded unless `raw`, bilinear or nearest, wrap modes,
 //! the storage precision of `format`: `bitmap_format`) and `checkerboard`, both with `to_uv`, and
-//! `mesh_attribute` (where it may be read: `mesh_attributes`). Also colour and scalar parameters that
-//! may be a texture.
+//! `mesh_attribute` (where it may be read: `mesh_attributes`), and the constant ones (`rawconstant`,
+//! `srgb`, `uniform`, `d65`: one texel). Also colour and scalar parameters that may be a texture.
 use super::bitmap_format;
 use super::props::{Entry, Props};
 use super::spectrum::SpectrumUse;
+use super::spectrum_plugin;
 use super::Loader;
 use crate::buffers::rgba;
 use crate::scene::{MeshAttributeRef, SceneTexture};
@@ -72,9 +73,31 @@ impl Loader {
             }
             "bitmap" => self.bitmap(props, to_uv)?,
             "mesh_attribute" => mesh_attribute(props)?,
+            // Mitsuba's constant textures (its spectra are textures too: `rawconstant` holds raw
+            // values, e.g. a flat normal map): one texel.
+            kind @ ("rawconstant" | "srgb" | "uniform" | "d65") => {
+                let rgb = spectrum_plugin::to_rgb(
+                    props.src,
+                    props.node,
+                    kind,
+                    SpectrumUse::Reflectance,
+                    self.params(),
+                    &props.loc,
+                )?;
+                props.mark_all_used();
+                let record = Texture {
+                    kind: TEXTURE_BITMAP,
+                    width: 1,
+                    height: 1,
+                    flags: TEXTURE_NEAREST,
+                    to_uv,
+                    ..Default::default()
+                };
+                SceneTexture { record, texels: rgb.to_vec(), mesh_attribute: None }
+            }
             other => {
                 bail!(
-                    "{}: texture type '{other}' is not supported (bitmap, checkerboard, mesh_attribute are)",
+                    "{}: texture type '{other}' is not supported (bitmap, checkerboard, mesh_attribute, rawconstant, srgb, uniform, d65 are)",
                     props.loc
                 )
             }
@@ -170,6 +193,27 @@ impl Loader {
         }
         let mean = caustic_kernel::spectrum::luminance(glam::Vec3::from(self.texture_mean(index)));
         Ok(Some((index, mean)))
+    }
+
+    /// A number-valued parameter that Mitsuba reads as a texture (`props.texture(name)`, then
+    /// `eval_1`): a nested texture or `<ref>` (its index and mean, as `scalar_texture`), a `<float>`,
+    /// or a constant colour (`<rgb>`, `<spectrum>`), whose `eval_1` is the mean of its three
+    /// channels (Mitsuba 3.9.1 renders an `<rgb>` of (1, 0, 0) as 0.3333, not as its luminance
+    /// 0.2126: mask opacity, blend weight, rough alpha, principled weights alike); `default` where
+    /// absent. The texture index is `NONE` for a constant.
+    pub(crate) fn scalar_param(&mut self, props: &Props, name: &str, default: f32) -> Result<(f32, u32)> {
+        if let Some((texture, mean)) = self.scalar_texture(props, name)? {
+            return Ok((mean, texture));
+        }
+        let tag = props.entries.iter().find(|e| e.name.as_deref() == Some(name)).map(|e| e.tag.as_str());
+        let value = match tag {
+            Some("rgb" | "spectrum") => {
+                let c = props.color(name, SpectrumUse::Reflectance, [default; 3])?;
+                (c[0] + c[1] + c[2]) / 3.0
+            }
+            _ => props.float(name, default)?,
+        };
+        Ok((value, NONE))
     }
 
     /// Refuses a texture with a value whose luminance is not a positive finite number (an index of
