@@ -131,3 +131,48 @@ fn principled_weights_as_colours_are_their_mean() {
         render(&principled(r#"<float name="metallic" value="0.2126"/>"#), "wild-principled-luminance");
     assert!(max_abs_difference(&colour, &luminance) > 1e-2, "the comparison cannot tell mean from luminance");
 }
+
+/// A sampler, film and rfilter defined at the top level with an `id` and `<ref>`ed by the sensor and
+/// its film, here across an `<include>` as Mitsuba's own sampler scenes do it (the sampler in the
+/// main file, the sensor that refs it in the included one): loaded as if nested, where they were
+/// ignored with a warning (6 of the scenes); a ref to nothing is still reported, with its line.
+#[test]
+fn samplers_films_and_filters_by_reference() {
+    let dir = std::env::temp_dir().join(format!("caustic-wild-refs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("camera.xml"),
+        r#"<scene version="3.0.0">
+    <sensor type="perspective"><ref id="pixels"/><ref id="sampler"/><ref id="nothing"/></sensor>
+</scene>"#,
+    )
+    .unwrap();
+    let main = dir.join("scene.xml");
+    std::fs::write(
+        &main,
+        r#"<scene version="3.0.0">
+    <sampler type="stratified" id="sampler"><integer name="sample_count" value="9"/></sampler>
+    <rfilter type="tent" id="tent"><float name="radius" value="1.5"/></rfilter>
+    <film type="hdrfilm" id="pixels"><integer name="width" value="40"/><integer name="height" value="20"/><ref id="tent"/></film>
+    <include filename="camera.xml"/>
+    <shape type="sphere"/>
+</scene>"#,
+    )
+    .unwrap();
+    let scene = caustic::load_scene(&main, &[]).expect("loads");
+    let strict = caustic::load_scene_with(&main, &[], caustic::LoadOptions { strict: true });
+    std::fs::remove_dir_all(&dir).ok();
+    let sensor = &scene.sensor;
+    assert_eq!((sensor.width, sensor.height, sensor.spp), (40, 20, 9));
+    assert!(
+        matches!(sensor.filter, caustic::scene::Filter::Tent { radius } if radius == 1.5),
+        "{:?}",
+        sensor.filter
+    );
+    assert!(
+        scene.warnings.iter().any(|w| w.contains("camera.xml:2") && w.contains("\"nothing\"")),
+        "the ref to nothing: {:?}",
+        scene.warnings
+    );
+    assert!(format!("{:#}", strict.expect_err("--strict loads a ref to nothing")).contains("camera.xml:2"));
+}

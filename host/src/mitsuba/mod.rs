@@ -63,6 +63,11 @@ pub(crate) struct Loader {
     instancing: crate::instancing::Instancing,
     /// Named textures (`id`), as indices into `textures`.
     named_textures: HashMap<String, u32>,
+    /// Top-level samplers, films and rfilters with an `id`, kept as their file and their element's
+    /// text (behind as many newlines as it stood below the file's start, so that messages name the
+    /// right line) until a sensor or film `<ref>`s them: Mitsuba resolves such references across
+    /// `<include>`d files (its own sampler scenes define the sampler in one file and ref it in another).
+    pub(crate) named_sensor_parts: HashMap<String, (std::path::PathBuf, String)>,
     /// The scene's sensor: the first in document order, which Mitsuba renders by default.
     sensor: Option<crate::scene::Sensor>,
     /// Where that sensor was given.
@@ -101,6 +106,7 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         textures: Vec::new(),
         weight_tables: Vec::new(),
         named_textures: HashMap::new(),
+        named_sensor_parts: HashMap::new(),
         named_area_emitters: HashMap::new(),
         shape_groups: HashMap::new(),
         group_spheres: Vec::new(),
@@ -261,6 +267,12 @@ impl Loader {
                     if !(surface && props.id.is_some()) {
                         self.load_emitter(&props)?;
                     }
+                }
+                "sampler" | "film" | "rfilter" if node.attribute("id").is_some() => {
+                    let id = self.attribute(node, "id", &loc)?.unwrap_or_default();
+                    let text = &src.doc.input_text()[node.range()];
+                    let placed = "\n".repeat(loc.line.saturating_sub(1) as usize) + text;
+                    self.named_sensor_parts.insert(id, (src.path.clone(), placed));
                 }
                 "sensor" => {
                     let props = self.props(src, node)?;

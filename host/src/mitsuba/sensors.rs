@@ -3,7 +3,8 @@
 //! (`hdrfilm`), reconstruction filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`,
 //! `lanczos`) and sampler (`independent`; `stratified`, `multijitter`, `orthogonal` and `ldsampler`
 //! all use caustic's stratified sequence with the sample count Mitsuba would take).
-use super::props::Props;
+use super::props::{Entry, Props};
+use super::xml::Source;
 use super::Loader;
 use crate::scene::{look_at, Crop, Filter, Projection, SamplerKind, Sensor};
 use anyhow::{bail, Result};
@@ -221,7 +222,7 @@ impl Loader {
         Ok(sensor)
     }
 
-    /// A sensor's nested film and sampler.
+    /// A sensor's film and sampler, nested or `<ref>`ed.
     fn load_film_and_sampler(&mut self, props: &Props, sensor: &mut Sensor) -> Result<()> {
         for e in props.nested("film") {
             let film = self.props(props.src, e.node)?;
@@ -231,7 +232,40 @@ impl Loader {
             let sampler = self.props(props.src, e.node)?;
             self.load_sampler(&sampler, sensor)?;
         }
+        for e in props.nested("ref") {
+            self.referenced_part(props, e, &["film", "sampler"], sensor)?;
+        }
         Ok(())
+    }
+
+    /// The top-level element a `<ref>` inside a sensor or film names (`named_sensor_parts`), loaded
+    /// as if it were nested there when its tag is among `tags`; anything else is reported as ignored.
+    fn referenced_part(
+        &mut self,
+        parent: &Props,
+        e: &Entry,
+        tags: &[&str],
+        sensor: &mut Sensor,
+    ) -> Result<()> {
+        let id = self.attribute(e.node, "id", &e.loc)?.unwrap_or_default();
+        let part = self.named_sensor_parts.get(&id).cloned();
+        let Some((path, text)) = part else {
+            let message = format!(
+                "{}: <ref id=\"{id}\"> names no {} defined before it; ignored",
+                e.loc,
+                tags.join(" or ")
+            );
+            self.ignored(format!("<ref> inside {} '{}'", parent.tag, parent.kind), &e.loc, message);
+            return Ok(());
+        };
+        let src = Source::parse(&path, &text)?;
+        let p = self.props(&src, src.doc.root_element())?;
+        match p.tag.as_str() {
+            "film" if tags.contains(&"film") => self.load_film(&p, sensor),
+            "sampler" if tags.contains(&"sampler") => self.load_sampler(&p, sensor),
+            "rfilter" if tags.contains(&"rfilter") => self.load_rfilter(&p, sensor),
+            other => bail!("{}: <ref id=\"{id}\"> names a <{other}>, which does not belong here", e.loc),
+        }
     }
 
     /// Mitsuba's `radiancemeter` (`src/sensors/radiancemeter.cpp`): the ray from the origin along
@@ -289,39 +323,48 @@ impl Loader {
         sensor.crop = self.load_crop(props, sensor.width, sensor.height)?;
         for e in props.nested("rfilter") {
             let f = self.props(props.src, e.node)?;
-            sensor.filter = match f.kind.as_str() {
-                // Mitsuba's box filter has no parameter: its radius is half a pixel.
-                "box" => Filter::Box { radius: 0.5 },
-                "tent" => Filter::Tent { radius: f.float("radius", 1.0)? },
-                "gaussian" => {
-                    let stddev = f.float("stddev", 0.5)?;
-                    Filter::Gaussian { stddev, radius: 4.0 * stddev }
-                }
-                "mitchell" => Filter::Mitchell { b: f.float("B", 1.0 / 3.0)?, c: f.float("C", 1.0 / 3.0)? },
-                "catmullrom" => Filter::Mitchell { b: 0.0, c: 0.5 },
-                "lanczos" => {
-                    let lobes = f.integer("lobes", 3)?;
-                    if !(1..=16).contains(&lobes) {
-                        bail!("{}: lanczos 'lobes' must be between 1 and 16, got {lobes}", f.loc);
-                    }
-                    Filter::Lanczos { lobes: lobes as u32 }
-                }
-                other => {
-                    let message = format!("{}: rfilter '{other}' is not supported; using gaussian", f.loc);
-                    self.substituted(format!("rfilter '{other}'"), &f.loc, message);
-                    f.mark_all_used();
-                    Filter::Gaussian { stddev: 0.5, radius: 2.0 }
-                }
-            };
-            if !(sensor.filter.radius() > 0.0 && sensor.filter.radius() <= 16.0) {
-                bail!("{}: filter radius must be in (0, 16] pixels", f.loc);
-            }
-            self.warn_unused(&f);
+            self.load_rfilter(&f, sensor)?;
+        }
+        for e in props.nested("ref") {
+            self.referenced_part(props, e, &["rfilter"], sensor)?;
         }
         for name in ["pixel_format", "component_format", "file_format"] {
             props.string(name)?; // output format choices: caustic writes what -o names
         }
         self.warn_unused(props);
+        Ok(())
+    }
+
+    /// A film's reconstruction filter.
+    fn load_rfilter(&mut self, f: &Props, sensor: &mut Sensor) -> Result<()> {
+        sensor.filter = match f.kind.as_str() {
+            // Mitsuba's box filter has no parameter: its radius is half a pixel.
+            "box" => Filter::Box { radius: 0.5 },
+            "tent" => Filter::Tent { radius: f.float("radius", 1.0)? },
+            "gaussian" => {
+                let stddev = f.float("stddev", 0.5)?;
+                Filter::Gaussian { stddev, radius: 4.0 * stddev }
+            }
+            "mitchell" => Filter::Mitchell { b: f.float("B", 1.0 / 3.0)?, c: f.float("C", 1.0 / 3.0)? },
+            "catmullrom" => Filter::Mitchell { b: 0.0, c: 0.5 },
+            "lanczos" => {
+                let lobes = f.integer("lobes", 3)?;
+                if !(1..=16).contains(&lobes) {
+                    bail!("{}: lanczos 'lobes' must be between 1 and 16, got {lobes}", f.loc);
+                }
+                Filter::Lanczos { lobes: lobes as u32 }
+            }
+            other => {
+                let message = format!("{}: rfilter '{other}' is not supported; using gaussian", f.loc);
+                self.substituted(format!("rfilter '{other}'"), &f.loc, message);
+                f.mark_all_used();
+                Filter::Gaussian { stddev: 0.5, radius: 2.0 }
+            }
+        };
+        if !(sensor.filter.radius() > 0.0 && sensor.filter.radius() <= 16.0) {
+            bail!("{}: filter radius must be in (0, 16] pixels", f.loc);
+        }
+        self.warn_unused(f);
         Ok(())
     }
 
