@@ -121,6 +121,17 @@ pub fn test_data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
 }
 
+/// Asserts that no case of a table checked against Mitsuba 3.9.1 failed: `failures` lists each
+/// failing case's message, of `total` cases.
+pub fn assert_cases_match_mitsuba(failures: &[String], total: usize) {
+    assert!(
+        failures.is_empty(),
+        "{} of {total} cases differ from Mitsuba 3.9.1:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
 /// Asserts that an image agrees with its reference, from `against_mitsuba_reference`'s (fraction of
 /// pixels passing the z-test, mean-luminance z-score): at least 99% of the pixels and |z| < 4.
 pub fn assert_agrees_with_reference((pass, z): (f64, f64), what: &str) {

@@ -290,12 +290,6 @@ fn loader_defaults_match_mitsuba() {
         }
     }
     std::fs::remove_dir_all(&dir).ok();
-    assert!(
-        failures.is_empty(),
-        "{} of {} cases differ from Mitsuba 3.9.1:\n{}",
-        failures.len(),
-        cases.len(),
-        failures.join("\n")
-    );
+    caustic_tests::assert_cases_match_mitsuba(&failures, cases.len());
     println!("{} one-element scenes match Mitsuba 3.9.1's defaults", cases.len());
 }

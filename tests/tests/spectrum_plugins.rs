@@ -61,13 +61,7 @@ fn spectrum_plugins_match_mitsuba() {
         }
     }
     std::fs::remove_dir_all(&dir).ok();
-    assert!(
-        failures.is_empty(),
-        "{} of {} cases differ from Mitsuba 3.9.1:\n{}",
-        failures.len(),
-        cases.len(),
-        failures.join("\n")
-    );
+    caustic_tests::assert_cases_match_mitsuba(&failures, cases.len());
 }
 
 /// The negative control: a blackbody 1% hotter (3030 K for 3000 K: red about 8% brighter) falls
