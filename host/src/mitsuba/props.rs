@@ -23,9 +23,8 @@ pub struct Props<'a, 'input> {
     pub kind: String,
     /// The `id` attribute (the target of a `<ref>`), `$name` substituted as every attribute.
     pub id: Option<String>,
-    /// The file it was read from, and the element itself.
+    /// The file it was read from.
     pub src: &'a Source<'input>,
-    pub node: roxmltree::Node<'a, 'input>,
     pub entries: Vec<Entry<'a, 'input>>,
     /// The scene's parameters when the element was read, for `$name` in attributes other than `value`.
     params: Params,
@@ -38,44 +37,68 @@ impl<'a, 'input> Props<'a, 'input> {
         src: &'a Source<'input>,
         node: roxmltree::Node<'a, 'input>,
     ) -> Result<Self> {
+        Self::collect_in(loader.params(), Some(loader), src, node)
+    }
+
+    /// The properties of `node` with `$name` substituted from `params`; `<spectrum filename>` is
+    /// read where a `loader` (its search paths) is given, refused otherwise.
+    fn collect_in(
+        params: &Params,
+        loader: Option<&Loader>,
+        src: &'a Source<'input>,
+        node: roxmltree::Node<'a, 'input>,
+    ) -> Result<Self> {
         let loc = src.loc(node);
         let mut entries = Vec::new();
         for child in node.children().filter(|n| n.is_element()) {
             let child_loc = src.loc(child);
             let mut value = match child.attribute("value") {
-                Some(v) => Some(loader.substitute(v, &child_loc)?),
+                Some(v) => Some(super::xml::substitute(params, v, &child_loc)?),
                 None => None,
             };
             if child.tag_name().name() == "spectrum" {
-                if let Some(file) = loader.attribute(child, "filename", &child_loc)? {
+                if let Some(file) = super::xml::attribute(child, "filename", params, &child_loc)? {
+                    let Some(loader) = loader else {
+                        bail!("{child_loc}: a spectrum file is not read inside a spectrum");
+                    };
                     value = Some(spectrum_file_value(loader, &file, value.is_some(), &child_loc)?);
                 }
             }
             entries.push(Entry {
                 tag: child.tag_name().name().to_string(),
-                name: loader.attribute(child, "name", &child_loc)?,
+                name: super::xml::attribute(child, "name", params, &child_loc)?,
                 value,
                 node: child,
                 loc: child_loc,
             });
         }
         let kind = match node.attribute("type") {
-            Some(t) => loader.substitute(t, &loc)?,
+            Some(t) => super::xml::substitute(params, t, &loc)?,
             None => String::new(),
         };
         let n = entries.len();
-        let id = loader.attribute(node, "id", &loc)?;
+        let id = super::xml::attribute(node, "id", params, &loc)?;
         Ok(Props {
             loc,
             tag: node.tag_name().name().to_string(),
             kind,
             id,
             src,
-            node,
             entries,
-            params: loader.params().clone(),
+            params: params.clone(),
             used: RefCell::new(vec![false; n]),
         })
+    }
+
+    /// The properties of the object nested as entry `i` (a spectrum plugin inside a colour
+    /// property), read with this element's parameters.
+    fn nested_props(&self, i: usize) -> Result<Props<'a, 'input>> {
+        Props::collect_in(&self.params, None, self.src, self.entries[i].node)
+    }
+
+    /// The tag property `name` is given with (`float`, `rgb`, …), without marking it read.
+    pub fn tag_of(&self, name: &str) -> Option<&str> {
+        self.entries.iter().find(|e| e.name.as_deref() == Some(name)).map(|e| e.tag.as_str())
     }
 
     fn find(&self, name: &str) -> Option<usize> {
@@ -143,9 +166,8 @@ impl<'a, 'input> Props<'a, 'input> {
         let Some(i) = self.find(name) else { return Ok(default) };
         let e = &self.entries[i];
         // `<spectrum type="…">`: a spectrum plugin written out as an object (no `value` attribute).
-        if let (Some(kind), "spectrum") = (e.node.attribute("type"), e.tag.as_str()) {
-            let kind = super::xml::substitute(&self.params, kind, &e.loc)?;
-            let rgb = super::spectrum_plugin::to_rgb(self.src, e.node, &kind, usage, &self.params, &e.loc)?;
+        if e.tag == "spectrum" && e.node.attribute("type").is_some() {
+            let rgb = super::spectrum_plugin::to_rgb(&self.nested_props(i)?, usage)?;
             return checked_color(rgb, name, &e.loc);
         }
         let value = self.value_of(i)?;

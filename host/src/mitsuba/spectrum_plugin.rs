@@ -14,10 +14,13 @@
 //!   implemented for non-spectral modes"); caustic converts them as it converts a `λ:value` list,
 //!   which is what Mitsuba's spectral variants render (checked against `scalar_spectral`).
 //!
-//! Every other property inside is refused, as Mitsuba refuses an unreferenced one.
+//! Every other property inside is refused, as Mitsuba refuses an unreferenced one. The values come
+//! through `Props`, as every plugin's do.
+use super::props::Props;
 use super::spectrum::{spectrum_to_rgb, SpectrumUse};
-use super::xml::{expand_value_to_xyz, parse_numbers, substitute, Loc, Params, Source, XyzError};
+use super::xml::parse_numbers;
 use anyhow::{bail, Result};
+use glam::Vec3;
 
 /// Planck's law as Mitsuba's `blackbody` evaluates it: radiance per nanometre at `lambda_nm`.
 pub fn planck(lambda_nm: f64, temperature: f64) -> f64 {
@@ -28,154 +31,81 @@ pub fn planck(lambda_nm: f64, temperature: f64) -> f64 {
     1e-9 * 2.0 * H * C * C / (lambda.powi(5) * ((H * C / K / (lambda * temperature)).exp() - 1.0))
 }
 
-/// One property inside the plugin: its tag, name, `value` (substituted) and place.
-#[derive(Clone)]
-struct Property<'a, 'input> {
-    tag: String,
-    name: String,
-    value: Option<String>,
-    node: roxmltree::Node<'a, 'input>,
-    loc: Loc,
-}
-
-struct Properties<'a, 'input> {
-    kind: String,
-    loc: Loc,
-    list: Vec<(Property<'a, 'input>, bool)>,
-    params: &'a Params,
-}
-
-impl<'a, 'input> Properties<'a, 'input> {
-    /// The property `name` with tag among `tags`, marked read; `None` if absent.
-    fn take(&mut self, name: &str, tags: &[&str]) -> Result<Option<Property<'a, 'input>>> {
-        let Some((p, read)) = self.list.iter_mut().find(|(p, _)| p.name == name) else { return Ok(None) };
-        *read = true;
-        if !tags.contains(&p.tag.as_str()) {
-            bail!(
-                "{}: '{name}' of spectrum '{}' must be <{}>, not <{}>",
-                p.loc,
-                self.kind,
-                tags.join("> or <"),
-                p.tag
-            );
-        }
-        if p.value.is_none() && p.tag != "rgb" && p.tag != "vector" && p.tag != "point" {
-            bail!("{}: <{}> needs a 'value' attribute", p.loc, p.tag);
-        }
-        Ok(Some(p.clone()))
-    }
-
-    /// A `<float>`: `default` where absent, an error where absent and required (`None`).
-    fn float(&mut self, name: &str, default: Option<f64>) -> Result<f64> {
-        let Some(p) = self.take(name, &["float"])? else {
-            return default
-                .ok_or_else(|| anyhow::anyhow!("{}: spectrum '{}' needs '{name}'", self.loc, self.kind));
-        };
-        let text = p.value.unwrap_or_default();
-        match text.trim().parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            _ => bail!("{}: '{name}' must be a finite number, not '{text}'", p.loc),
-        }
-    }
-
-    /// Three numbers given as one of `tags` (`<rgb>`, `<vector>`), or `None` where absent.
-    fn triple(&mut self, name: &str, tags: &[&str]) -> Result<Option<[f64; 3]>> {
-        let Some(p) = self.take(name, tags)? else { return Ok(None) };
-        let v = expand_value_to_xyz(p.node, p.value.as_deref(), 0.0, self.params, &p.loc).map_err(
-            |e| match e {
-                XyzError::Numbers(e) => e,
-                XyzError::Count(n) => anyhow::anyhow!("{}: '{name}' needs 1 or 3 numbers, got {n}", p.loc),
-                XyzError::NotANumber(a) => anyhow::anyhow!("{}: '{a}' must be a number", p.loc),
-            },
-        )?;
-        Ok(Some([v.x as f64, v.y as f64, v.z as f64]))
-    }
-
-    /// A `<string>`, or `None` where absent.
-    fn string(&mut self, name: &str) -> Result<Option<String>> {
-        Ok(self.take(name, &["string"])?.and_then(|p| p.value))
-    }
-
-    /// The tag `name` is given with (not marking it read).
-    fn tag_of(&self, name: &str) -> Option<&str> {
-        self.list.iter().find(|(p, _)| p.name == name).map(|(p, _)| p.tag.as_str())
-    }
-
-    /// Refuses what no getter read, as Mitsuba refuses unreferenced properties.
-    fn finish(&self) -> Result<()> {
-        if let Some((p, _)) = self.list.iter().find(|(_, read)| !read) {
-            bail!("{}: spectrum '{}' has no property '{}' (<{}>)", p.loc, self.kind, p.name, p.tag);
-        }
-        Ok(())
+/// Refuses a plugin that lacks `name` or gives it with a tag other than `tags`, as Mitsuba does.
+fn require(props: &Props, name: &str, tags: &[&str]) -> Result<()> {
+    match props.tag_of(name) {
+        None => bail!("{}: spectrum '{}' needs '{name}'", props.loc, props.kind),
+        Some(tag) if !tags.contains(&tag) => bail!(
+            "{}: '{name}' of spectrum '{}' must be <{}>, not <{tag}>",
+            props.loc,
+            props.kind,
+            tags.join("> or <")
+        ),
+        Some(_) => Ok(()),
     }
 }
 
-/// The colour of `<spectrum type="kind">` at `node` for a property used as `usage`.
-pub fn to_rgb(
-    src: &Source,
-    node: roxmltree::Node,
-    kind: &str,
-    usage: SpectrumUse,
-    params: &Params,
-    loc: &Loc,
-) -> Result<[f32; 3]> {
-    let mut list = Vec::new();
-    for child in node.children().filter(|n| n.is_element()) {
-        let child_loc = src.loc(child);
-        let Some(name) = child.attribute("name") else {
-            bail!("{child_loc}: <{}> inside a spectrum needs a 'name'", child.tag_name().name());
-        };
-        let value = child.attribute("value").map(|v| substitute(params, v, &child_loc)).transpose()?;
-        let tag = child.tag_name().name().to_string();
-        let name = substitute(params, name, &child_loc)?;
-        list.push((Property { tag, name, value, node: child, loc: child_loc }, false));
-    }
-    let mut props = Properties { kind: kind.to_string(), loc: loc.clone(), list, params };
-    let rgb = match kind {
+/// A `<string>` list of numbers (`require`d).
+fn numbers(props: &Props, name: &str) -> Result<Vec<f64>> {
+    require(props, name, &["string"])?;
+    parse_numbers(&props.string(name)?.unwrap_or_default(), &props.loc)
+}
+
+/// The colour of the spectrum plugin `props` (the `<spectrum type="…">` element) for a property
+/// used as `usage`.
+pub fn to_rgb(props: &Props, usage: SpectrumUse) -> Result<[f32; 3]> {
+    let loc = &props.loc;
+    let rgb = match props.kind.as_str() {
         "srgb" => {
-            let Some(c) = props.triple("color", &["rgb"])? else { bail!("{loc}: spectrum 'srgb' needs 'color'") };
+            require(props, "color", &["rgb"])?;
+            let c = props.color("color", usage, [0.0; 3])?;
             if c.iter().any(|v| !(0.0..=1.0).contains(v)) {
                 bail!("{loc}: spectrum 'srgb' takes a colour in [0, 1] (Mitsuba refuses {c:?}; give a brighter emitter with <rgb>)");
             }
             c
         }
-        "uniform" => [props.float("value", None)?; 3],
+        "uniform" => {
+            require(props, "value", &["float"])?;
+            [props.float("value", 0.0)?; 3]
+        }
         "rawconstant" => match props.tag_of("value") {
-            Some("vector" | "point") => props.triple("value", &["vector", "point"])?.unwrap_or_default(),
-            _ => [props.float("value", None)?; 3],
+            Some("vector" | "point") => props.point("value", Vec3::ZERO)?.to_array(),
+            _ => {
+                require(props, "value", &["float"])?;
+                [props.float("value", 0.0)?; 3]
+            }
         },
         "d65" => {
-            let scale = props.float("scale", Some(1.0))?;
-            props.triple("color", &["rgb"])?.unwrap_or([1.0; 3]).map(|c| c * scale)
+            let scale = props.float("scale", 1.0)?;
+            if props.tag_of("color").is_some() {
+                require(props, "color", &["rgb"])?;
+            }
+            props.color("color", usage, [1.0; 3])?.map(|c| c * scale)
         }
         "regular" => {
-            let lo = props.float("wavelength_min", None)?;
-            let hi = props.float("wavelength_max", None)?;
-            let Some(text) = props.string("values")? else { bail!("{loc}: spectrum 'regular' needs 'values'") };
-            let values = parse_numbers(&text, loc)?;
+            for name in ["wavelength_min", "wavelength_max"] {
+                require(props, name, &["float"])?;
+            }
+            let (lo, hi) = (props.float("wavelength_min", 0.0)? as f64, props.float("wavelength_max", 0.0)? as f64);
+            let values = numbers(props, "values")?;
             if values.len() < 2 || lo >= hi {
                 bail!("{loc}: spectrum 'regular' needs two values or more over wavelength_min < wavelength_max");
             }
             let n = values.len() - 1;
             let wavelengths: Vec<f64> = (0..=n).map(|i| lo + (hi - lo) * i as f64 / n as f64).collect();
-            props.finish()?;
-            return Ok(spectrum_to_rgb(&wavelengths, &values, usage));
+            return converted(props, &wavelengths, &values, usage);
         }
         "irregular" => {
-            let (Some(w), Some(v)) = (props.string("wavelengths")?, props.string("values")?) else {
-                bail!("{loc}: spectrum 'irregular' needs 'wavelengths' and 'values'");
-            };
-            let (wavelengths, values) = (parse_numbers(&w, loc)?, parse_numbers(&v, loc)?);
+            let (wavelengths, values) = (numbers(props, "wavelengths")?, numbers(props, "values")?);
             if wavelengths.len() != values.len() || wavelengths.len() < 2 || wavelengths.windows(2).any(|p| p[0] >= p[1]) {
                 bail!("{loc}: spectrum 'irregular' needs as many values as wavelengths, two or more, the wavelengths increasing");
             }
-            props.finish()?;
-            return Ok(spectrum_to_rgb(&wavelengths, &values, usage));
+            return converted(props, &wavelengths, &values, usage);
         }
         "blackbody" => {
-            let t = props.float("temperature", None)?;
-            let lo = props.float("wavelength_min", Some(360.0))?;
-            let hi = props.float("wavelength_max", Some(830.0))?;
+            require(props, "temperature", &["float"])?;
+            let t = props.float("temperature", 0.0)? as f64;
+            let (lo, hi) = (props.float("wavelength_min", 360.0)? as f64, props.float("wavelength_max", 830.0)? as f64);
             if t <= 0.0 || lo >= hi {
                 bail!("{loc}: spectrum 'blackbody' needs a positive temperature and wavelength_min < wavelength_max");
             }
@@ -184,15 +114,28 @@ pub fn to_rgb(
             wavelengths.extend((lo.floor() as i64 + 1..hi.ceil() as i64).map(|w| w as f64));
             wavelengths.push(hi);
             let values: Vec<f64> = wavelengths.iter().map(|&w| planck(w, t)).collect();
-            props.finish()?;
-            return Ok(spectrum_to_rgb(&wavelengths, &values, usage));
+            return converted(props, &wavelengths, &values, usage);
         }
         other => bail!(
             "{loc}: spectrum type '{other}' is not supported (srgb, uniform, rawconstant, d65, regular, irregular, blackbody are)"
         ),
     };
-    props.finish()?;
-    Ok(rgb.map(|c| c as f32))
+    finish(props)?;
+    Ok(rgb)
+}
+
+/// A sampled spectrum's colour, once the plugin has no property left unread.
+fn converted(props: &Props, wavelengths: &[f64], values: &[f64], usage: SpectrumUse) -> Result<[f32; 3]> {
+    finish(props)?;
+    Ok(spectrum_to_rgb(wavelengths, values, usage))
+}
+
+/// Refuses a property the plugin does not read, as Mitsuba refuses unreferenced properties.
+fn finish(props: &Props) -> Result<()> {
+    match props.unused().into_iter().next() {
+        Some((loc, group, _)) => bail!("{loc}: {group} does not exist (Mitsuba refuses it)"),
+        None => Ok(()),
+    }
 }
 
 #[cfg(test)]

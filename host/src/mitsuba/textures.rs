@@ -75,16 +75,8 @@ impl Loader {
             "mesh_attribute" => mesh_attribute(props)?,
             // Mitsuba's constant textures (its spectra are textures too: `rawconstant` holds raw
             // values, e.g. a flat normal map): one texel.
-            kind @ ("rawconstant" | "srgb" | "uniform" | "d65") => {
-                let rgb = spectrum_plugin::to_rgb(
-                    props.src,
-                    props.node,
-                    kind,
-                    SpectrumUse::Reflectance,
-                    self.params(),
-                    &props.loc,
-                )?;
-                props.mark_all_used();
+            "rawconstant" | "srgb" | "uniform" | "d65" => {
+                let rgb = spectrum_plugin::to_rgb(props, SpectrumUse::Reflectance)?;
                 let record = Texture {
                     kind: TEXTURE_BITMAP,
                     width: 1,
