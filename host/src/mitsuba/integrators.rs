@@ -143,9 +143,8 @@ impl Loader {
     }
 }
 
-/// `max_depth` (-1: unbounded) and `rr_depth` of `path` and `ptracer`, with Mitsuba's defaults.
-/// `max_depth` (`default_depth` where absent: -1, unbounded, for Mitsuba's C++ integrators, 6 for
-/// its Python ones) and `rr_depth`.
+/// `max_depth` (-1: unbounded; `default_depth` where absent: -1 for Mitsuba's C++ integrators, 6
+/// for its Python ones) and `rr_depth` (default 5), as Mitsuba reads them.
 fn depths(props: &Props, default_depth: i64) -> Result<(i32, u32)> {
     let max_depth = props.integer("max_depth", default_depth)?;
     let rr_depth = props.integer("rr_depth", 5)?;
