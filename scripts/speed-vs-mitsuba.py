@@ -71,11 +71,12 @@ def mitsuba_throughput(mi, dr, path, spp, rounds):
     return best
 
 
-def caustic_throughput(binary, backend, path, spp, rounds):
+def caustic_throughput(binary, backend, path, spp, rounds, env=None):
     best = 0.0
     for _ in range(rounds):
         out = subprocess.run([binary, "bench", path, "--backend", backend, "--spp", str(spp),
-                              "-D", f"spp={spp}"], capture_output=True, text=True)
+                              "-D", f"spp={spp}"], capture_output=True, text=True,
+                             env=dict(os.environ, **(env or {})))
         rows = [l for l in out.stdout.splitlines() if l.startswith("| ") and not l.startswith("| backend")]
         numbers = [re.findall(r"[0-9.]+", r.split("|")[5]) for r in rows if len(r.split("|")) > 5]
         if not numbers or not numbers[0]:
@@ -94,6 +95,9 @@ def main():
     ap.add_argument("--rounds", type=int, default=2)
     ap.add_argument("--scenes", default="", help="comma-separated scene names (default: all 23)")
     ap.add_argument("--venv", default=".venv-mitsuba")
+    ap.add_argument("--baseline-env", default="", metavar="NAME=VALUE[,NAME=VALUE]",
+                    help="also time caustic with these environment variables (e.g. CAUSTIC_WORKGROUP=8x8), "
+                         "interleaved, in a column of its own")
     args = ap.parse_args()
     ensure_mitsuba(args.venv)
     if "llvm" in args.variant and "DRJIT_LIBLLVM_PATH" not in os.environ:
@@ -107,17 +111,26 @@ def main():
     scenes = scene_list(shared, [s for s in args.scenes.split(",") if s])
     print(f"caustic {args.backend} ({args.caustic}) against Mitsuba {mi.__version__} {args.variant}, "
           f"{args.spp} spp, best of {args.rounds}, interleaved")
-    print("| scene | Mitsuba Msamples/s | caustic Msamples/s | caustic / Mitsuba |")
-    print("|---|---|---|---|")
-    ratios = []
+    baseline = dict(kv.split("=", 1) for kv in args.baseline_env.split(",") if kv)
+    extra = f" | caustic with {args.baseline_env} | its ratio" if baseline else ""
+    print(f"| scene | Mitsuba Msamples/s | caustic Msamples/s | caustic / Mitsuba{extra} |")
+    print("|---|---|---|---|" + ("---|---|" if baseline else ""))
+    ratios, baseline_ratios = [], []
     for name, rel in scenes:
         path = os.path.join(shared, "scenes/mitsuba", rel)
         m = mitsuba_throughput(mi, dr, path, args.spp, args.rounds)
         c = caustic_throughput(args.caustic, args.backend, path, args.spp, args.rounds)
         ratios.append(c / m)
-        print(f"| {name} | {m:.2f} | {c:.2f} | {c / m:.2f} |", flush=True)
-    geo = math.exp(sum(math.log(r) for r in ratios) / len(ratios))
-    print(f"geometric mean of caustic / Mitsuba over {len(ratios)} scenes: {geo:.2f}")
+        row = f"| {name} | {m:.2f} | {c:.2f} | {c / m:.2f} |"
+        if baseline:
+            b = caustic_throughput(args.caustic, args.backend, path, args.spp, args.rounds, baseline)
+            baseline_ratios.append(b / m)
+            row += f" {b:.2f} | {b / m:.2f} |"
+        print(row, flush=True)
+    geo = lambda rs: math.exp(sum(math.log(r) for r in rs) / len(rs))
+    print(f"geometric mean of caustic / Mitsuba over {len(ratios)} scenes: {geo(ratios):.2f}")
+    if baseline:
+        print(f"geometric mean with {args.baseline_env}: {geo(baseline_ratios):.2f}")
 
 
 if __name__ == "__main__":

@@ -104,6 +104,16 @@ enum Command {
         #[arg(long)]
         strict: bool,
     },
+    /// Print what the GPU driver compiled a scene's kernel to (its own statistics: on NVIDIA,
+    /// registers per thread and spilled bytes), for each pipeline `render` would build.
+    KernelStats {
+        scene: PathBuf,
+        #[arg(short = 'D', value_parser = parse_define)]
+        define: Vec<(String, String)>,
+        /// Also write each pipeline's SPIR-V, as the driver gets it from wgpu, into this folder.
+        #[arg(long)]
+        write_spirv: Option<PathBuf>,
+    },
 }
 
 /// What `render` and `convergence` share: the scene and how to render it.
@@ -228,6 +238,9 @@ fn main() {
             } else {
                 cmd_bench(&scene, &define, &backend, &gpus, spp, LoadOptions { strict })
             }
+        }
+        Command::KernelStats { scene, define, write_spirv } => {
+            cmd_kernel_stats(&scene, &define, write_spirv.as_deref())
         }
     };
     if let Err(e) = result {
@@ -469,6 +482,54 @@ fn bench_buffers(
     Ok(buffers)
 }
 
+fn cmd_kernel_stats(
+    scene_path: &Path,
+    defines: &[(String, String)],
+    write_spirv: Option<&Path>,
+) -> Result<()> {
+    let buffers = bench_buffers(scene_path, defines, 1, LoadOptions::default())?;
+    say!("kernel paths {} (feature mask)", buffers.features);
+    let reports =
+        backend::kernel_stats::scene(buffers.features, buffers.params.integrator, write_spirv.is_none())?;
+    if let Some(dir) = write_spirv {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        for r in &reports {
+            let [w, h] = r.variant.workgroup;
+            let name = format!("{}-{:?}-{w}x{h}.spv", r.entry.replace("::", "-"), r.variant.path_loop)
+                .to_lowercase();
+            let path = dir.join(name);
+            std::fs::write(&path, bytemuck::cast_slice::<u32, u8>(&r.module))
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            say!("wrote {}", path.display());
+        }
+    }
+    if let Some(first) = reports.first() {
+        say!("adapter: {}", first.adapter);
+    }
+    say!("| entry point | path loop | workgroup | executable | statistic | value |");
+    say!("|---|---|---|---|---|---|");
+    for report in &reports {
+        for executable in &report.executables {
+            for stat in &executable.stats {
+                say!(
+                    "| {} | {:?} | {}x{} | {} | {} | {} |",
+                    report.entry,
+                    report.variant.path_loop,
+                    report.variant.workgroup[0],
+                    report.variant.workgroup[1],
+                    executable.name,
+                    stat.name,
+                    stat.value
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// How long `bench` warms up at most, waiting for the backend to settle.
+const WARM_UP_LIMIT: Duration = Duration::from_secs(20);
+
 fn cmd_bench(
     scene_path: &Path,
     defines: &[(String, String)],
@@ -490,8 +551,18 @@ fn cmd_bench(
                 continue;
             }
         };
-        // A short warm-up pass (pipeline compilation, caches), then the timed render.
+        // A warm-up (pipeline compilation, caches, and the GPU's choice among its candidate pipelines:
+        // the render is repeated until the backend has settled on one, which it keeps on disk for the
+        // next render of this setup, `backend::variant`), then the timed render: what a second render
+        // of the scene runs at.
         render::render(backend.as_mut(), &buffers, 1, 1, |_| {})?;
+        let warm = Instant::now();
+        while !backend.settled() && warm.elapsed() < WARM_UP_LIMIT {
+            render::render(backend.as_mut(), &buffers, spp, 1, |_| {})?;
+        }
+        if !backend.settled() {
+            say!("(the GPU's trial of its candidate pipelines did not end within the warm-up)");
+        }
         let mut backend = backend::create_on(choice, gpus, &buffers)?;
         let (film, stats) = render::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
         let msps = film.width as f64 * film.height as f64 * spp as f64 / stats.seconds / 1e6;

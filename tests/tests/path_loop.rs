@@ -3,7 +3,8 @@
 //! sample and add the sums in the same order, so each backend's images agree to rounding whichever
 //! loop runs, and the GPU's measured choice (which splits its first passes between the two) too.
 //!
-//! One test in this binary: it sets `CAUSTIC_PATH_LOOP`, which every backend reads when created.
+//! One test in this binary: it sets `CAUSTIC_PATH_LOOP` and `CAUSTIC_WORKGROUP`, which every backend
+//! reads when created.
 use caustic::backend::BackendChoice;
 use caustic::film::Film;
 use caustic_tests::*;
@@ -33,14 +34,22 @@ fn both_loops_and_the_measured_choice_render_the_same_image() {
     let scene = load_xml(SCENE, "path-loop");
     let mut films: Vec<(String, Film)> = Vec::new();
     for choice in [BackendChoice::Cpu, BackendChoice::Gpu] {
-        for request in ["plain", "regenerate", "measure"] {
+        // (`measure` with two workgroup sizes: four pipelines timed against each other, the first of
+        // them, which runs alone first, in 16×5 workgroups that overhang the 24×24 image:
+        // `backend::variant`.)
+        for (request, sizes) in [("plain", ""), ("regenerate", ""), ("measure", ""), ("measure", "16x5,8x8")]
+        {
             if choice == BackendChoice::Cpu && request == "measure" {
                 continue; // (the CPU has nothing to measure: it runs the plain loop)
             }
             std::env::set_var("CAUSTIC_PATH_LOOP", request);
+            if !sizes.is_empty() {
+                std::env::set_var("CAUSTIC_WORKGROUP", sizes);
+            }
             let film = render_scene(&scene, choice, 96, 3);
-            assert_eq!(film.invalid_samples, 0, "{choice:?} {request}: invalid samples");
-            films.push((format!("{choice:?} {request}"), film));
+            std::env::remove_var("CAUSTIC_WORKGROUP");
+            assert_eq!(film.invalid_samples, 0, "{choice:?} {request} {sizes}: invalid samples");
+            films.push((format!("{choice:?} {request} {sizes}"), film));
         }
     }
     std::env::remove_var("CAUSTIC_PATH_LOOP");

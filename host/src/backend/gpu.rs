@@ -3,14 +3,15 @@
 //! The module is consumed through naga with runtime bounds checks off (`create_shader_module_trusted`
 //! with unchecked runtime checks): measured fastest on the H100 (see ../shared/notes and
 //! BENCHMARKS.md), and safe because the kernel's own indexing is bounds-checked Rust.
-use super::path_loop::{self, PathLoop, Request, Trial};
+use super::path_loop::PathLoop;
+use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
 use super::Backend;
 use crate::buffers::SceneBuffers;
 use crate::film::{Accumulation, Folding};
 use anyhow::{anyhow, bail, Context, Result};
 use caustic_kernel::integrator::{splats, traces_camera_paths};
 use caustic_kernel::layout::{
-    binding, FrameParams, PixelAccum, INTEGRATOR_PATH, SPEC_FEATURES, SPEC_REGENERATE, TILE,
+    binding, FrameParams, PixelAccum, INTEGRATOR_PATH, SPEC_FEATURES, SPEC_REGENERATE,
 };
 use caustic_kernel::splat::SPLAT_STRIDE;
 use std::time::Instant;
@@ -27,11 +28,13 @@ const RESOLVE_ENTRY: &str = "entry::resolve";
 pub struct GpuBackend {
     device: wgpu::Device,
     queue: wgpu::Queue,
-    /// The camera entry point, per path loop (`path_loop`: indexed by `PathLoop::spec_value`; only
-    /// the path tracer builds both), and the light entry point, as the integrator needs them.
-    camera_pipelines: [Option<wgpu::ComputePipeline>; 2],
-    /// Which camera pipeline runs: measured on the first passes where both are built.
+    /// The camera entry point, one pipeline per candidate `Variant` (path loop and workgroup size:
+    /// `variant`), and the light entry point, as the integrator needs them.
+    camera_pipelines: Vec<(Variant, wgpu::ComputePipeline)>,
+    /// Which camera pipeline runs: measured on the first passes where several are built.
     trial: Trial,
+    /// Where the trial's outcome is kept (`variant::Decisions`), while one runs.
+    decision_key: Option<u64>,
     light_pipeline: Option<wgpu::ComputePipeline>,
     bind_group: wgpu::BindGroup,
     params_buffer: wgpu::Buffer,
@@ -103,62 +106,59 @@ impl GpuBackend {
         .context("cannot open the GPU device")?;
 
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        // CAUSTIC_KERNEL_SPV runs another build of the kernel (driver investigations, A/B timings).
-        let override_spv = match std::env::var_os("CAUSTIC_KERNEL_SPV") {
-            Some(path) => Some(
-                std::fs::read(&path)
-                    .with_context(|| format!("cannot read CAUSTIC_KERNEL_SPV={}", path.to_string_lossy()))?,
-            ),
-            None => None,
-        };
-        let words: Vec<u32> = bytemuck::pod_collect_to_vec(override_spv.as_deref().unwrap_or(KERNEL_SPV));
+        let (words, built_in) = kernel_words()?;
         let integrator = buffers.params.integrator;
         let software = info.device_type == wgpu::DeviceType::Cpu;
-        // The path tracer's two loops, where the choice is open: timed on the first passes on a
-        // hardware GPU; on a software adapter (the tests' lavapipe) the regenerating loop alone, to
-        // compile one kernel rather than two. Other integrators have one loop each.
+        // The camera pipelines to build and time (`variant`): on a hardware GPU the path tracer's two
+        // loops by three workgroup sizes; on a software adapter (the tests' lavapipe) one.
         let path_tracer = integrator == INTEGRATOR_PATH;
-        let loops: Vec<PathLoop> = match path_loop::requested()? {
-            Request::Fixed(choice) => vec![choice],
-            Request::Measure if path_tracer => PathLoop::BOTH.to_vec(),
-            Request::Default if path_tracer && !software => PathLoop::BOTH.to_vec(),
-            _ => vec![PathLoop::Regenerate],
-        };
-        let trial = if loops.len() == 2 { Trial::default() } else { Trial::fixed(loops[0]) };
+        let mut candidates = variant::candidates(path_tracer, software)?;
+        if !traces_camera_paths(integrator) {
+            candidates.truncate(1); // (light tracing alone: no camera pipeline to choose)
+        }
+        // A trial of this setup decided before: that candidate alone.
+        let decisions = Decisions::in_cache();
+        let image = [buffers.params.width, buffers.params.height];
+        let decision_key = (candidates.len() > 1)
+            .then(|| Decisions::key(&words, buffers.features, image, &info.name, &candidates));
+        let kept = decision_key.filter(|_| variant::unrequested()).and_then(|key| decisions.load(key));
+        if let Some(v) = kept.filter(|v| candidates.contains(v)) {
+            candidates = vec![v];
+        }
+        let trial = Trial::new(candidates.len());
         // Each loop's module and whether its constants are still open: the scene's paths alone
-        // (`prune`) have the mask and the loop frozen in, no constant left.
+        // (`prune`) have the mask and the loop frozen in, no constant left. The light and resolve
+        // entry points take the first loop's, in the kernel's own workgroup size.
         let prune = super::prune::wanted();
-        let modules: Vec<(PathLoop, wgpu::ShaderModule, bool)> = loops
+        let mut loops: Vec<PathLoop> = Vec::new();
+        for c in &candidates {
+            if !loops.contains(&c.path_loop) {
+                loops.push(c.path_loop);
+            }
+        }
+        let loop_words: Vec<(PathLoop, Vec<u32>, bool)> = loops
             .iter()
             .map(|&choice| {
-                let mut words = words.clone();
-                let mut specialisable = declares_spec_constant(&words, 0);
-                if specialisable && prune {
-                    if let Some(pruned) = super::prune::pruned(
-                        &words,
-                        buffers.features,
-                        choice.spec_value(),
-                        override_spv.is_none(),
-                    ) {
-                        words = pruned;
-                        specialisable = declares_spec_constant(&words, 0);
-                    }
-                }
-                // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are
-                // bounds-checked in the source; dropping naga's duplicate runtime checks is what
-                // makes this path fast.
-                let module = unsafe {
-                    device.create_shader_module_trusted(
-                        wgpu::ShaderModuleDescriptor {
-                            label: Some("caustic-kernel"),
-                            source: wgpu::ShaderSource::SpirV(words.into()),
-                        },
-                        wgpu::ShaderRuntimeChecks::unchecked(),
-                    )
-                };
-                (choice, module, specialisable)
+                let (words, open) = scene_module(&words, built_in, prune, buffers.features, choice);
+                (choice, words, open)
             })
             .collect();
+        let module = |words: &[u32], size: [u32; 2]| {
+            let mut words = words.to_vec();
+            set_workgroup_size(&mut words, size);
+            // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are
+            // bounds-checked in the source; dropping naga's duplicate runtime checks is what
+            // makes this path fast.
+            unsafe {
+                device.create_shader_module_trusted(
+                    wgpu::ShaderModuleDescriptor {
+                        label: Some("caustic-kernel"),
+                        source: wgpu::ShaderSource::SpirV(words.into()),
+                    },
+                    wgpu::ShaderRuntimeChecks::unchecked(),
+                )
+            }
+        };
         // One explicit layout for both entry points (each uses a subset of the bindings).
         let entry = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
             binding,
@@ -196,8 +196,10 @@ impl GpuBackend {
         });
         // A module built with the scene's mask already frozen in (pruned, or CAUSTIC_KERNEL_SPV, e.g.
         // spirv-opt --freeze-spec-const) has no constant left to set.
-        let pipeline = |(choice, module, specialisable): &(PathLoop, wgpu::ShaderModule, bool),
+        let pipeline = |(choice, words, specialisable): &(PathLoop, Vec<u32>, bool),
+                        size: [u32; 2],
                         entry_point: &str| {
+            let module = module(words, size);
             // The scene's feature mask specialises the kernel (spec constant 0): unused paths fold
             // away; spec constant 1 picks the path loop.
             let spec_constants = [
@@ -208,7 +210,7 @@ impl GpuBackend {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry_point),
                 layout: Some(&pipeline_layout),
-                module,
+                module: &module,
                 entry_point: Some(entry_point),
                 compilation_options: wgpu::PipelineCompilationOptions {
                     constants: if *specialisable { constants } else { &[] },
@@ -217,14 +219,20 @@ impl GpuBackend {
                 cache: None,
             })
         };
-        let mut camera_pipelines = [None, None];
-        if traces_camera_paths(integrator) {
-            for m in &modules {
-                camera_pipelines[m.0.spec_value() as usize] = Some(pipeline(m, CAMERA_ENTRY));
-            }
-        }
-        let light_pipeline = splats(integrator).then(|| pipeline(&modules[0], LIGHT_ENTRY));
-        let resolve_pipeline = splats(integrator).then(|| pipeline(&modules[0], RESOLVE_ENTRY));
+        let of_loop =
+            |choice: PathLoop| loop_words.iter().find(|l| l.0 == choice).expect("each loop's module");
+        let camera_pipelines: Vec<(Variant, wgpu::ComputePipeline)> = if traces_camera_paths(integrator) {
+            candidates
+                .iter()
+                .map(|&v| (v, pipeline(of_loop(v.path_loop), v.workgroup, CAMERA_ENTRY)))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let light_pipeline =
+            splats(integrator).then(|| pipeline(&loop_words[0], DEFAULT_WORKGROUP, LIGHT_ENTRY));
+        let resolve_pipeline =
+            splats(integrator).then(|| pipeline(&loop_words[0], DEFAULT_WORKGROUP, RESOLVE_ENTRY));
         if let Some(e) = pollster::block_on(scope.pop()) {
             bail!("the GPU rejected the kernel on {}: {e}", info.name);
         }
@@ -289,6 +297,7 @@ impl GpuBackend {
         Ok(GpuBackend {
             device,
             queue,
+            decision_key: decision_key.filter(|_| candidates.len() > 1),
             camera_pipelines,
             trial,
             light_pipeline,
@@ -346,13 +355,20 @@ impl GpuBackend {
 
 impl Backend for GpuBackend {
     fn describe(&self) -> String {
-        match (self.camera_pipelines.iter().flatten().count(), self.trial.decided()) {
-            (2, Some(choice)) => {
-                let [plain, regenerate] = self.trial.per_sample().map(|s| s * 1e3);
+        let name = |v: &Variant| {
+            let kind = if v.path_loop == PathLoop::Regenerate { "regenerating" } else { "plain" };
+            format!("{kind} loop in {}x{}", v.workgroup[0], v.workgroup[1])
+        };
+        match self.trial.decided() {
+            Some(choice) if self.camera_pipelines.len() > 1 => {
+                let timed: Vec<String> = (self.camera_pipelines.iter().zip(self.trial.per_sample()))
+                    .map(|((v, _), s)| format!("{} {:.2}", name(v), s * 1e3))
+                    .collect();
                 format!(
-                    "gpu: {}, {} path loop ({plain:.2} against {regenerate:.2} ms per spp, plain against regenerating)",
+                    "gpu: {}, {} (ms per spp: {})",
                     self.adapter_name,
-                    if choice == PathLoop::Regenerate { "regenerating" } else { "plain" }
+                    name(&self.camera_pipelines[choice].0),
+                    timed.join(", ")
                 )
             }
             _ => format!("gpu: {}", self.adapter_name),
@@ -361,7 +377,7 @@ impl Backend for GpuBackend {
 
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
         let mut chunk = *params;
-        let mut timed = Vec::with_capacity(2);
+        let mut timed = Vec::with_capacity(self.camera_pipelines.len());
         for (choice, count) in self.trial.plan(params.sample_count) {
             let end = chunk.sample_base + count;
             let clock = Instant::now();
@@ -373,8 +389,16 @@ impl Backend for GpuBackend {
             // (`dispatch` waits for the GPU: the clock measures the samples alone.)
             timed.push((choice, count, clock.elapsed()));
         }
+        let undecided = self.trial.decided().is_none();
         self.trial.record(&timed);
+        if let (true, Some(choice), Some(key)) = (undecided, self.trial.decided(), self.decision_key) {
+            Decisions::in_cache().store(key, self.camera_pipelines[choice].0);
+        }
         Ok(())
+    }
+
+    fn settled(&self) -> bool {
+        self.trial.decided().is_some()
     }
 
     fn write_accum(&mut self, accum: &Accumulation) -> Result<()> {
@@ -391,7 +415,7 @@ impl Backend for GpuBackend {
 impl GpuBackend {
     /// One dispatch of the kernel: `params.sample_count` samples per pixel (at most
     /// `max_dispatch_samples`).
-    fn dispatch(&mut self, params: &FrameParams, choice: PathLoop) -> Result<()> {
+    fn dispatch(&mut self, params: &FrameParams, choice: usize) -> Result<()> {
         self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(params));
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pass") });
@@ -403,16 +427,13 @@ impl GpuBackend {
             pass.set_bind_group(0, &self.bind_group, &[]);
             // Camera paths, light paths, then (splatting) the words folded into the accumulator: each
             // dispatch sees the previous one's writes (wgpu orders dispatches that share a buffer).
-            for pipeline in [
-                &self.camera_pipelines[choice.spec_value() as usize],
-                &self.light_pipeline,
-                &self.resolve_pipeline,
-            ]
-            .into_iter()
-            .flatten()
+            let camera = self.camera_pipelines.get(choice).map(|(v, p)| (p, v.workgroup));
+            let others = [&self.light_pipeline, &self.resolve_pipeline];
+            for (pipeline, [w, h]) in
+                camera.into_iter().chain(others.into_iter().flatten().map(|p| (p, DEFAULT_WORKGROUP)))
             {
                 pass.set_pipeline(pipeline);
-                pass.dispatch_workgroups(self.width.div_ceil(TILE), self.height.div_ceil(TILE), 1);
+                pass.dispatch_workgroups(self.width.div_ceil(w), self.height.div_ceil(h), 1);
             }
         }
         self.queue.submit([encoder.finish()]);
@@ -441,7 +462,62 @@ impl GpuBackend {
 }
 
 /// Whether a SPIR-V module decorates a specialization constant with `id` (`OpDecorate %c SpecId id`).
-fn declares_spec_constant(words: &[u32], id: u32) -> bool {
+/// The kernel's SPIR-V words, and whether they are the built-in module. `CAUSTIC_KERNEL_SPV` runs
+/// another build of the kernel (driver investigations, A/B timings).
+pub(crate) fn kernel_words() -> Result<(Vec<u32>, bool)> {
+    Ok(match std::env::var_os("CAUSTIC_KERNEL_SPV") {
+        Some(path) => {
+            let bytes = std::fs::read(&path)
+                .with_context(|| format!("cannot read CAUSTIC_KERNEL_SPV={}", path.to_string_lossy()))?;
+            (bytemuck::pod_collect_to_vec(&bytes), false)
+        }
+        None => (bytemuck::pod_collect_to_vec(KERNEL_SPV), true),
+    })
+}
+
+/// The module a scene's pipelines are built from, for path loop `choice`: pruned to the scene's
+/// feature mask where `prune` and spirv-opt allow, else the kernel itself; and whether its
+/// specialization constants are still open (then the pipeline sets them).
+pub(crate) fn scene_module(
+    words: &[u32],
+    built_in: bool,
+    prune: bool,
+    features: u32,
+    choice: PathLoop,
+) -> (Vec<u32>, bool) {
+    let specialisable = declares_spec_constant(words, 0);
+    if specialisable && prune {
+        if let Some(pruned) = super::prune::pruned(words, features, choice.spec_value(), built_in) {
+            let open = declares_spec_constant(&pruned, 0);
+            return (pruned, open);
+        }
+    }
+    (words.to_vec(), specialisable)
+}
+
+/// Rewrites every entry point's `LocalSize` execution mode to `size` × 1.
+pub(crate) fn set_workgroup_size(words: &mut [u32], size: [u32; 2]) {
+    const OP_EXECUTION_MODE: u32 = 16;
+    const LOCAL_SIZE: u32 = 17;
+    let mut at = 5;
+    while let Some(&first) = words.get(at) {
+        let count = (first >> 16) as usize;
+        if count == 0 {
+            return;
+        }
+        if first & 0xffff == OP_EXECUTION_MODE && count == 6 && words.get(at + 2) == Some(&LOCAL_SIZE) {
+            words[at + 3] = size[0];
+            words[at + 4] = size[1];
+            words[at + 5] = 1;
+        }
+        at += count;
+    }
+}
+
+/// The camera, light and resolve entry points' names, for `kernel_stats`.
+pub(crate) const ENTRY_POINTS: [&str; 3] = [CAMERA_ENTRY, LIGHT_ENTRY, RESOLVE_ENTRY];
+
+pub(crate) fn declares_spec_constant(words: &[u32], id: u32) -> bool {
     const OP_DECORATE: u32 = 71;
     const DECORATION_SPEC_ID: u32 = 1;
     // Five header words, then instructions: word count in the high half-word, opcode in the low.

@@ -2,11 +2,13 @@
 //! GPUs as one backend (`pool`).
 pub mod cpu;
 pub mod gpu;
+pub mod kernel_stats;
 pub mod limits;
 pub mod path_loop;
 pub mod pool;
 pub mod prune;
 pub mod runtime_dir;
+pub mod variant;
 
 use crate::film::Accumulation;
 use crate::schedule::Lanes;
@@ -24,6 +26,11 @@ pub trait Backend {
     fn read_accum(&mut self) -> Result<Accumulation>;
     /// Replaces the accumulation buffer (resuming from a checkpoint); `accum` has its exact size.
     fn write_accum(&mut self, accum: &Accumulation) -> Result<()>;
+    /// Whether the backend runs as it will from now on: false while it still times its candidate
+    /// pipelines (`variant`). `bench` warms up until it is.
+    fn settled(&self) -> bool {
+        true
+    }
     /// Several devices that run passes at once (`pool::Pool`); `None` for one device.
     fn lanes(&mut self) -> Option<&mut dyn Lanes> {
         None

@@ -1,0 +1,286 @@
+//! Which build of the camera pipeline runs: its path loop (`path_loop`) and its workgroup size,
+//! chosen per scene by timing the candidates on the render's own first passes.
+//!
+//! Why the workgroup size: NVIDIA's Vulkan compiler budgets registers by it. The same pruned kernel
+//! gets 128 registers per thread (162–168 with microfacets) in 8×8 workgroups, 128 in 16×16 and 32×16,
+//! 96 in 32×20, 80 in 32×24 and 64 in 32×32 (`caustic kernel-stats`), trading spills for occupancy,
+//! and the warps take other pixels (8×4 against 32×1). No size is best everywhere (H200, session 15,
+//! BENCHMARKS.md): `integrator_direct_both` ran 1.20× faster in 32×16 workgroups, glass 1.08× in
+//! 32×24, rough plastic 1.13× in 32×32, while the Cornell box lost 22% in 32×24 and the sphere light
+//! 34% in 32×32. So, as for the path loop, the backend builds the candidates and measures.
+//!
+//! The trial: the first candidate alone for `FIRST_ALONE` (a short render cannot pay for a trial),
+//! then every pass large enough to give each candidate `MIN_SHARE` samples per pixel is split between
+//! them until each has run `DECIDE_AFTER`; the fastest per sample wins. (Split dispatches of one or two
+//! samples measured the large workgroups 7% slower than whole renders did, on glass: a dispatch ends
+//! on its last workgroups, and large ones leave more of the GPU idle then.) Every candidate computes
+//! the same image to the bit (the loops and the sizes only change which thread runs which sample
+//! when), so the trial changes the speed alone. The choice is kept on disk (`Decisions`) for the next
+//! render of the same scene setup on the same adapter, which then builds that pipeline alone.
+use super::path_loop::{self, PathLoop, Request};
+use anyhow::{bail, Result};
+use caustic_kernel::layout::TILE;
+use std::path::PathBuf;
+use std::time::Duration;
+
+/// One build of the camera pipeline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Variant {
+    pub path_loop: PathLoop,
+    /// Width and height of a workgroup, in pixels.
+    pub workgroup: [u32; 2],
+}
+
+/// The kernel's own workgroup (`entry.rs`).
+pub const DEFAULT_WORKGROUP: [u32; 2] = [TILE, TILE];
+
+/// The sizes a hardware adapter tries unless `CAUSTIC_WORKGROUP` says otherwise.
+pub const TRIED_WORKGROUPS: [[u32; 2]; 3] = [DEFAULT_WORKGROUP, [32, 16], [32, 24]];
+
+/// Whether the candidates are the backend's own (neither `CAUSTIC_PATH_LOOP` nor `CAUSTIC_WORKGROUP`
+/// set): only then does a kept decision replace the trial (`measure` asks for one).
+pub fn unrequested() -> bool {
+    std::env::var_os("CAUSTIC_PATH_LOOP").is_none() && std::env::var_os("CAUSTIC_WORKGROUP").is_none()
+}
+
+/// `CAUSTIC_WORKGROUP`: unset (the backend's choice), or sizes `WxH[,WxH…]` to try (one: that size
+/// alone), each at most 1024 invocations.
+pub fn requested_workgroups() -> Result<Option<Vec<[u32; 2]>>> {
+    let Ok(text) = std::env::var("CAUSTIC_WORKGROUP") else { return Ok(None) };
+    let parse = |s: &str| -> Option<[u32; 2]> {
+        let (w, h) = s.trim().split_once('x')?;
+        let size = [w.parse().ok()?, h.parse().ok()?];
+        (size[0] > 0 && size[1] > 0 && size[0] * size[1] <= 1024).then_some(size)
+    };
+    match text.split(',').map(parse).collect::<Option<Vec<_>>>() {
+        Some(sizes) if !sizes.is_empty() => Ok(Some(sizes)),
+        _ => bail!("CAUSTIC_WORKGROUP must be sizes WxH (W·H ≤ 1024), comma-separated, not {text:?}"),
+    }
+}
+
+/// The camera pipelines to build: every path loop the request and the integrator allow (both for the
+/// path tracer on a hardware adapter), times every workgroup size (`TRIED_WORKGROUPS` there). A
+/// software adapter (the tests' lavapipe) builds the regenerating loop in the kernel's own size alone:
+/// one compile instead of six. The first candidate is the plain loop at the kernel's size.
+pub fn candidates(path_tracer: bool, software: bool) -> Result<Vec<Variant>> {
+    let loops: Vec<PathLoop> = match path_loop::requested()? {
+        Request::Fixed(choice) => vec![choice],
+        Request::Measure if path_tracer => PathLoop::BOTH.to_vec(),
+        Request::Default if path_tracer && !software => PathLoop::BOTH.to_vec(),
+        _ => vec![PathLoop::Regenerate],
+    };
+    let sizes = match requested_workgroups()? {
+        Some(sizes) => sizes,
+        None if software => vec![DEFAULT_WORKGROUP],
+        None => TRIED_WORKGROUPS.to_vec(),
+    };
+    Ok(sizes
+        .iter()
+        .flat_map(|&workgroup| loops.iter().map(move |&path_loop| Variant { path_loop, workgroup }))
+        .collect())
+}
+
+/// Trial outcomes kept between renders: one small file per setup key (`$XDG_CACHE_HOME/caustic/variants`,
+/// else `~/.cache/caustic/variants`), naming the loop and the size. A missing or unreadable one only
+/// means the trial runs again.
+pub struct Decisions {
+    pub dir: Option<PathBuf>,
+}
+
+impl Decisions {
+    pub fn in_cache() -> Self {
+        let base = std::env::var_os("XDG_CACHE_HOME")
+            .map(PathBuf::from)
+            .filter(|p| p.is_absolute())
+            .or_else(|| std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".cache")));
+        Decisions { dir: base.map(|b| b.join("caustic").join("variants")) }
+    }
+
+    /// The key of a setup: the kernel and the scene's feature mask (what pruning makes of it), the
+    /// image size, the adapter and the candidates (another set, another trial).
+    pub fn key(kernel: &[u32], features: u32, size: [u32; 2], adapter: &str, candidates: &[Variant]) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::hash::DefaultHasher::new();
+        (kernel, features, size, adapter, format!("{candidates:?}")).hash(&mut h);
+        h.finish()
+    }
+
+    pub fn load(&self, key: u64) -> Option<Variant> {
+        let text = std::fs::read_to_string(self.dir.as_ref()?.join(format!("{key:016x}.txt"))).ok()?;
+        let (kind, size) = text.trim().split_once(' ')?;
+        let path_loop = match kind {
+            "plain" => PathLoop::Plain,
+            "regenerating" => PathLoop::Regenerate,
+            _ => return None,
+        };
+        let (w, h) = size.split_once('x')?;
+        let workgroup: [u32; 2] = [w.parse().ok()?, h.parse().ok()?];
+        (workgroup[0] > 0 && workgroup[1] > 0 && workgroup[0] * workgroup[1] <= 1024)
+            .then_some(Variant { path_loop, workgroup })
+    }
+
+    pub fn store(&self, key: u64, v: Variant) {
+        let Some(dir) = &self.dir else { return };
+        let kind = if v.path_loop == PathLoop::Regenerate { "regenerating" } else { "plain" };
+        if std::fs::create_dir_all(dir).is_ok() {
+            let _ = std::fs::write(
+                dir.join(format!("{key:016x}.txt")),
+                format!("{kind} {}x{}\n", v.workgroup[0], v.workgroup[1]),
+            );
+        }
+    }
+}
+
+/// The first candidate runs alone this long: a short render (the sphere light's 256 spp take 80 ms
+/// on the H100) is over before a trial could pay for itself.
+const FIRST_ALONE: Duration = Duration::from_millis(100);
+/// Then passes are split between the candidates until each has run this long in split passes.
+const DECIDE_AFTER: Duration = Duration::from_millis(100);
+/// A pass is split only where each candidate gets this many samples per pixel.
+const MIN_SHARE: u32 = 2;
+
+/// The trial of `count` candidates (indices into `candidates`' list) over a render's first passes.
+#[derive(Clone, Debug)]
+pub struct Trial {
+    count: usize,
+    /// Time in whole passes of the first candidate before the trial.
+    first_alone: Duration,
+    /// Per candidate: time and samples per pixel measured in split passes (after the first split
+    /// pass, which may carry the other pipelines' first-use costs).
+    time: Vec<Duration>,
+    samples: Vec<u64>,
+    warm: bool,
+    decided: Option<usize>,
+}
+
+impl Trial {
+    /// A trial of `count` candidates; with one, decided from the start.
+    pub fn new(count: usize) -> Self {
+        Trial {
+            count,
+            first_alone: Duration::ZERO,
+            time: vec![Duration::ZERO; count],
+            samples: vec![0; count],
+            warm: false,
+            decided: (count <= 1).then_some(0),
+        }
+    }
+
+    /// The candidate chosen, once it is.
+    pub fn decided(&self) -> Option<usize> {
+        self.decided
+    }
+
+    /// How to run a pass of `samples` per pixel: (candidate, samples) dispatches in order.
+    pub fn plan(&self, samples: u32) -> Vec<(usize, u32)> {
+        let n = self.count as u32;
+        match self.decided {
+            Some(choice) => vec![(choice, samples)],
+            None if self.first_alone < FIRST_ALONE || samples < n * MIN_SHARE => vec![(0, samples)],
+            None => (0..n).map(|i| (i as usize, samples / n + (i < samples % n) as u32)).collect(),
+        }
+    }
+
+    /// Records how long the dispatches of a pass's `plan` took, and decides once every candidate has
+    /// been measured long enough.
+    pub fn record(&mut self, dispatches: &[(usize, u32, Duration)]) {
+        if self.decided.is_some() {
+            return;
+        }
+        if let [(_, _, elapsed)] = dispatches {
+            self.first_alone += *elapsed;
+            return;
+        }
+        if !std::mem::replace(&mut self.warm, true) {
+            return;
+        }
+        for &(i, samples, elapsed) in dispatches {
+            self.time[i] += elapsed;
+            self.samples[i] += samples as u64;
+        }
+        if self.time.iter().all(|&t| t >= DECIDE_AFTER) {
+            let per_sample = self.per_sample();
+            let best = (0..self.count).min_by(|&a, &b| per_sample[a].total_cmp(&per_sample[b]));
+            self.decided = best;
+        }
+    }
+
+    /// The figures behind the choice, for the log: seconds per sample per pixel of each candidate.
+    pub fn per_sample(&self) -> Vec<f64> {
+        (0..self.count).map(|i| self.time[i].as_secs_f64() / self.samples[i].max(1) as f64).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ms(v: u64) -> Duration {
+        Duration::from_millis(v)
+    }
+
+    /// Runs passes of `count` samples with the given ms per sample per candidate until the trial
+    /// decides; returns it and the passes it took.
+    fn trial(cost_ms: &[u64], count: u32) -> (Trial, u32) {
+        let mut t = Trial::new(cost_ms.len());
+        for pass in 1..100 {
+            if t.decided().is_some() {
+                return (t, pass);
+            }
+            let plan = t.plan(count);
+            let timed: Vec<_> = plan.iter().map(|&(i, n)| (i, n, ms(cost_ms[i] * n as u64))).collect();
+            t.record(&timed);
+        }
+        panic!("no decision");
+    }
+
+    #[test]
+    fn the_first_runs_alone_then_the_fastest_per_sample_wins() {
+        let t = Trial::new(2);
+        assert_eq!(t.plan(8), vec![(0, 8)], "the first candidate alone first");
+        // Three passes alone (144 ms ≥ 100), one unmeasured split pass, then five split passes (120
+        // and 100 ms ≥ 100): decided before the tenth.
+        let (t, passes) = trial(&[12, 10], 4);
+        assert_eq!(t.decided(), Some(1));
+        assert_eq!(passes, 10);
+        assert_eq!(t.plan(8), vec![(1, 8)]);
+        assert_eq!(trial(&[10, 12], 4).0.decided(), Some(0));
+        // Six candidates (two loops by three sizes): every one is timed, the cheapest wins.
+        assert_eq!(trial(&[10, 12, 9, 11, 7, 8], 12).0.decided(), Some(4));
+    }
+
+    #[test]
+    fn a_pass_is_split_by_whole_samples_or_not_at_all() {
+        let mut t = Trial::new(3);
+        t.record(&[(0, 10, FIRST_ALONE)]);
+        assert_eq!(t.plan(8), vec![(0, 3), (1, 3), (2, 2)]);
+        assert_eq!(t.plan(5), vec![(0, 5)], "under two samples each: the first alone");
+    }
+
+    #[test]
+    fn one_candidate_is_decided_from_the_start() {
+        let t = Trial::new(1);
+        assert_eq!(t.decided(), Some(0));
+        assert_eq!(t.plan(64), vec![(0, 64)]);
+    }
+
+    #[test]
+    fn the_kernels_own_size_is_tried_first_and_every_size_fits_a_workgroup() {
+        assert_eq!(TRIED_WORKGROUPS[0], DEFAULT_WORKGROUP);
+        assert!(TRIED_WORKGROUPS.iter().all(|[w, h]| w * h <= 1024));
+    }
+
+    #[test]
+    fn a_decision_is_kept_per_setup() {
+        let dir = std::env::temp_dir().join(format!("caustic-variants-test-{}", std::process::id()));
+        let decisions = Decisions { dir: Some(dir.clone()) };
+        let v = Variant { path_loop: PathLoop::Regenerate, workgroup: [32, 16] };
+        assert_eq!(decisions.load(7), None);
+        decisions.store(7, v);
+        assert_eq!(decisions.load(7), Some(v));
+        assert_eq!(decisions.load(8), None, "another setup's key");
+        std::fs::write(dir.join(format!("{:016x}.txt", 9u64)), "plain 32x9999").unwrap();
+        assert_eq!(decisions.load(9), None, "a size over 1024 invocations is not read back");
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+}
