@@ -170,21 +170,8 @@ impl GpuBackend {
             },
             count: None,
         };
-        let layout_entries: Vec<wgpu::BindGroupLayoutEntry> = [
-            binding::PARAMS,
-            binding::NODES,
-            binding::PRIMS,
-            binding::ATTRIBUTES,
-            binding::MATERIALS,
-            binding::LIGHTS,
-            binding::TABLES,
-            binding::ACCUM,
-            binding::TEXTURES,
-            binding::SPLAT,
-        ]
-        .iter()
-        .map(|&b| entry(b, b != binding::ACCUM && b != binding::SPLAT))
-        .collect();
+        let layout_entries: Vec<wgpu::BindGroupLayoutEntry> =
+            BINDINGS.iter().map(|&b| entry(b, b != binding::ACCUM && b != binding::SPLAT)).collect();
         let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("scene"),
             entries: &layout_entries,
@@ -495,52 +482,68 @@ pub(crate) fn scene_module(
     (words.to_vec(), specialisable)
 }
 
+/// Where each instruction of a SPIR-V module starts, with its opcode and word count: five header
+/// words, then instructions, each with its word count in the high half-word and its opcode in the
+/// low. A zero count (a broken module) ends the walk.
+pub(crate) fn instructions(words: &[u32]) -> impl Iterator<Item = (usize, u32, usize)> + '_ {
+    let mut at = 5;
+    std::iter::from_fn(move || {
+        let first = *words.get(at)?;
+        let count = (first >> 16) as usize;
+        if count == 0 {
+            return None;
+        }
+        let found = (at, first & 0xffff, count);
+        at += count;
+        Some(found)
+    })
+}
+
 /// Rewrites every entry point's `LocalSize` execution mode to `size` × 1.
 pub(crate) fn set_workgroup_size(words: &mut [u32], size: [u32; 2]) {
     const OP_EXECUTION_MODE: u32 = 16;
     const LOCAL_SIZE: u32 = 17;
-    let mut at = 5;
-    while let Some(&first) = words.get(at) {
-        let count = (first >> 16) as usize;
-        if count == 0 {
-            return;
-        }
-        if first & 0xffff == OP_EXECUTION_MODE && count == 6 && words.get(at + 2) == Some(&LOCAL_SIZE) {
-            words[at + 3] = size[0];
-            words[at + 4] = size[1];
-            words[at + 5] = 1;
-        }
-        at += count;
+    let found: Vec<usize> = instructions(words)
+        .filter(|&(at, op, count)| {
+            op == OP_EXECUTION_MODE && count == 6 && words.get(at + 2) == Some(&LOCAL_SIZE)
+        })
+        .map(|(at, _, _)| at)
+        .collect();
+    for at in found {
+        words[at + 3..at + 6].copy_from_slice(&[size[0], size[1], 1]);
     }
 }
 
 /// The camera, light and resolve entry points' names, for `kernel_stats`.
 pub(crate) const ENTRY_POINTS: [&str; 3] = [CAMERA_ENTRY, LIGHT_ENTRY, RESOLVE_ENTRY];
 
+/// The kernel's bindings (`entry.rs`), all storage buffers of descriptor set 0.
+pub(crate) const BINDINGS: [u32; 10] = [
+    binding::PARAMS,
+    binding::NODES,
+    binding::PRIMS,
+    binding::ATTRIBUTES,
+    binding::MATERIALS,
+    binding::LIGHTS,
+    binding::TABLES,
+    binding::ACCUM,
+    binding::TEXTURES,
+    binding::SPLAT,
+];
+
 pub(crate) fn declares_spec_constant(words: &[u32], id: u32) -> bool {
     const OP_DECORATE: u32 = 71;
     const DECORATION_SPEC_ID: u32 = 1;
-    // Five header words, then instructions: word count in the high half-word, opcode in the low.
-    let mut at = 5;
-    while let Some(&first) = words.get(at) {
-        let count = (first >> 16) as usize;
-        if count == 0 {
-            return false;
-        }
-        if first & 0xffff == OP_DECORATE
-            && words.get(at + 2) == Some(&DECORATION_SPEC_ID)
-            && words.get(at + 3) == Some(&id)
-        {
-            return true;
-        }
-        at += count;
-    }
-    false
+    instructions(words).any(|(at, op, _)| {
+        op == OP_DECORATE && words.get(at + 2) == Some(&DECORATION_SPEC_ID) && words.get(at + 3) == Some(&id)
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    use caustic_kernel::layout::TILE;
 
     #[test]
     fn the_committed_kernel_declares_its_two_constants() {
@@ -551,5 +554,22 @@ mod tests {
         // A module without decorations (header only) and a truncated one declare nothing.
         assert!(!declares_spec_constant(&words[..5], 0));
         assert!(!declares_spec_constant(&[0x0723_0203, 0, 0, 0, 0, 0], 0));
+    }
+
+    #[test]
+    fn every_entry_point_gets_the_workgroup_size() {
+        let local_sizes = |words: &[u32]| -> Vec<[u32; 3]> {
+            instructions(words)
+                .filter(|&(at, op, count)| op == 16 && count == 6 && words[at + 2] == 17)
+                .map(|(at, _, _)| [words[at + 3], words[at + 4], words[at + 5]])
+                .collect()
+        };
+        let mut words: Vec<u32> = bytemuck::pod_collect_to_vec(KERNEL_SPV);
+        assert_eq!(local_sizes(&words), vec![[TILE, TILE, 1]; ENTRY_POINTS.len()]);
+        let before = words.clone();
+        set_workgroup_size(&mut words, [32, 16]);
+        assert_eq!(local_sizes(&words), vec![[32, 16, 1]; ENTRY_POINTS.len()]);
+        let changed = words.iter().zip(&before).filter(|(a, b)| a != b).count();
+        assert_eq!(changed, 2 * ENTRY_POINTS.len(), "the sizes alone change");
     }
 }

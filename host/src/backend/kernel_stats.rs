@@ -7,11 +7,12 @@
 //! stays live across loops (BENCHMARKS.md); the register count is the figure that explains such a
 //! loss without a timing run. The pipeline here is built with `ash` directly, from the same module and
 //! binding layout as `backend::gpu`'s, but with the statistics flag that wgpu never sets.
+use super::gpu::BINDINGS;
 use super::path_loop::PathLoop;
 use super::variant::{self, Variant, DEFAULT_WORKGROUP};
 use anyhow::{anyhow, bail, Context, Result};
 use ash::vk;
-use caustic_kernel::layout::{binding, INTEGRATOR_PATH};
+use caustic_kernel::layout::INTEGRATOR_PATH;
 use std::ffi::{CStr, CString};
 
 /// One statistic of one executable, as the driver names and describes it.
@@ -28,20 +29,6 @@ pub struct Executable {
     pub name: String,
     pub stats: Vec<Statistic>,
 }
-
-/// The bindings of the kernel's one descriptor set (`entry.rs`), all storage buffers.
-const BINDINGS: [u32; 10] = [
-    binding::PARAMS,
-    binding::NODES,
-    binding::PRIMS,
-    binding::ATTRIBUTES,
-    binding::MATERIALS,
-    binding::LIGHTS,
-    binding::TABLES,
-    binding::ACCUM,
-    binding::TEXTURES,
-    binding::SPLAT,
-];
 
 const EXTENSION: &CStr = ash::khr::pipeline_executable_properties::NAME;
 
@@ -346,12 +333,8 @@ mod tests {
         assert_eq!(module[0], 0x0723_0203);
         assert!(!declares_spec_constant(&module, 0) && !declares_spec_constant(&module, 1));
         const OP_ENTRY_POINT: u32 = 15;
-        let mut at = 5;
-        let mut entry_points = 0;
-        while let Some(&first) = module.get(at) {
-            entry_points += (first & 0xffff == OP_ENTRY_POINT) as u32;
-            at += (first >> 16).max(1) as usize;
-        }
+        let entry_points =
+            crate::backend::gpu::instructions(&module).filter(|i| i.1 == OP_ENTRY_POINT).count();
         assert_eq!(entry_points, 1);
         assert!(through_naga(&words, "entry::nowhere", [0, 1]).is_err());
     }
