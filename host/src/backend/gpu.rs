@@ -35,6 +35,11 @@ pub struct GpuBackend {
     trial: Trial,
     /// Where the trial's outcome is kept (`variant::Decisions`), while one runs.
     decision_key: Option<u64>,
+    /// Every candidate, in the trial's order; `camera_pipelines` holds the first of them until the
+    /// trial splits a pass, then all.
+    candidates: Vec<Variant>,
+    /// What builds the rest, until it has.
+    factory: Option<PipelineFactory>,
     light_pipeline: Option<wgpu::ComputePipeline>,
     bind_group: wgpu::BindGroup,
     params_buffer: wgpu::Buffer,
@@ -143,22 +148,6 @@ impl GpuBackend {
                 (choice, words, open)
             })
             .collect();
-        let module = |words: &[u32], size: [u32; 2]| {
-            let mut words = words.to_vec();
-            set_workgroup_size(&mut words, size);
-            // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are
-            // bounds-checked in the source; dropping naga's duplicate runtime checks is what
-            // makes this path fast.
-            unsafe {
-                device.create_shader_module_trusted(
-                    wgpu::ShaderModuleDescriptor {
-                        label: Some("caustic-kernel"),
-                        source: wgpu::ShaderSource::SpirV(words.into()),
-                    },
-                    wgpu::ShaderRuntimeChecks::unchecked(),
-                )
-            }
-        };
         // One explicit layout for both entry points (each uses a subset of the bindings).
         let entry = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
             binding,
@@ -181,45 +170,27 @@ impl GpuBackend {
             bind_group_layouts: &[Some(&bind_group_layout)],
             immediate_size: 0,
         });
-        // A module built with the scene's mask already frozen in (pruned, or CAUSTIC_KERNEL_SPV, e.g.
-        // spirv-opt --freeze-spec-const) has no constant left to set.
-        let pipeline = |(choice, words, specialisable): &(PathLoop, Vec<u32>, bool),
-                        size: [u32; 2],
-                        entry_point: &str| {
-            let module = module(words, size);
-            // The scene's feature mask specialises the kernel (spec constant 0): unused paths fold
-            // away; spec constant 1 picks the path loop.
-            let spec_constants = [
-                (SPEC_FEATURES.to_string(), buffers.features as f64),
-                (SPEC_REGENERATE.to_string(), choice.spec_value() as f64),
-            ];
-            let constants: &[(&str, f64)] = &spec_constants.each_ref().map(|(k, v)| (k.as_str(), *v));
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry_point),
-                layout: Some(&pipeline_layout),
-                module: &module,
-                entry_point: Some(entry_point),
-                compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: if *specialisable { constants } else { &[] },
-                    ..Default::default()
-                },
-                cache: None,
-            })
+        let factory = PipelineFactory {
+            device: device.clone(),
+            layout: pipeline_layout,
+            features: buffers.features,
+            loops: loop_words,
         };
-        let of_loop =
-            |choice: PathLoop| loop_words.iter().find(|l| l.0 == choice).expect("each loop's module");
+        // The first candidate now; the others once the trial reaches them (`build_candidates`): a
+        // render too short for a trial compiles one pipeline, not six.
         let camera_pipelines: Vec<(Variant, wgpu::ComputePipeline)> = if traces_camera_paths(integrator) {
-            candidates
-                .iter()
-                .map(|&v| (v, pipeline(of_loop(v.path_loop), v.workgroup, CAMERA_ENTRY)))
-                .collect()
+            vec![(
+                candidates[0],
+                factory.build(candidates[0].path_loop, candidates[0].workgroup, CAMERA_ENTRY),
+            )]
         } else {
             Vec::new()
         };
+        let first_loop = factory.loops[0].0;
         let light_pipeline =
-            splats(integrator).then(|| pipeline(&loop_words[0], DEFAULT_WORKGROUP, LIGHT_ENTRY));
+            splats(integrator).then(|| factory.build(first_loop, DEFAULT_WORKGROUP, LIGHT_ENTRY));
         let resolve_pipeline =
-            splats(integrator).then(|| pipeline(&loop_words[0], DEFAULT_WORKGROUP, RESOLVE_ENTRY));
+            splats(integrator).then(|| factory.build(first_loop, DEFAULT_WORKGROUP, RESOLVE_ENTRY));
         if let Some(e) = pollster::block_on(scope.pop()) {
             bail!("the GPU rejected the kernel on {}: {e}", info.name);
         }
@@ -285,6 +256,8 @@ impl GpuBackend {
             device,
             queue,
             decision_key: decision_key.filter(|_| candidates.len() > 1),
+            factory: (camera_pipelines.len() < candidates.len()).then_some(factory),
+            candidates,
             camera_pipelines,
             trial,
             light_pipeline,
@@ -365,7 +338,11 @@ impl Backend for GpuBackend {
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
         let mut chunk = *params;
         let mut timed = Vec::with_capacity(self.camera_pipelines.len());
-        for (choice, count) in self.trial.plan(params.sample_count) {
+        let plan = self.trial.plan(params.sample_count);
+        if plan.len() > 1 {
+            self.build_candidates()?;
+        }
+        for (choice, count) in plan {
             let end = chunk.sample_base + count;
             let clock = Instant::now();
             while chunk.sample_base < end {
@@ -400,6 +377,19 @@ impl Backend for GpuBackend {
 }
 
 impl GpuBackend {
+    /// Compiles the camera pipelines of the candidates not built yet (once the trial splits a pass).
+    fn build_candidates(&mut self) -> Result<()> {
+        let Some(factory) = self.factory.take() else { return Ok(()) };
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        for &v in &self.candidates[self.camera_pipelines.len()..] {
+            self.camera_pipelines.push((v, factory.build(v.path_loop, v.workgroup, CAMERA_ENTRY)));
+        }
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            bail!("the GPU rejected the kernel on {}: {e}", self.adapter_name);
+        }
+        Ok(())
+    }
+
     /// One dispatch of the kernel: `params.sample_count` samples per pixel (at most
     /// `max_dispatch_samples`).
     fn dispatch(&mut self, params: &FrameParams, choice: usize) -> Result<()> {
@@ -448,7 +438,59 @@ impl GpuBackend {
     }
 }
 
-/// Whether a SPIR-V module decorates a specialization constant with `id` (`OpDecorate %c SpecId id`).
+/// What building a pipeline of the scene's kernel needs, kept while the trial's later candidates
+/// are not built yet.
+struct PipelineFactory {
+    device: wgpu::Device,
+    layout: wgpu::PipelineLayout,
+    features: u32,
+    /// Each path loop's module (pruned to the scene where it could be) and whether its
+    /// specialization constants are still open (then the pipeline sets them).
+    loops: Vec<(PathLoop, Vec<u32>, bool)>,
+}
+
+impl PipelineFactory {
+    /// Entry point `entry` of path loop `path_loop`'s module in workgroups of `size`.
+    fn build(&self, path_loop: PathLoop, size: [u32; 2], entry: &str) -> wgpu::ComputePipeline {
+        let (_, words, specialisable) =
+            self.loops.iter().find(|l| l.0 == path_loop).expect("each loop's module");
+        let mut words = words.clone();
+        set_workgroup_size(&mut words, size);
+        // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are
+        // bounds-checked in the source; dropping naga's duplicate runtime checks is what
+        // makes this path fast.
+        let module = unsafe {
+            self.device.create_shader_module_trusted(
+                wgpu::ShaderModuleDescriptor {
+                    label: Some("caustic-kernel"),
+                    source: wgpu::ShaderSource::SpirV(words.into()),
+                },
+                wgpu::ShaderRuntimeChecks::unchecked(),
+            )
+        };
+        // The scene's feature mask specialises the kernel (spec constant 0): unused paths fold
+        // away; spec constant 1 picks the path loop. A module built with the scene's mask already
+        // frozen in (pruned, or CAUSTIC_KERNEL_SPV, e.g. spirv-opt --freeze-spec-const) has no
+        // constant left to set.
+        let spec_constants = [
+            (SPEC_FEATURES.to_string(), self.features as f64),
+            (SPEC_REGENERATE.to_string(), path_loop.spec_value() as f64),
+        ];
+        let constants: &[(&str, f64)] = &spec_constants.each_ref().map(|(k, v)| (k.as_str(), *v));
+        self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(entry),
+            layout: Some(&self.layout),
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants: if *specialisable { constants } else { &[] },
+                ..Default::default()
+            },
+            cache: None,
+        })
+    }
+}
+
 /// The kernel's SPIR-V words, and whether they are the built-in module. `CAUSTIC_KERNEL_SPV` runs
 /// another build of the kernel (driver investigations, A/B timings).
 pub(crate) fn kernel_words() -> Result<(Vec<u32>, bool)> {
@@ -531,6 +573,7 @@ pub(crate) const BINDINGS: [u32; 10] = [
     binding::SPLAT,
 ];
 
+/// Whether a SPIR-V module decorates a specialization constant with `id` (`OpDecorate %c SpecId id`).
 pub(crate) fn declares_spec_constant(words: &[u32], id: u32) -> bool {
     const OP_DECORATE: u32 = 71;
     const DECORATION_SPEC_ID: u32 = 1;

@@ -7,7 +7,8 @@
 //! and the warps take other pixels (8×4 against 32×1). No size is best everywhere (H200, session 15,
 //! BENCHMARKS.md): `integrator_direct_both` ran 1.20× faster in 32×16 workgroups, glass 1.08× in
 //! 32×24, rough plastic 1.13× in 32×32, while the Cornell box lost 22% in 32×24 and the sphere light
-//! 34% in 32×32. So, as for the path loop, the backend builds the candidates and measures.
+//! 34% in 32×32. So, as for the path loop, the backend builds the candidates and measures (the first
+//! at once, the others when the trial first splits a pass: `backend::gpu`).
 //!
 //! The trial: the first candidate alone for `FIRST_ALONE` (a short render cannot pay for a trial),
 //! then every pass large enough to give each candidate `MIN_SHARE` samples per pixel is split between
