@@ -130,7 +130,9 @@ pub fn create_on(
         crate::memory::available(),
         &format!("a {w}×{h} render"),
     )?;
-    path_loop::requested()?; // (a bad CAUSTIC_PATH_LOOP is an error on every backend)
+    // (A bad CAUSTIC_PATH_LOOP or CAUSTIC_WORKGROUP is an error on every backend.)
+    path_loop::requested()?;
+    variant::requested_workgroups()?;
     let cpu = || -> Box<dyn Backend + Send> { Box::new(cpu::CpuBackend::new(buffers.clone())) };
     let hardware_only = match choice {
         BackendChoice::Cpu => return Ok(cpu()),

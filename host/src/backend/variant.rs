@@ -5,7 +5,7 @@
 //! gets 128 registers per thread (162–168 with microfacets) in 8×8 workgroups, 128 in 16×16 and 32×16,
 //! 96 in 32×20, 80 in 32×24 and 64 in 32×32 (`caustic kernel-stats`), trading spills for occupancy,
 //! and the warps take other pixels (8×4 against 32×1). No size is best everywhere (H200, session 15,
-//! BENCHMARKS.md): `integrator_direct_both` ran 1.20× faster in 32×16 workgroups, glass 1.08× in
+//! BENCHMARKS.md): `integrator_direct_both` ran 1.19× faster in 32×16 workgroups, glass 1.08× in
 //! 32×24, rough plastic 1.13× in 32×32, while the Cornell box lost 22% in 32×24 and the sphere light
 //! 34% in 32×32. So, as for the path loop, the backend builds the candidates and measures (the first
 //! at once, the others when the trial first splits a pass: `backend::gpu`).
@@ -47,14 +47,21 @@ pub fn unrequested() -> bool {
 /// `CAUSTIC_WORKGROUP`: unset (the backend's choice), or sizes `WxH[,WxH…]` to try (one: that size
 /// alone), each at most 1024 invocations.
 pub fn requested_workgroups() -> Result<Option<Vec<[u32; 2]>>> {
-    let Ok(text) = std::env::var("CAUSTIC_WORKGROUP") else { return Ok(None) };
+    match std::env::var("CAUSTIC_WORKGROUP") {
+        Ok(text) => parse_workgroups(&text).map(Some),
+        Err(_) => Ok(None),
+    }
+}
+
+/// Sizes `WxH[,WxH…]`, each of at most 1024 invocations.
+fn parse_workgroups(text: &str) -> Result<Vec<[u32; 2]>> {
     let parse = |s: &str| -> Option<[u32; 2]> {
         let (w, h) = s.trim().split_once('x')?;
         let size = [w.parse().ok()?, h.parse().ok()?];
         (size[0] > 0 && size[1] > 0 && size[0] * size[1] <= 1024).then_some(size)
     };
     match text.split(',').map(parse).collect::<Option<Vec<_>>>() {
-        Some(sizes) if !sizes.is_empty() => Ok(Some(sizes)),
+        Some(sizes) if !sizes.is_empty() => Ok(sizes),
         _ => bail!("CAUSTIC_WORKGROUP must be sizes WxH (W·H ≤ 1024), comma-separated, not {text:?}"),
     }
 }
@@ -263,6 +270,16 @@ mod tests {
         let t = Trial::new(1);
         assert_eq!(t.decided(), Some(0));
         assert_eq!(t.plan(64), vec![(0, 64)]);
+    }
+
+    #[test]
+    fn workgroup_requests_are_sizes_of_at_most_1024_invocations() {
+        assert_eq!(parse_workgroups("32x16").unwrap(), vec![[32, 16]]);
+        assert_eq!(parse_workgroups("8x8, 32x32").unwrap(), vec![[8, 8], [32, 32]]);
+        for bad in ["", "32", "32x", "0x8", "64x32", "8x8,", "8X8", "-8x8"] {
+            let e = parse_workgroups(bad).unwrap_err().to_string();
+            assert!(e.contains("CAUSTIC_WORKGROUP"), "{bad:?}: {e}");
+        }
     }
 
     #[test]
