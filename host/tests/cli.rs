@@ -681,3 +681,42 @@ fn aov_scenes_write_one_exr_with_every_channel() {
     assert_eq!(written, ["image.png", "resumed.exr", "whole.exr"], "files written besides the images");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `kernel-stats` writes the modules the driver would compile, one per candidate pipeline; the
+/// statistics need an adapter that reports them (NVIDIA's does, CI's lavapipe does not), and without
+/// one the command says so and fails cleanly unless the modules alone were asked for.
+#[test]
+fn kernel_stats_writes_what_the_driver_gets_or_says_why_not() {
+    let dir = std::env::temp_dir().join(format!("caustic-kernel-stats-{}", std::process::id()));
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["kernel-stats", scene, "-D", "res=32"];
+        args.extend_from_slice(extra);
+        Command::new(env!("CARGO_BIN_EXE_caustic"))
+            .args(&args)
+            .env("XDG_RUNTIME_DIR", "/tmp")
+            .env("CAUSTIC_PATH_LOOP", "plain")
+            .env("CAUSTIC_WORKGROUP", "8x8,32x16")
+            .output()
+            .expect("runs")
+    };
+    let out = run(&["--write-spirv", dir.to_str().unwrap()]);
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "{stdout}{stderr}");
+    for size in ["8x8", "32x16"] {
+        let bytes =
+            std::fs::read(dir.join(format!("entry-render-plain-{size}.spv"))).expect("module written");
+        assert_eq!(bytes[..4], 0x0723_0203u32.to_le_bytes(), "{size}: not SPIR-V");
+    }
+    let reported = stdout.contains("| entry::render | Plain | 8x8 |");
+    assert!(reported || stdout.contains("reports pipeline statistics"), "{stdout}");
+    let out = run(&[]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.success(), reported, "{stderr}");
+    assert!(
+        reported || stderr.contains("error: no Vulkan adapter here reports pipeline statistics"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    std::fs::remove_dir_all(dir).unwrap();
+}
