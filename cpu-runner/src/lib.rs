@@ -13,11 +13,23 @@ use std::sync::atomic::{AtomicU32, Ordering};
 pub fn render_pass(scene: &SceneView, params: &FrameParams, accum: &mut [PixelAccum], regenerate: bool) {
     let pixels = (params.width * params.height) as usize;
     assert_eq!(accum.len(), pixels, "accumulation buffer does not match the image size");
-    // Rows as work items: large enough to amortise scheduling, small enough to balance load.
-    accum.par_chunks_mut(params.width as usize).enumerate().for_each(|(y, row)| {
-        for (x, slot) in row.iter_mut().enumerate() {
-            let pixel = y as u32 * params.width + x as u32;
-            *slot = accumulated(*slot, &render_pixel(scene, params, pixel, regenerate), params.sample_count);
+    // Bands of TILE rows as work items, each walked in TILE × TILE tiles: neighbouring pixels' rays
+    // one after the other, as the GPU's workgroups run them.
+    let (width, tile) = (params.width as usize, caustic_kernel::layout::TILE as usize);
+    accum.par_chunks_mut(width * tile).enumerate().for_each(|(band, rows)| {
+        let height = rows.len() / width;
+        for x0 in (0..width).step_by(tile) {
+            for dy in 0..height {
+                for x in x0..(x0 + tile).min(width) {
+                    let slot = &mut rows[dy * width + x];
+                    let pixel = ((band * tile + dy) * width + x) as u32;
+                    *slot = accumulated(
+                        *slot,
+                        &render_pixel(scene, params, pixel, regenerate),
+                        params.sample_count,
+                    );
+                }
+            }
         }
     });
 }
