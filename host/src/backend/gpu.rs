@@ -123,9 +123,8 @@ impl GpuBackend {
         }
         // A trial of this setup decided before: that candidate alone.
         let decisions = Decisions::in_cache();
-        let image = [buffers.params.width, buffers.params.height];
         let decision_key = (candidates.len() > 1)
-            .then(|| Decisions::key(&words, buffers.features, image, &info.name, &candidates));
+            .then(|| Decisions::key(&words, variant::scene_fingerprint(buffers), &info.name, &candidates));
         let kept = decision_key.filter(|_| variant::unrequested()).and_then(|key| decisions.load(key));
         if let Some(v) = kept.filter(|v| candidates.contains(v)) {
             candidates = vec![v];

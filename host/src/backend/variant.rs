@@ -104,12 +104,12 @@ impl Decisions {
         Decisions { dir: base.map(|b| b.join("caustic").join("variants")) }
     }
 
-    /// The key of a setup: the kernel and the scene's feature mask (what pruning makes of it), the
-    /// image size, the adapter and the candidates (another set, another trial).
-    pub fn key(kernel: &[u32], features: u32, size: [u32; 2], adapter: &str, candidates: &[Variant]) -> u64 {
+    /// The key of a setup: the kernel, the scene (`scene_fingerprint`), the adapter and the
+    /// candidates (another set, another trial).
+    pub fn key(kernel: &[u32], scene: u64, adapter: &str, candidates: &[Variant]) -> u64 {
         use std::hash::{Hash, Hasher};
         let mut h = std::hash::DefaultHasher::new();
-        (kernel, features, size, adapter, format!("{candidates:?}")).hash(&mut h);
+        (kernel, scene, adapter, format!("{candidates:?}")).hash(&mut h);
         h.finish()
     }
 
@@ -137,6 +137,25 @@ impl Decisions {
             );
         }
     }
+}
+
+/// What tells one scene setup from another for a kept choice: its feature mask, its settings (the
+/// frame parameters, image size and camera included, less what changes from pass to pass and the
+/// seed), its materials and lights, and the size and bounds of its geometry. Two scenes that share a
+/// feature mask and an image size (the shared set's diffuse scenes, say) keep a choice each: in
+/// session 15's first table they shared one.
+pub fn scene_fingerprint(buffers: &crate::buffers::SceneBuffers) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut params = buffers.params;
+    (params.sample_base, params.sample_count, params.seed, params.spp_total) = (0, 0, 0, 0);
+    let mut h = std::hash::DefaultHasher::new();
+    buffers.features.hash(&mut h);
+    bytemuck::bytes_of(&params).hash(&mut h);
+    bytemuck::cast_slice::<_, u8>(&buffers.materials).hash(&mut h);
+    bytemuck::cast_slice::<_, u8>(&buffers.lights).hash(&mut h);
+    (buffers.prims.len(), buffers.nodes.len(), buffers.textures.len(), buffers.tables.len()).hash(&mut h);
+    buffers.nodes.first().map(bytemuck::bytes_of).hash(&mut h);
+    h.finish()
 }
 
 /// The first candidate runs alone this long: a short render (the sphere light's 256 spp take 80 ms
@@ -300,5 +319,23 @@ mod tests {
         std::fs::write(dir.join(format!("{:016x}.txt", 9u64)), "plain 32x9999").unwrap();
         assert_eq!(decisions.load(9), None, "a size over 1024 invocations is not read back");
         std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn a_scene_setup_has_its_own_fingerprint() {
+        let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml"));
+        let build = |res: &str| {
+            let scene = crate::load_scene(path, &[("res".to_string(), res.to_string())]).unwrap();
+            crate::buffers::build(&scene).unwrap()
+        };
+        let a = build("16");
+        assert_eq!(scene_fingerprint(&a), scene_fingerprint(&build("16")));
+        let mut pass = a.clone();
+        (pass.params.seed, pass.params.sample_base, pass.params.sample_count) = (7, 64, 16);
+        assert_eq!(scene_fingerprint(&a), scene_fingerprint(&pass), "a pass's fields are not the setup");
+        assert_ne!(scene_fingerprint(&a), scene_fingerprint(&build("32")), "another image size");
+        let mut other = a.clone();
+        other.materials[0].alpha_u += 0.25;
+        assert_ne!(scene_fingerprint(&a), scene_fingerprint(&other), "another material, same mask");
     }
 }
