@@ -33,8 +33,8 @@ pub struct GpuBackend {
     camera_pipelines: Vec<(Variant, wgpu::ComputePipeline)>,
     /// Which camera pipeline runs: measured on the first passes where several are built.
     trial: Trial,
-    /// Where the trial's outcome is kept (`variant::Decisions`), while one runs.
-    decision_key: Option<u64>,
+    /// Where the trial's outcome is kept (`variant::Decisions`) and under which key, while one runs.
+    decision: Option<(Decisions, u64)>,
     /// Every candidate, in the trial's order; `camera_pipelines` holds the first of them until the
     /// trial splits a pass, then all.
     candidates: Vec<Variant>,
@@ -122,31 +122,17 @@ impl GpuBackend {
             candidates.truncate(1); // (light tracing alone: no camera pipeline to choose)
         }
         // A trial of this setup decided before: that candidate alone.
-        let decisions = Decisions::in_cache();
         let decision_key = (candidates.len() > 1)
             .then(|| Decisions::key(&words, variant::scene_fingerprint(buffers), &info.name, &candidates));
+        let decisions = Decisions::in_cache();
         let kept = decision_key.filter(|_| variant::unrequested()).and_then(|key| decisions.load(key));
         if let Some(v) = kept.filter(|v| candidates.contains(v)) {
             candidates = vec![v];
         }
         let trial = Trial::new(candidates.len());
-        // Each loop's module and whether its constants are still open: the scene's paths alone
-        // (`prune`) have the mask and the loop frozen in, no constant left. The light and resolve
-        // entry points take the first loop's, in the kernel's own workgroup size.
-        let prune = super::prune::wanted();
-        let mut loops: Vec<PathLoop> = Vec::new();
-        for c in &candidates {
-            if !loops.contains(&c.path_loop) {
-                loops.push(c.path_loop);
-            }
-        }
-        let loop_words: Vec<(PathLoop, Vec<u32>, bool)> = loops
-            .iter()
-            .map(|&choice| {
-                let (words, open) = scene_module(&words, built_in, prune, buffers.features, choice);
-                (choice, words, open)
-            })
-            .collect();
+        // The light and resolve entry points take the first loop's module, in the kernel's own
+        // workgroup size.
+        let loops = LoopModules::of(&words, built_in, buffers.features, &candidates);
         // One explicit layout for both entry points (each uses a subset of the bindings).
         let entry = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
             binding,
@@ -173,7 +159,7 @@ impl GpuBackend {
             device: device.clone(),
             layout: pipeline_layout,
             features: buffers.features,
-            loops: loop_words,
+            loops,
         };
         // The first candidate now; the others once the trial reaches them (`build_candidates`): a
         // render too short for a trial compiles one pipeline, not six.
@@ -185,7 +171,7 @@ impl GpuBackend {
         } else {
             Vec::new()
         };
-        let first_loop = factory.loops[0].0;
+        let first_loop = candidates[0].path_loop;
         let light_pipeline =
             splats(integrator).then(|| factory.build(first_loop, DEFAULT_WORKGROUP, LIGHT_ENTRY));
         let resolve_pipeline =
@@ -254,7 +240,7 @@ impl GpuBackend {
         Ok(GpuBackend {
             device,
             queue,
-            decision_key: decision_key.filter(|_| candidates.len() > 1),
+            decision: decision_key.filter(|_| candidates.len() > 1).map(|key| (decisions, key)),
             factory: (camera_pipelines.len() < candidates.len()).then_some(factory),
             candidates,
             camera_pipelines,
@@ -354,8 +340,10 @@ impl Backend for GpuBackend {
         }
         let undecided = self.trial.decided().is_none();
         self.trial.record(&timed);
-        if let (true, Some(choice), Some(key)) = (undecided, self.trial.decided(), self.decision_key) {
-            Decisions::in_cache().store(key, self.camera_pipelines[choice].0);
+        if let (true, Some(choice), Some((decisions, key))) =
+            (undecided, self.trial.decided(), &self.decision)
+        {
+            decisions.store(*key, self.camera_pipelines[choice].0);
         }
         Ok(())
     }
@@ -443,18 +431,13 @@ struct PipelineFactory {
     device: wgpu::Device,
     layout: wgpu::PipelineLayout,
     features: u32,
-    /// Each path loop's module (pruned to the scene where it could be) and whether its
-    /// specialization constants are still open (then the pipeline sets them).
-    loops: Vec<(PathLoop, Vec<u32>, bool)>,
+    loops: LoopModules,
 }
 
 impl PipelineFactory {
     /// Entry point `entry` of path loop `path_loop`'s module in workgroups of `size`.
     fn build(&self, path_loop: PathLoop, size: [u32; 2], entry: &str) -> wgpu::ComputePipeline {
-        let (_, words, specialisable) =
-            self.loops.iter().find(|l| l.0 == path_loop).expect("each loop's module");
-        let mut words = words.clone();
-        set_workgroup_size(&mut words, size);
+        let (words, specialisable) = self.loops.module(path_loop, size);
         // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are
         // bounds-checked in the source; dropping naga's duplicate runtime checks is what
         // makes this path fast.
@@ -482,11 +465,39 @@ impl PipelineFactory {
             module: &module,
             entry_point: Some(entry),
             compilation_options: wgpu::PipelineCompilationOptions {
-                constants: if *specialisable { constants } else { &[] },
+                constants: if specialisable { constants } else { &[] },
                 ..Default::default()
             },
             cache: None,
         })
+    }
+}
+
+/// The module of each path loop that a list of candidates uses, pruned to the scene where it can be
+/// (`scene_module`), and whether its specialization constants are still open (then a pipeline sets
+/// them): what the backend and `kernel_stats` build their pipelines from.
+pub(crate) struct LoopModules(Vec<(PathLoop, Vec<u32>, bool)>);
+
+impl LoopModules {
+    pub(crate) fn of(words: &[u32], built_in: bool, features: u32, candidates: &[Variant]) -> Self {
+        let prune = super::prune::wanted();
+        let mut loops: Vec<(PathLoop, Vec<u32>, bool)> = Vec::new();
+        for c in candidates {
+            if !loops.iter().any(|l| l.0 == c.path_loop) {
+                let (module, open) = scene_module(words, built_in, prune, features, c.path_loop);
+                loops.push((c.path_loop, module, open));
+            }
+        }
+        LoopModules(loops)
+    }
+
+    /// Path loop `path_loop`'s module in workgroups of `size`, and whether its constants are open.
+    /// (Only asked for the candidates it was built for.)
+    pub(crate) fn module(&self, path_loop: PathLoop, size: [u32; 2]) -> (Vec<u32>, bool) {
+        let (_, words, open) = self.0.iter().find(|l| l.0 == path_loop).expect("a candidate's loop");
+        let mut words = words.clone();
+        set_workgroup_size(&mut words, size);
+        (words, *open)
     }
 }
 
@@ -506,7 +517,7 @@ pub(crate) fn kernel_words() -> Result<(Vec<u32>, bool)> {
 /// The module a scene's pipelines are built from, for path loop `choice`: pruned to the scene's
 /// feature mask where `prune` and spirv-opt allow, else the kernel itself; and whether its
 /// specialization constants are still open (then the pipeline sets them).
-pub(crate) fn scene_module(
+fn scene_module(
     words: &[u32],
     built_in: bool,
     prune: bool,
@@ -541,7 +552,7 @@ pub(crate) fn instructions(words: &[u32]) -> impl Iterator<Item = (usize, u32, u
 }
 
 /// Rewrites every entry point's `LocalSize` execution mode to `size` × 1.
-pub(crate) fn set_workgroup_size(words: &mut [u32], size: [u32; 2]) {
+fn set_workgroup_size(words: &mut [u32], size: [u32; 2]) {
     const OP_EXECUTION_MODE: u32 = 16;
     const LOCAL_SIZE: u32 = 17;
     let found: Vec<usize> = instructions(words)

@@ -8,19 +8,17 @@
 //! loss without a timing run. The pipeline here is built with `ash` directly, from the same module and
 //! binding layout as `backend::gpu`'s, but with the statistics flag that wgpu never sets.
 use super::gpu::BINDINGS;
-use super::path_loop::PathLoop;
 use super::variant::{self, Variant, DEFAULT_WORKGROUP};
 use anyhow::{anyhow, bail, Context, Result};
 use ash::vk;
 use caustic_kernel::layout::INTEGRATOR_PATH;
 use std::ffi::{CStr, CString};
 
-/// One statistic of one executable, as the driver names and describes it.
+/// One statistic of one executable, as the driver names it.
 #[derive(Clone, Debug)]
 pub struct Statistic {
     pub name: String,
     pub value: String,
-    pub description: String,
 }
 
 /// One executable of a pipeline (a compute pipeline usually has one) and its statistics.
@@ -241,7 +239,6 @@ unsafe fn read_statistics(
             .iter()
             .map(|s| Statistic {
                 name: text(s.name_as_c_str()),
-                description: text(s.description_as_c_str()),
                 // SAFETY: the union member read is the one `format` names.
                 value: unsafe {
                     match s.format {
@@ -281,10 +278,9 @@ pub struct PipelineReport {
 /// `Variant` (`CAUSTIC_PATH_LOOP` and `CAUSTIC_WORKGROUP` honoured), the light entry point once.
 /// Without `with_statistics`, a missing adapter is no error: the reports then hold the modules alone.
 pub fn scene(features: u32, integrator: u32, with_statistics: bool) -> Result<Vec<PipelineReport>> {
-    use super::gpu::{kernel_words, scene_module, set_workgroup_size, ENTRY_POINTS};
+    use super::gpu::{kernel_words, LoopModules, ENTRY_POINTS};
     use caustic_kernel::integrator::{splats, traces_camera_paths};
     let (words, built_in) = kernel_words()?;
-    let prune = super::prune::wanted();
     let candidates = variant::candidates(integrator == INTEGRATOR_PATH, false)?;
     let mut wanted: Vec<(&'static str, Variant)> = Vec::new();
     if traces_camera_paths(integrator) {
@@ -294,17 +290,11 @@ pub fn scene(features: u32, integrator: u32, with_statistics: bool) -> Result<Ve
         wanted.push((ENTRY_POINTS[1], Variant { workgroup: DEFAULT_WORKGROUP, ..candidates[0] }));
     }
     // Every loop's module first: pruning is what takes long, and a later failure should not waste it.
-    let mut modules: Vec<(PathLoop, Vec<u32>)> = Vec::new();
-    for (_, v) in &wanted {
-        if !modules.iter().any(|(l, _)| *l == v.path_loop) {
-            modules.push((v.path_loop, scene_module(&words, built_in, prune, features, v.path_loop).0));
-        }
-    }
+    let variants: Vec<Variant> = wanted.iter().map(|w| w.1).collect();
+    let modules = LoopModules::of(&words, built_in, features, &variants);
     let mut reports = Vec::new();
     for (entry, variant) in wanted {
-        let mut module =
-            modules.iter().find(|(l, _)| *l == variant.path_loop).expect("built above").1.clone();
-        set_workgroup_size(&mut module, variant.workgroup);
+        let (module, _) = modules.module(variant.path_loop, variant.workgroup);
         let constants = [features, variant.path_loop.spec_value()];
         let module = through_naga(&module, entry, constants)?;
         let (adapter, executables) = match statistics(&module, entry, constants) {
