@@ -129,7 +129,11 @@ impl GpuBackend {
         if let Some(v) = kept.filter(|v| candidates.contains(v)) {
             candidates = vec![v];
         }
-        let trial = Trial::new(candidates.len());
+        // Else the measurements of earlier renders too short to decide, if any.
+        let resumed = decision_key
+            .filter(|_| variant::unrequested() && candidates.len() > 1)
+            .and_then(|key| decisions.load_partial(key, candidates.len()));
+        let trial = resumed.unwrap_or_else(|| Trial::new(candidates.len()));
         // The light and resolve entry points take the first loop's module, in the kernel's own
         // workgroup size.
         let loops = LoopModules::of(&words, built_in, buffers.features, &candidates);
@@ -340,10 +344,12 @@ impl Backend for GpuBackend {
         }
         let undecided = self.trial.decided().is_none();
         self.trial.record(&timed);
-        if let (true, Some(choice), Some((decisions, key))) =
-            (undecided, self.trial.decided(), &self.decision)
-        {
-            decisions.store(*key, self.camera_pipelines[choice].0);
+        if let (true, Some((decisions, key))) = (undecided, &self.decision) {
+            match self.trial.decided() {
+                Some(choice) => decisions.store(*key, self.camera_pipelines[choice].0),
+                None if variant::unrequested() => decisions.store_partial(*key, &self.trial),
+                None => {}
+            }
         }
         Ok(())
     }

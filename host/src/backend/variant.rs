@@ -17,7 +17,9 @@
 //! on its last workgroups, and large ones leave more of the GPU idle then.) Every candidate computes
 //! the same image to the bit (the loops and the sizes only change which thread runs which sample
 //! when), so the trial changes the speed alone. The choice is kept on disk (`Decisions`) for the next
-//! render of the same scene setup on the same adapter, which then builds that pipeline alone.
+//! render of the same scene setup on the same adapter, which then builds that pipeline alone; a
+//! render that ends before the trial does keeps its measurements there, and the next one resumes
+//! them.
 use super::path_loop::{self, PathLoop, Request};
 use anyhow::{bail, Result};
 use caustic_kernel::layout::TILE;
@@ -128,13 +130,29 @@ impl Decisions {
     }
 
     pub fn store(&self, key: u64, v: Variant) {
-        let Some(dir) = &self.dir else { return };
         let kind = if v.path_loop == PathLoop::Regenerate { "regenerating" } else { "plain" };
+        self.write(key, "txt", &format!("{kind} {}x{}\n", v.workgroup[0], v.workgroup[1]));
+        if let Some(dir) = &self.dir {
+            let _ = std::fs::remove_file(dir.join(format!("{key:016x}.trial")));
+        }
+    }
+
+    /// The measurements of an undecided trial of `count` candidates that earlier renders of this
+    /// setup ran (`store_partial`): renders too short to finish a trial (`integrator_direct_both`'s
+    /// 256 spp take 0.1 s on the H100) add up to one.
+    pub fn load_partial(&self, key: u64, count: usize) -> Option<Trial> {
+        let text = std::fs::read_to_string(self.dir.as_ref()?.join(format!("{key:016x}.trial"))).ok()?;
+        Trial::from_text(&text, count)
+    }
+
+    pub fn store_partial(&self, key: u64, trial: &Trial) {
+        self.write(key, "trial", &trial.to_text());
+    }
+
+    fn write(&self, key: u64, extension: &str, text: &str) {
+        let Some(dir) = &self.dir else { return };
         if std::fs::create_dir_all(dir).is_ok() {
-            let _ = std::fs::write(
-                dir.join(format!("{key:016x}.txt")),
-                format!("{kind} {}x{}\n", v.workgroup[0], v.workgroup[1]),
-            );
+            let _ = std::fs::write(dir.join(format!("{key:016x}.{extension}")), text);
         }
     }
 }
@@ -232,6 +250,33 @@ impl Trial {
         }
     }
 
+    /// The measurements so far, as one line: nanoseconds alone, then nanoseconds and samples per
+    /// candidate. Not whether the first split pass was dropped: a new process compiles its
+    /// pipelines again, and its first split pass again carries that.
+    pub fn to_text(&self) -> String {
+        let mut words = vec![self.first_alone.as_nanos().to_string()];
+        for (t, s) in self.time.iter().zip(&self.samples) {
+            words.push(t.as_nanos().to_string());
+            words.push(s.to_string());
+        }
+        words.join(" ") + "\n"
+    }
+
+    /// A trial of `count` candidates resumed from `to_text`'s line (`None` if it is not one of
+    /// `count` candidates).
+    pub fn from_text(text: &str, count: usize) -> Option<Trial> {
+        let words: Vec<u64> = text.split_whitespace().map(|w| w.parse().ok()).collect::<Option<_>>()?;
+        if count <= 1 || words.len() != 1 + 2 * count {
+            return None;
+        }
+        let mut t = Trial::new(count);
+        t.first_alone = Duration::from_nanos(words[0]);
+        for i in 0..count {
+            (t.time[i], t.samples[i]) = (Duration::from_nanos(words[1 + 2 * i]), words[2 + 2 * i]);
+        }
+        Some(t)
+    }
+
     /// The figures behind the choice, for the log: seconds per sample per pixel of each candidate.
     pub fn per_sample(&self) -> Vec<f64> {
         (0..self.count).map(|i| self.time[i].as_secs_f64() / self.samples[i].max(1) as f64).collect()
@@ -282,6 +327,36 @@ mod tests {
         t.record(&[(0, 10, FIRST_ALONE)]);
         assert_eq!(t.plan(8), vec![(0, 3), (1, 3), (2, 2)]);
         assert_eq!(t.plan(5), vec![(0, 5)], "under two samples each: the first alone");
+    }
+
+    /// Renders too short to decide add up: each resumes the last one's measurements, drops its own
+    /// first split pass (its pipelines are new) and decides as one long render would.
+    #[test]
+    fn short_renders_resume_the_trial() {
+        let dir = std::env::temp_dir().join(format!("caustic-partial-test-{}", std::process::id()));
+        let decisions = Decisions { dir: Some(dir.clone()) };
+        let cost_ms = [12u64, 10];
+        let mut renders = 0;
+        let decided = loop {
+            renders += 1;
+            assert!(renders < 50, "never decided");
+            let mut t = decisions.load_partial(3, 2).unwrap_or_else(|| Trial::new(2));
+            for _ in 0..3 {
+                let plan = t.plan(4);
+                let timed: Vec<_> = plan.iter().map(|&(i, n)| (i, n, ms(cost_ms[i] * n as u64))).collect();
+                t.record(&timed);
+            }
+            if let Some(choice) = t.decided() {
+                decisions.store(3, Variant { path_loop: PathLoop::Plain, workgroup: [8, 8] });
+                break choice;
+            }
+            decisions.store_partial(3, &t);
+        };
+        assert_eq!(decided, 1);
+        assert!(renders > 2, "decided in {renders} renders of three passes");
+        assert!(decisions.load_partial(3, 2).is_none(), "a decision ends the kept trial");
+        assert!(Trial::from_text("1 2 3", 2).is_none() && Trial::from_text("1 2 x 4 5", 2).is_none());
+        std::fs::remove_dir_all(dir).unwrap();
     }
 
     #[test]
