@@ -563,7 +563,13 @@ fn cmd_bench(
         if !backend.settled() {
             say!("(the GPU's trial of its candidate pipelines did not end within the warm-up)");
         }
+        // The timed render runs in a backend of its own, which builds the kept choice alone, after a
+        // one-sample render there: its pipeline's first dispatch is not timed either (Mitsuba's side
+        // of `scripts/speed-vs-mitsuba.py` times a render after one of the same scene). In session 16
+        // a 0.24 s render timed without it ran at half the speed of the same scene's other renders,
+        // once (BENCHMARKS.md).
         let mut backend = backend::create_on(choice, gpus, &buffers)?;
+        render::render(backend.as_mut(), &buffers, 1, 1, |_| {})?;
         let (film, stats) = render::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
         let msps = film.width as f64 * film.height as f64 * spp as f64 / stats.seconds / 1e6;
         say!(
