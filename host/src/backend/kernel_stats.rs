@@ -163,64 +163,66 @@ fn through_naga(words: &[u32], entry: &str, constants: [u32; 2]) -> Result<Vec<u
         .map_err(|e| anyhow!("naga cannot write the kernel: {e}"))
 }
 
-/// The driver's statistics for entry point `entry` of the SPIR-V module `words` (as the driver gets it
-/// from naga: `through_naga`), compiled with spec constants 0 and 1 set to `constants` (ignored by
-/// a module that has them frozen). Returns the adapter's name with them.
-pub fn statistics(words: &[u32], entry: &str, constants: [u32; 2]) -> Result<(String, Vec<Executable>)> {
-    let context = Vulkan::new()?;
-    let device = &context.device;
-    let loader = ash::khr::pipeline_executable_properties::Device::new(&context.instance, device);
-    let layout_bindings: Vec<vk::DescriptorSetLayoutBinding> = BINDINGS
-        .iter()
-        .map(|&b| {
-            vk::DescriptorSetLayoutBinding::default()
-                .binding(b)
-                .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
-                .descriptor_count(1)
-                .stage_flags(vk::ShaderStageFlags::COMPUTE)
-        })
-        .collect();
-    let entry_name = CString::new(entry)?;
-    // SAFETY: plain object creation on a live device; each object is destroyed below, in reverse.
-    unsafe {
-        let set_layout = device.create_descriptor_set_layout(
-            &vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings),
-            None,
-        )?;
-        let set_layouts = [set_layout];
-        let layout = device.create_pipeline_layout(
-            &vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts),
-            None,
-        )?;
-        let module = device.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(words), None)?;
-        let map = [
-            vk::SpecializationMapEntry { constant_id: 0, offset: 0, size: 4 },
-            vk::SpecializationMapEntry { constant_id: 1, offset: 4, size: 4 },
-        ];
-        let data: &[u8] = bytemuck::cast_slice(&constants);
-        let specialization = vk::SpecializationInfo::default().map_entries(&map).data(data);
-        let stage = vk::PipelineShaderStageCreateInfo::default()
-            .stage(vk::ShaderStageFlags::COMPUTE)
-            .module(module)
-            .name(&entry_name)
-            .specialization_info(&specialization);
-        let create = [vk::ComputePipelineCreateInfo::default()
-            .flags(vk::PipelineCreateFlags::CAPTURE_STATISTICS_KHR)
-            .stage(stage)
-            .layout(layout)];
-        let pipeline = device.create_compute_pipelines(vk::PipelineCache::null(), &create, None);
-        let result = match pipeline {
-            Ok(pipelines) => {
-                let read = read_statistics(&loader, pipelines[0]);
-                device.destroy_pipeline(pipelines[0], None);
-                read
-            }
-            Err((_, e)) => Err(anyhow!("the driver did not compile entry point {entry}: {e}")),
-        };
-        device.destroy_shader_module(module, None);
-        device.destroy_pipeline_layout(layout, None);
-        device.destroy_descriptor_set_layout(set_layout, None);
-        result.map(|executables| (context.adapter.clone(), executables))
+impl Vulkan {
+    /// The driver's statistics for entry point `entry` of the SPIR-V module `words` (as the driver
+    /// gets it from naga: `through_naga`), compiled with spec constants 0 and 1 set to `constants`
+    /// (ignored by a module that has them frozen).
+    fn statistics(&self, words: &[u32], entry: &str, constants: [u32; 2]) -> Result<Vec<Executable>> {
+        let device = &self.device;
+        let loader = ash::khr::pipeline_executable_properties::Device::new(&self.instance, device);
+        let layout_bindings: Vec<vk::DescriptorSetLayoutBinding> = BINDINGS
+            .iter()
+            .map(|&b| {
+                vk::DescriptorSetLayoutBinding::default()
+                    .binding(b)
+                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
+                    .descriptor_count(1)
+                    .stage_flags(vk::ShaderStageFlags::COMPUTE)
+            })
+            .collect();
+        let entry_name = CString::new(entry)?;
+        // SAFETY: plain object creation on a live device; each object is destroyed below, in reverse.
+        unsafe {
+            let set_layout = device.create_descriptor_set_layout(
+                &vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings),
+                None,
+            )?;
+            let set_layouts = [set_layout];
+            let layout = device.create_pipeline_layout(
+                &vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts),
+                None,
+            )?;
+            let module =
+                device.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(words), None)?;
+            let map = [
+                vk::SpecializationMapEntry { constant_id: 0, offset: 0, size: 4 },
+                vk::SpecializationMapEntry { constant_id: 1, offset: 4, size: 4 },
+            ];
+            let data: &[u8] = bytemuck::cast_slice(&constants);
+            let specialization = vk::SpecializationInfo::default().map_entries(&map).data(data);
+            let stage = vk::PipelineShaderStageCreateInfo::default()
+                .stage(vk::ShaderStageFlags::COMPUTE)
+                .module(module)
+                .name(&entry_name)
+                .specialization_info(&specialization);
+            let create = [vk::ComputePipelineCreateInfo::default()
+                .flags(vk::PipelineCreateFlags::CAPTURE_STATISTICS_KHR)
+                .stage(stage)
+                .layout(layout)];
+            let pipeline = device.create_compute_pipelines(vk::PipelineCache::null(), &create, None);
+            let result = match pipeline {
+                Ok(pipelines) => {
+                    let read = read_statistics(&loader, pipelines[0]);
+                    device.destroy_pipeline(pipelines[0], None);
+                    read
+                }
+                Err((_, e)) => Err(anyhow!("the driver did not compile entry point {entry}: {e}")),
+            };
+            device.destroy_shader_module(module, None);
+            device.destroy_pipeline_layout(layout, None);
+            device.destroy_descriptor_set_layout(set_layout, None);
+            result
+        }
     }
 }
 
@@ -292,16 +294,25 @@ pub fn scene(features: u32, integrator: u32, with_statistics: bool) -> Result<Ve
     // Every loop's module first: pruning is what takes long, and a later failure should not waste it.
     let variants: Vec<Variant> = wanted.iter().map(|w| w.1).collect();
     let modules = LoopModules::of(&words, built_in, features, &variants);
+    // One device for every pipeline; without an adapter that reports statistics, why not (the
+    // modules alone, for `--write-spirv`), unless they were asked for.
+    let vulkan = match Vulkan::new() {
+        Ok(v) => Ok(v),
+        Err(e) if !with_statistics => Err(e.to_string()),
+        Err(e) => return Err(e),
+    };
     let mut reports = Vec::new();
     for (entry, variant) in wanted {
         let (module, _) = modules.module(variant.path_loop, variant.workgroup);
         let constants = [features, variant.path_loop.spec_value()];
         let module = through_naga(&module, entry, constants)?;
-        let (adapter, executables) = match statistics(&module, entry, constants) {
-            Ok(found) => found,
-            // No adapter that reports them: the module alone, for `--write-spirv`.
-            Err(e) if !with_statistics => (e.to_string(), Vec::new()),
-            Err(e) => return Err(e),
+        let (adapter, executables) = match &vulkan {
+            Ok(v) => match v.statistics(&module, entry, constants) {
+                Ok(executables) => (v.adapter.clone(), executables),
+                Err(e) if !with_statistics => (e.to_string(), Vec::new()),
+                Err(e) => return Err(e),
+            },
+            Err(why) => (why.clone(), Vec::new()),
         };
         reports.push(PipelineReport { entry, module, variant, adapter, executables });
     }
