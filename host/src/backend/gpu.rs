@@ -304,10 +304,8 @@ impl GpuBackend {
 
 impl Backend for GpuBackend {
     fn describe(&self) -> String {
-        let name = |v: &Variant| {
-            let kind = if v.path_loop == PathLoop::Regenerate { "regenerating" } else { "plain" };
-            format!("{kind} loop in {}x{}", v.workgroup[0], v.workgroup[1])
-        };
+        let name =
+            |v: &Variant| format!("{} loop in {}x{}", v.path_loop.name(), v.workgroup[0], v.workgroup[1]);
         match self.trial.decided() {
             Some(choice) if self.camera_pipelines.len() > 1 => {
                 let timed: Vec<String> = (self.camera_pipelines.iter().zip(self.trial.per_sample()))

@@ -24,6 +24,19 @@ pub enum PathLoop {
 impl PathLoop {
     pub const BOTH: [PathLoop; 2] = [PathLoop::Plain, PathLoop::Regenerate];
 
+    /// How logs and the kept choices (`variant::Decisions`) name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            PathLoop::Plain => "plain",
+            PathLoop::Regenerate => "regenerating",
+        }
+    }
+
+    /// The loop `name` names.
+    pub fn named(name: &str) -> Option<PathLoop> {
+        PathLoop::BOTH.into_iter().find(|l| l.name() == name)
+    }
+
     /// The value of the kernel's spec constant 1.
     pub fn spec_value(self) -> u32 {
         match self {

@@ -118,11 +118,7 @@ impl Decisions {
     pub fn load(&self, key: u64) -> Option<Variant> {
         let text = std::fs::read_to_string(self.dir.as_ref()?.join(format!("{key:016x}.txt"))).ok()?;
         let (kind, size) = text.trim().split_once(' ')?;
-        let path_loop = match kind {
-            "plain" => PathLoop::Plain,
-            "regenerating" => PathLoop::Regenerate,
-            _ => return None,
-        };
+        let path_loop = PathLoop::named(kind)?;
         let (w, h) = size.split_once('x')?;
         let workgroup: [u32; 2] = [w.parse().ok()?, h.parse().ok()?];
         (workgroup[0] > 0 && workgroup[1] > 0 && workgroup[0] * workgroup[1] <= 1024)
@@ -130,8 +126,7 @@ impl Decisions {
     }
 
     pub fn store(&self, key: u64, v: Variant) {
-        let kind = if v.path_loop == PathLoop::Regenerate { "regenerating" } else { "plain" };
-        self.write(key, "txt", &format!("{kind} {}x{}\n", v.workgroup[0], v.workgroup[1]));
+        self.write(key, "txt", &format!("{} {}x{}\n", v.path_loop.name(), v.workgroup[0], v.workgroup[1]));
         if let Some(dir) = &self.dir {
             let _ = std::fs::remove_file(dir.join(format!("{key:016x}.trial")));
         }
