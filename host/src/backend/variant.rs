@@ -116,7 +116,7 @@ impl Decisions {
     }
 
     pub fn load(&self, key: u64) -> Option<Variant> {
-        let text = std::fs::read_to_string(self.dir.as_ref()?.join(format!("{key:016x}.txt"))).ok()?;
+        let text = self.read(key, "txt")?;
         let (kind, size) = text.trim().split_once(' ')?;
         let path_loop = PathLoop::named(kind)?;
         let (w, h) = size.split_once('x')?;
@@ -127,8 +127,8 @@ impl Decisions {
 
     pub fn store(&self, key: u64, v: Variant) {
         self.write(key, "txt", &format!("{} {}x{}\n", v.path_loop.name(), v.workgroup[0], v.workgroup[1]));
-        if let Some(dir) = &self.dir {
-            let _ = std::fs::remove_file(dir.join(format!("{key:016x}.trial")));
+        if let Some(path) = self.path(key, "trial") {
+            let _ = std::fs::remove_file(path);
         }
     }
 
@@ -136,18 +136,26 @@ impl Decisions {
     /// setup ran (`store_partial`): renders too short to finish a trial (`integrator_direct_both`'s
     /// 256 spp take 0.1 s on the H100) add up to one.
     pub fn load_partial(&self, key: u64, count: usize) -> Option<Trial> {
-        let text = std::fs::read_to_string(self.dir.as_ref()?.join(format!("{key:016x}.trial"))).ok()?;
-        Trial::from_text(&text, count)
+        Trial::from_text(&self.read(key, "trial")?, count)
     }
 
     pub fn store_partial(&self, key: u64, trial: &Trial) {
         self.write(key, "trial", &trial.to_text());
     }
 
+    /// Setup `key`'s file of kind `extension` (`txt`: the choice; `trial`: an unfinished trial).
+    fn path(&self, key: u64, extension: &str) -> Option<PathBuf> {
+        Some(self.dir.as_ref()?.join(format!("{key:016x}.{extension}")))
+    }
+
+    fn read(&self, key: u64, extension: &str) -> Option<String> {
+        std::fs::read_to_string(self.path(key, extension)?).ok()
+    }
+
     fn write(&self, key: u64, extension: &str, text: &str) {
-        let Some(dir) = &self.dir else { return };
+        let (Some(dir), Some(path)) = (&self.dir, self.path(key, extension)) else { return };
         if std::fs::create_dir_all(dir).is_ok() {
-            let _ = std::fs::write(dir.join(format!("{key:016x}.{extension}")), text);
+            let _ = std::fs::write(path, text);
         }
     }
 }
