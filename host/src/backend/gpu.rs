@@ -368,15 +368,37 @@ impl Backend for GpuBackend {
 }
 
 impl GpuBackend {
-    /// Compiles the camera pipelines of the candidates not built yet (once the trial splits a pass).
+    /// Compiles the camera pipelines of the candidates not built yet (once the trial splits a pass),
+    /// each on a thread of its own: the driver compiles them side by side where it can (wgpu's error
+    /// scopes are per thread, so each thread checks its own).
     fn build_candidates(&mut self) -> Result<()> {
         let Some(factory) = self.factory.take() else { return Ok(()) };
-        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        for &v in &self.candidates[self.camera_pipelines.len()..] {
-            self.camera_pipelines.push((v, factory.build(v.path_loop, v.workgroup, CAMERA_ENTRY)));
-        }
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            bail!("the GPU rejected the kernel on {}: {e}", self.adapter_name);
+        let todo = self.candidates[self.camera_pipelines.len()..].to_vec();
+        let built: Vec<Result<wgpu::ComputePipeline, String>> = std::thread::scope(|threads| {
+            let factory = &factory;
+            let handles: Vec<_> = todo
+                .iter()
+                .map(|&v| {
+                    threads.spawn(move || {
+                        let scope = factory.device.push_error_scope(wgpu::ErrorFilter::Validation);
+                        let pipeline = factory.build(v.path_loop, v.workgroup, CAMERA_ENTRY);
+                        match pollster::block_on(scope.pop()) {
+                            Some(e) => Err(e.to_string()),
+                            None => Ok(pipeline),
+                        }
+                    })
+                })
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| h.join().unwrap_or_else(|_| Err("a pipeline's build panicked".to_string())))
+                .collect()
+        });
+        for (v, pipeline) in todo.into_iter().zip(built) {
+            match pipeline {
+                Ok(p) => self.camera_pipelines.push((v, p)),
+                Err(e) => bail!("the GPU rejected the kernel on {}: {e}", self.adapter_name),
+            }
         }
         Ok(())
     }
