@@ -256,19 +256,26 @@ fn bounds(p: &Primitive) -> Aabb {
     }
 }
 
-/// obvhs's medium preset with four times the reinsertion work and a collapse cost that keeps leaves
-/// small. Measured on the H100 (2026-11-22) against the plain preset: cbox 175 → 239 Msamples/s,
-/// material previews +20% (glass 59 → 72, diffuse 113 → 136), the PLY bunny 131 → 165; the build of
-/// a 62k-triangle mesh takes ~0.1 s. More reinsertion (0.5–1.0) bought only 2% more for 2–4× the time.
-/// obvhs builds on rayon's threads (its `parallel` feature, same tree): on the H100 machine's 16 cores a
-/// 10M-triangle scene's buffers and BVH took 41.4 s single-threaded and 7.6 s so (BENCHMARKS.md).
-fn bvh_build_params() -> obvhs::BvhBuildParams {
+/// obvhs's medium preset with more reinsertion work and a collapse cost that keeps leaves small.
+/// Measured on the H100 (2026-11-22) against the plain preset: cbox 175 → 239 Msamples/s, material
+/// previews +20% (glass 59 → 72, diffuse 113 → 136), the PLY bunny 131 → 165; the build of a
+/// 62k-triangle mesh takes ~0.1 s. Session 17 (one H100 call, each setting interleaved) moved the
+/// collapse cost from 1 to 0.5 and the reinsertion ratio from 0.2 to 0.6: glass +6.0%, the diamond
+/// +5.8%, cbox +4.1%, copper +4.1%, diffuse +2.5%, the bunny +1.6%; the build takes about twice as
+/// long, so scenes past `MORE_REINSERTION_UP_TO` primitives keep 0.2. obvhs builds on rayon's threads
+/// (its `parallel` feature, same tree): on the H100 machine's 16 cores a 10M-triangle scene's
+/// buffers and BVH took 41.4 s single-threaded and 7.6 s so (BENCHMARKS.md).
+fn bvh_build_params(primitives: usize) -> obvhs::BvhBuildParams {
     obvhs::BvhBuildParams {
-        reinsertion_batch_ratio: 0.2,
-        collapse_traversal_cost: 1.0,
+        reinsertion_batch_ratio: if primitives <= MORE_REINSERTION_UP_TO { 0.6 } else { 0.2 },
+        collapse_traversal_cost: 0.5,
         ..obvhs::BvhBuildParams::medium_build()
     }
 }
+
+/// The largest scene (in primitives) whose BVH gets the costlier reinsertion: about 1 s of build on
+/// the H100 machine's 16 cores, where the 10M-triangle scene's 7.6 s would double.
+const MORE_REINSERTION_UP_TO: usize = 1 << 20;
 
 /// Builds the BVH and reorders primitives (and what refers to them) into leaf order.
 pub(crate) fn build_bvh(
@@ -289,7 +296,7 @@ fn build_bvh_reordering(
 ) -> Result<(Vec<BvhNode>, Vec<u32>)> {
     let aabbs: Vec<Aabb> = prims.iter().map(bounds).collect();
     let mut build_time = std::time::Duration::ZERO;
-    let bvh = obvhs::bvh2::builder::build_bvh2(&aabbs, bvh_build_params(), &mut build_time);
+    let bvh = obvhs::bvh2::builder::build_bvh2(&aabbs, bvh_build_params(aabbs.len()), &mut build_time);
     let (nodes, order) = if bvh.nodes.is_empty() || bvh.depth(0) < STACK_SIZE {
         let nodes = bvh.nodes.iter().map(|n| node_of(&n.aabb, n.prim_count, n.first_index)).collect();
         (nodes, bvh.primitive_indices.clone())
