@@ -316,7 +316,19 @@ fn build_bvh_reordering(
     for l in lights.iter_mut().filter(|l| matches!(l.kind, LIGHT_AREA | LIGHT_SPHERE)) {
         l.prim = new_index[l.prim as usize];
     }
+    inside_buffers(&nodes, prims.len())?;
     Ok((nodes, new_index))
+}
+
+/// Checks that every child index and leaf range of `nodes` lies inside the node and primitive
+/// buffers: the kernel's traversal reads them without bounds checks (`Accel::trace`).
+fn inside_buffers(nodes: &[BvhNode], prims: usize) -> Result<()> {
+    for (i, n) in nodes.iter().enumerate() {
+        let (first, count) = (n.first as usize, n.prim_count as usize);
+        let inside = if count > 0 { first + count <= prims } else { first + 1 < nodes.len() };
+        anyhow::ensure!(inside, "internal error: BVH node {i} points past the buffers ({first}, {count})");
+    }
+    Ok(())
 }
 
 fn node_of(aabb: &Aabb, prim_count: u32, first: u32) -> BvhNode {

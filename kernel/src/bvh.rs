@@ -5,6 +5,7 @@ use crate::glam::{Vec2, Vec3};
 use crate::layout::{BvhNode, Primitive, SceneView, NONE};
 use crate::math::vec3;
 use crate::shape::{self, Hit};
+use spirv_std::arch::IndexUnchecked;
 
 /// Distance reported for a missed box. (naga rejects infinite float literals, so no `f32::INFINITY`.)
 pub(crate) const MISS: f32 = f32::MAX;
@@ -46,6 +47,11 @@ impl<'a> Accel<'a> {
     /// Closest hit along the ray, or `None`. With `any_hit`, returns the first hit found (shadow rays).
     /// Primitive `skip` (or none, with `NONE`) is ignored. Scenes with instances take
     /// `instancing::trace`; the rest, this one-level walk.
+    ///
+    /// The walk reads the buffers without bounds checks: every child index and leaf range of a BVH
+    /// lies inside its buffers (`host/src/buffers.rs` checks each tree it builds), and the stack is
+    /// pushed only below `STACK_SIZE`. (A check is a compare and a branch per read, five reads per
+    /// inner node, in the loop where the GPU spends most of its time.)
     pub fn trace(&self, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> {
         if crate::features::has(self.features, crate::features::INSTANCING) {
             return crate::instancing::trace(self, ray, any_hit, skip);
@@ -65,7 +71,8 @@ impl<'a> Accel<'a> {
             return None;
         }
         loop {
-            let node = self.nodes[node_index as usize];
+            // SAFETY: node indices are the root and children, inside `nodes` (see above).
+            let node = unsafe { *self.nodes.index_unchecked(node_index as usize) };
             if node.prim_count > 0 {
                 let mut i = node.first;
                 let end = node.first + node.prim_count;
@@ -74,7 +81,9 @@ impl<'a> Accel<'a> {
                         i += 1;
                         continue;
                     }
-                    if let Some((t, uv)) = shape::intersect(&self.prims[i as usize], ray, best_t) {
+                    // SAFETY: leaf ranges lie inside `prims` (see above).
+                    let prim = unsafe { self.prims.index_unchecked(i as usize) };
+                    if let Some((t, uv)) = shape::intersect(prim, ray, best_t) {
                         best_t = t;
                         best_prim = i;
                         best_uv = uv;
@@ -87,17 +96,20 @@ impl<'a> Accel<'a> {
             } else {
                 let left = node.first;
                 let right = node.first + 1;
-                let t_left =
-                    intersect_aabb(&self.nodes[left as usize], ray.origin, inv_dir, ray.t_min, best_t);
-                let t_right =
-                    intersect_aabb(&self.nodes[right as usize], ray.origin, inv_dir, ray.t_min, best_t);
+                // SAFETY: children lie inside `nodes` (see above).
+                let (left_node, right_node) = unsafe {
+                    (self.nodes.index_unchecked(left as usize), self.nodes.index_unchecked(right as usize))
+                };
+                let t_left = intersect_aabb(left_node, ray.origin, inv_dir, ray.t_min, best_t);
+                let t_right = intersect_aabb(right_node, ray.origin, inv_dir, ray.t_min, best_t);
                 let hit_left = t_left != MISS;
                 let hit_right = t_right != MISS;
                 if hit_left && hit_right {
                     // Visit the nearer child first; the farther one waits on the stack.
                     let (first, second) = if t_left <= t_right { (left, right) } else { (right, left) };
                     if top < STACK_SIZE {
-                        stack[top] = second;
+                        // SAFETY: `top < STACK_SIZE`.
+                        unsafe { *stack.index_unchecked_mut(top) = second };
                         top += 1;
                     }
                     node_index = first;
@@ -114,7 +126,8 @@ impl<'a> Accel<'a> {
                 break;
             }
             top -= 1;
-            node_index = stack[top];
+            // SAFETY: `top` was pushed, so below `STACK_SIZE`.
+            node_index = unsafe { *stack.index_unchecked(top) };
         }
         if best_prim == u32::MAX {
             None
