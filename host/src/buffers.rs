@@ -893,3 +893,44 @@ fn check_light_tracing(scene: &Scene, name: &str) -> Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn leaf(first: u32, count: u32) -> BvhNode {
+        BvhNode { prim_count: count, first, ..Default::default() }
+    }
+
+    #[test]
+    fn trees_that_point_past_their_buffers_are_refused() {
+        // A root over two leaves of two primitives each.
+        let good = [leaf(1, 0), leaf(0, 2), leaf(2, 2)];
+        assert!(inside_buffers(&good, 4).is_ok());
+        assert!(inside_buffers(&good, 3).is_err(), "a leaf past the primitives");
+        let far_child = [leaf(2, 0), leaf(0, 2), leaf(2, 2)];
+        assert!(inside_buffers(&far_child, 4).is_err(), "a child past the nodes");
+        assert!(inside_buffers(&[], 0).is_ok());
+    }
+
+    #[test]
+    fn built_trees_lie_inside_their_buffers() {
+        // Coincident triangles, whose tree `within_depth` lays out again, and a row of distinct ones.
+        for coincident in [true, false] {
+            let mut prims: Vec<Primitive> = (0..300)
+                .map(|i| {
+                    let x = if coincident { 0.0 } else { i as f32 };
+                    Primitive {
+                        p0: [x, 0.0, 0.0],
+                        p1: [x + 1.0, 0.0, 0.0],
+                        p2: [x, 1.0, 0.0],
+                        ..Default::default()
+                    }
+                })
+                .collect();
+            let mut attributes = vec![TriangleAttributes::default(); prims.len()];
+            let nodes = build_bvh(&mut prims, &mut attributes, &mut Vec::new(), &mut []).unwrap();
+            assert!(inside_buffers(&nodes, prims.len()).is_ok());
+        }
+    }
+}
