@@ -71,18 +71,27 @@ def mitsuba_throughput(mi, dr, path, spp, rounds):
     return best
 
 
-def caustic_throughput(binary, backend, path, spp, rounds, env=None):
-    best = 0.0
-    for _ in range(rounds):
+def caustic_throughput(binary, backend, path, spp, rounds, env=None, log=None):
+    """caustic's best throughput, and the pipeline each round timed (the GPU backend names its path
+    loop and workgroup size: a trial chooses them per scene, `host/src/backend/variant.rs`)."""
+    best, pipelines = 0.0, []
+    environment = dict(os.environ, **(env or {}))
+    if log:
+        environment["CAUSTIC_TRIAL_LOG"] = "1"
+    for round in range(rounds):
         out = subprocess.run([binary, "bench", path, "--backend", backend, "--spp", str(spp),
-                              "-D", f"spp={spp}"], capture_output=True, text=True,
-                             env=dict(os.environ, **(env or {})))
+                              "-D", f"spp={spp}"], capture_output=True, text=True, env=environment)
+        if log:
+            with open(f"{log}-{round + 1}.log", "w") as f:
+                f.write(out.stdout + out.stderr)
         rows = [l for l in out.stdout.splitlines() if l.startswith("| ") and not l.startswith("| backend")]
         numbers = [re.findall(r"[0-9.]+", r.split("|")[5]) for r in rows if len(r.split("|")) > 5]
         if not numbers or not numbers[0]:
             sys.exit(f"caustic bench failed on {path}:\n{out.stdout}{out.stderr}")
         best = max(best, float(numbers[0][0]))
-    return best
+        pipeline = re.search(r"(plain|regenerating) loop in ([0-9]+x[0-9]+)", rows[0])
+        pipelines.append(f"{pipeline[1]} {pipeline[2]}" if pipeline else "-")
+    return best, " / ".join(dict.fromkeys(pipelines))
 
 
 def main():
@@ -98,6 +107,8 @@ def main():
     ap.add_argument("--baseline-env", default="", metavar="NAME=VALUE[,NAME=VALUE]",
                     help="also time caustic with these environment variables (e.g. CAUSTIC_WORKGROUP=8x8), "
                          "interleaved, in a column of its own")
+    ap.add_argument("--log", default="", metavar="DIR",
+                    help="keep each caustic bench's output, with its trial's passes, in DIR/SCENE-ROUND.log")
     args = ap.parse_args()
     ensure_mitsuba(args.venv)
     if "llvm" in args.variant and "DRJIT_LIBLLVM_PATH" not in os.environ:
@@ -112,20 +123,25 @@ def main():
     print(f"caustic {args.backend} ({args.caustic}) against Mitsuba {mi.__version__} {args.variant}, "
           f"{args.spp} spp, best of {args.rounds}, interleaved")
     baseline = dict(kv.split("=", 1) for kv in args.baseline_env.split(",") if kv)
-    extra = f" | caustic with {args.baseline_env} | its ratio" if baseline else ""
-    print(f"| scene | Mitsuba Msamples/s | caustic Msamples/s | caustic / Mitsuba{extra} |")
-    print("|---|---|---|---|" + ("---|---|" if baseline else ""))
+    extra = f" | caustic with {args.baseline_env} | its ratio | its pipeline" if baseline else ""
+    print(f"| scene | Mitsuba Msamples/s | caustic Msamples/s | caustic / Mitsuba | caustic's pipeline{extra} |")
+    print("|---|---|---|---|---|" + ("---|---|---|" if baseline else ""))
     ratios, baseline_ratios = [], []
     for name, rel in scenes:
         path = os.path.join(shared, "scenes/mitsuba", rel)
         m = mitsuba_throughput(mi, dr, path, args.spp, args.rounds)
-        c = caustic_throughput(args.caustic, args.backend, path, args.spp, args.rounds)
+        log = None
+        if args.log:
+            os.makedirs(args.log, exist_ok=True)
+            log = os.path.join(args.log, name)
+        c, pipeline = caustic_throughput(args.caustic, args.backend, path, args.spp, args.rounds, log=log)
         ratios.append(c / m)
-        row = f"| {name} | {m:.2f} | {c:.2f} | {c / m:.2f} |"
+        row = f"| {name} | {m:.2f} | {c:.2f} | {c / m:.2f} | {pipeline} |"
         if baseline:
-            b = caustic_throughput(args.caustic, args.backend, path, args.spp, args.rounds, baseline)
+            b, pipeline = caustic_throughput(args.caustic, args.backend, path, args.spp, args.rounds, baseline,
+                                             log and log + "-baseline")
             baseline_ratios.append(b / m)
-            row += f" {b:.2f} | {b / m:.2f} |"
+            row += f" {b:.2f} | {b / m:.2f} | {pipeline} |"
         print(row, flush=True)
     geo = lambda rs: math.exp(sum(math.log(r) for r in rs) / len(rs))
     print(f"geometric mean of caustic / Mitsuba over {len(ratios)} scenes: {geo(ratios):.2f}")

@@ -563,6 +563,7 @@ fn cmd_bench(
         if !backend.settled() {
             say!("(the GPU's trial of its candidate pipelines did not end within the warm-up)");
         }
+        say!("warm-up: {}", backend.describe());
         // The timed render runs in a backend of its own, which builds the kept choice alone, after a
         // one-sample render there: its pipeline's first dispatch is not timed either (Mitsuba's side
         // of `scripts/speed-vs-mitsuba.py` times a render after one of the same scene). In session 16

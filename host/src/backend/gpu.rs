@@ -35,8 +35,10 @@ pub struct GpuBackend {
     trial: Trial,
     /// Where the trial's outcome is kept (`variant::Decisions`) and under which key, while one runs.
     decision: Option<(Decisions, u64)>,
+    /// Whether the one candidate is a decision an earlier render kept (for `describe`).
+    kept: bool,
     /// Every candidate, in the trial's order; `camera_pipelines` holds the first of them until the
-    /// trial splits a pass, then all.
+    /// trial begins, then all.
     candidates: Vec<Variant>,
     /// What builds the rest, until it has.
     factory: Option<PipelineFactory>,
@@ -126,7 +128,8 @@ impl GpuBackend {
             .then(|| Decisions::key(&words, variant::scene_fingerprint(buffers), &info.name, &candidates));
         let decisions = Decisions::in_cache();
         let kept = decision_key.filter(|_| variant::unrequested()).and_then(|key| decisions.load(key));
-        if let Some(v) = kept.filter(|v| candidates.contains(v)) {
+        let kept = kept.filter(|v| candidates.contains(v));
+        if let Some(v) = kept {
             candidates = vec![v];
         }
         // Else the measurements of earlier renders too short to decide, if any.
@@ -245,6 +248,7 @@ impl GpuBackend {
             device,
             queue,
             decision: decision_key.filter(|_| candidates.len() > 1).map(|key| (decisions, key)),
+            kept: kept.is_some(),
             factory: (camera_pipelines.len() < candidates.len()).then_some(factory),
             candidates,
             camera_pipelines,
@@ -304,44 +308,65 @@ impl GpuBackend {
 
 impl Backend for GpuBackend {
     fn describe(&self) -> String {
+        // Always the pipeline that runs, and why it: a kept decision builds it alone, so without
+        // this a render's log could not tell which loop a figure timed (session 18: the diamond's
+        // tables timed its plain loop at 12.0 Msamples/s, its regenerating loop ran 16.9).
         let name =
             |v: &Variant| format!("{} loop in {}x{}", v.path_loop.name(), v.workgroup[0], v.workgroup[1]);
+        let Some(&(first, _)) = self.camera_pipelines.first() else {
+            return format!("gpu: {}", self.adapter_name);
+        };
         match self.trial.decided() {
             Some(choice) if self.camera_pipelines.len() > 1 => {
                 let timed: Vec<String> = (self.camera_pipelines.iter().zip(self.trial.per_sample()))
                     .map(|((v, _), s)| format!("{} {:.2}", name(v), s * 1e3))
                     .collect();
                 format!(
-                    "gpu: {}, {} (ms per spp: {})",
+                    "gpu: {}, {} (trial, ms per spp: {})",
                     self.adapter_name,
                     name(&self.camera_pipelines[choice].0),
                     timed.join(", ")
                 )
             }
-            _ => format!("gpu: {}", self.adapter_name),
+            Some(_) if self.kept => {
+                format!("gpu: {}, {} (kept from a trial)", self.adapter_name, name(&first))
+            }
+            Some(_) => format!("gpu: {}, {}", self.adapter_name, name(&first)),
+            None => {
+                format!("gpu: {}, trial of {} pipelines undecided", self.adapter_name, self.candidates.len())
+            }
         }
     }
 
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
-        let mut chunk = *params;
-        let mut timed = Vec::with_capacity(self.camera_pipelines.len());
-        let plan = self.trial.plan(params.sample_count);
-        if plan.len() > 1 {
-            self.build_candidates()?;
-        }
-        for (choice, count) in plan {
-            let end = chunk.sample_base + count;
+        if self.trial.running() && self.factory.is_some() {
             let clock = Instant::now();
-            while chunk.sample_base < end {
-                chunk.sample_count = (end - chunk.sample_base).min(self.max_dispatch_samples);
-                self.dispatch(&chunk, choice)?;
-                chunk.sample_base += chunk.sample_count;
+            self.build_candidates()?;
+            if trial_log() {
+                eprintln!("trial: built the candidates in {:.2} s", clock.elapsed().as_secs_f64());
             }
-            // (`dispatch` waits for the GPU: the clock measures the samples alone.)
-            timed.push((choice, count, clock.elapsed()));
         }
+        let choice = self.trial.next();
+        let mut chunk = *params;
+        let end = chunk.sample_base + chunk.sample_count;
+        let clock = Instant::now();
+        while chunk.sample_base < end {
+            chunk.sample_count = (end - chunk.sample_base).min(self.max_dispatch_samples);
+            self.dispatch(&chunk, choice)?;
+            chunk.sample_base += chunk.sample_count;
+        }
+        // (`dispatch` waits for the GPU: the clock measures the samples alone.)
+        let elapsed = clock.elapsed();
         let undecided = self.trial.decided().is_none();
-        self.trial.record(&timed);
+        self.trial.record(choice, params.sample_count, elapsed);
+        if undecided && trial_log() {
+            eprintln!(
+                "trial: #{choice} {} spp {:.1} ms -> {:?}",
+                params.sample_count,
+                elapsed.as_secs_f64() * 1e3,
+                self.trial.decided()
+            );
+        }
         if let (true, Some((decisions, key))) = (undecided, &self.decision) {
             match self.trial.decided() {
                 Some(choice) => decisions.store(*key, self.camera_pipelines[choice].0),
@@ -368,7 +393,7 @@ impl Backend for GpuBackend {
 }
 
 impl GpuBackend {
-    /// Compiles the camera pipelines of the candidates not built yet (once the trial splits a pass),
+    /// Compiles the camera pipelines of the candidates not built yet (once the trial begins),
     /// each on a thread of its own: the driver compiles them side by side where it can (wgpu's error
     /// scopes are per thread, so each thread checks its own).
     fn build_candidates(&mut self) -> Result<()> {
@@ -617,6 +642,12 @@ pub(crate) fn declares_spec_constant(words: &[u32], id: u32) -> bool {
     instructions(words).any(|(at, op, _)| {
         op == OP_DECORATE && words.get(at + 2) == Some(&DECORATION_SPEC_ID) && words.get(at + 3) == Some(&id)
     })
+}
+
+/// `CAUSTIC_TRIAL_LOG` set: the trial's passes on standard error (each dispatch's candidate, samples
+/// per pixel and time), to see what a choice was made from.
+fn trial_log() -> bool {
+    std::env::var_os("CAUSTIC_TRIAL_LOG").is_some()
 }
 
 #[cfg(test)]

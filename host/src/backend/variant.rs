@@ -8,18 +8,21 @@
 //! BENCHMARKS.md): `integrator_direct_both` ran 1.19× faster in 32×16 workgroups, glass 1.08× in
 //! 32×24, rough plastic 1.13× in 32×32, while the Cornell box lost 22% in 32×24 and the sphere light
 //! 34% in 32×32. So, as for the path loop, the backend builds the candidates and measures (the first
-//! at once, the others when the trial first splits a pass: `backend::gpu`).
+//! at once, the others when the trial begins: `backend::gpu`).
 //!
-//! The trial: the first candidate alone for `FIRST_ALONE` (a short render cannot pay for a trial),
-//! then every pass large enough to give each candidate `MIN_SHARE` samples per pixel is split between
-//! them until each has run `DECIDE_AFTER`; the fastest per sample wins. (Split dispatches of one or two
-//! samples measured the large workgroups 7% slower than whole renders did, on glass: a dispatch ends
-//! on its last workgroups, and large ones leave more of the GPU idle then.) Every candidate computes
-//! the same image to the bit (the loops and the sizes only change which thread runs which sample
-//! when), so the trial changes the speed alone. The choice is kept on disk (`Decisions`) for the next
-//! render of the same scene setup on the same adapter, which then builds that pipeline alone; a
-//! render that ends before the trial does keeps its measurements there, and the next one resumes
-//! them.
+//! The trial: the first candidate alone until its long passes (`LONG_PASS`) add up to `FIRST_ALONE`
+//! (a short render cannot pay for a trial), then whole passes in turn, each to the candidate measured
+//! least so far, until each has run `DECIDE_AFTER`; the fastest per sample wins. Whole passes, not
+//! shares of one: a share is a short dispatch, and a dispatch waits for its longest path, which
+//! weighs the candidates differently. On the H100 (session 19), the diamond's regenerating loop in
+//! 8×8 measured 56 ms per sample per pixel in shares of three samples and 41 in whole renders, its
+//! plain loop 63 against 58; glass's regenerating loop in 32×24 7.39 against 6.86 and its plain loop
+//! in 8×8 7.28 against 7.06, so the shares chose the plain 8×8 for glass, 3% slower than the best.
+//! Every candidate computes the same image to the bit (the loops and the sizes only change which
+//! thread runs which sample when), so the trial changes the speed alone. The choice is kept on disk
+//! (`Decisions`) for the next render of the same scene setup on the same adapter, which then builds
+//! that pipeline alone; a render that ends before the trial does keeps its measurements there, and
+//! the next one resumes them.
 use super::path_loop::{self, PathLoop, Request};
 use anyhow::{bail, Result};
 use caustic_kernel::layout::TILE;
@@ -179,22 +182,24 @@ pub fn scene_fingerprint(buffers: &crate::buffers::SceneBuffers) -> u64 {
     h.finish()
 }
 
-/// The first candidate runs alone this long: a short render (the sphere light's 256 spp take 80 ms
-/// on the H100) is over before a trial could pay for itself.
+/// The first candidate runs alone until its long passes add up to this: a short render (the sphere
+/// light's 256 spp take 80 ms on the H100) is over before a trial could pay for itself.
 const FIRST_ALONE: Duration = Duration::from_millis(100);
-/// Then passes are split between the candidates until each has run this long in split passes.
-const DECIDE_AFTER: Duration = Duration::from_millis(100);
-/// A pass is split only where each candidate gets this many samples per pixel.
-const MIN_SHARE: u32 = 2;
+/// A pass long enough to measure a candidate by: this long, or this many samples per pixel. The
+/// render grows its passes from one sample towards a second (`render::TARGET_PASS`); the first
+/// ones are dominated by their longest paths.
+const LONG_PASS: (Duration, u32) = (Duration::from_millis(250), 64);
+/// Then each candidate runs whole passes until it has run this long.
+const DECIDE_AFTER: Duration = Duration::from_millis(200);
 
 /// The trial of `count` candidates (indices into `candidates`' list) over a render's first passes.
 #[derive(Clone, Debug)]
 pub struct Trial {
     count: usize,
-    /// Time in whole passes of the first candidate before the trial.
+    /// Time in long passes of the first candidate before the trial.
     first_alone: Duration,
-    /// Per candidate: time and samples per pixel measured in split passes (after the first split
-    /// pass, which may carry the other pipelines' first-use costs).
+    /// Per candidate: time and samples per pixel measured in its passes of the trial (after the
+    /// first, which may carry the other pipelines' builds: the GPU idles meanwhile).
     time: Vec<Duration>,
     samples: Vec<u64>,
     warm: bool,
@@ -219,33 +224,38 @@ impl Trial {
         self.decided
     }
 
-    /// How to run a pass of `samples` per pixel: (candidate, samples) dispatches in order.
-    pub fn plan(&self, samples: u32) -> Vec<(usize, u32)> {
-        let n = self.count as u32;
+    /// Whether the trial has begun: the candidates take passes in turn (and all must be built).
+    pub fn running(&self) -> bool {
+        self.decided.is_none() && self.first_alone >= FIRST_ALONE
+    }
+
+    /// The candidate that runs the next pass: the chosen one, the first before the trial, else the
+    /// one measured least so far (the first of those).
+    pub fn next(&self) -> usize {
         match self.decided {
-            Some(choice) => vec![(choice, samples)],
-            None if self.first_alone < FIRST_ALONE || samples < n * MIN_SHARE => vec![(0, samples)],
-            None => (0..n).map(|i| (i as usize, samples / n + (i < samples % n) as u32)).collect(),
+            Some(choice) => choice,
+            None if !self.running() => 0,
+            None => (0..self.count).min_by_key(|&i| self.time[i]).unwrap_or(0),
         }
     }
 
-    /// Records how long the dispatches of a pass's `plan` took, and decides once every candidate has
-    /// been measured long enough.
-    pub fn record(&mut self, dispatches: &[(usize, u32, Duration)]) {
+    /// Records that candidate `choice` (`next`'s) ran a pass of `samples` per pixel in `elapsed`, and
+    /// decides once every candidate has been measured long enough.
+    pub fn record(&mut self, choice: usize, samples: u32, elapsed: Duration) {
         if self.decided.is_some() {
             return;
         }
-        if let [(_, _, elapsed)] = dispatches {
-            self.first_alone += *elapsed;
+        if !self.running() {
+            if elapsed >= LONG_PASS.0 || samples >= LONG_PASS.1 {
+                self.first_alone += elapsed;
+            }
             return;
         }
         if !std::mem::replace(&mut self.warm, true) {
             return;
         }
-        for &(i, samples, elapsed) in dispatches {
-            self.time[i] += elapsed;
-            self.samples[i] += samples as u64;
-        }
+        self.time[choice] += elapsed;
+        self.samples[choice] += samples as u64;
         if self.time.iter().all(|&t| t >= DECIDE_AFTER) {
             let per_sample = self.per_sample();
             let best = (0..self.count).min_by(|&a, &b| per_sample[a].total_cmp(&per_sample[b]));
@@ -254,8 +264,8 @@ impl Trial {
     }
 
     /// The measurements so far, as one line: nanoseconds alone, then nanoseconds and samples per
-    /// candidate. Not whether the first split pass was dropped: a new process compiles its
-    /// pipelines again, and its first split pass again carries that.
+    /// candidate. Not whether the first pass of the trial was dropped: a new process builds its
+    /// pipelines again, and its first pass of the trial again follows that.
     pub fn to_text(&self) -> String {
         let mut words = vec![self.first_alone.as_nanos().to_string()];
         for (t, s) in self.time.iter().zip(&self.samples) {
@@ -302,9 +312,8 @@ mod tests {
             if t.decided().is_some() {
                 return (t, pass);
             }
-            let plan = t.plan(count);
-            let timed: Vec<_> = plan.iter().map(|&(i, n)| (i, n, ms(cost_ms[i] * n as u64))).collect();
-            t.record(&timed);
+            let i = t.next();
+            t.record(i, count, ms(cost_ms[i] * count as u64));
         }
         panic!("no decision");
     }
@@ -312,28 +321,39 @@ mod tests {
     #[test]
     fn the_first_runs_alone_then_the_fastest_per_sample_wins() {
         let t = Trial::new(2);
-        assert_eq!(t.plan(8), vec![(0, 8)], "the first candidate alone first");
-        // Three passes alone (144 ms ≥ 100), one unmeasured split pass, then five split passes (120
-        // and 100 ms ≥ 100): decided before the tenth.
-        let (t, passes) = trial(&[12, 10], 4);
+        assert_eq!(t.next(), 0, "the first candidate alone first");
+        // One pass alone (288 ms: long, and ≥ 100), one unmeasured pass of the trial, then one each
+        // (288 and 240 ms ≥ 200): decided in the fourth.
+        let (t, passes) = trial(&[12, 10], 24);
         assert_eq!(t.decided(), Some(1));
-        assert_eq!(passes, 10);
-        assert_eq!(t.plan(8), vec![(1, 8)]);
-        assert_eq!(trial(&[10, 12], 4).0.decided(), Some(0));
+        assert_eq!(passes, 5);
+        assert_eq!(t.next(), 1);
+        assert_eq!(trial(&[10, 12], 30).0.decided(), Some(0));
         // Six candidates (two loops by three sizes): every one is timed, the cheapest wins.
-        assert_eq!(trial(&[10, 12, 9, 11, 7, 8], 12).0.decided(), Some(4));
+        assert_eq!(trial(&[10, 12, 9, 11, 7, 8], 30).0.decided(), Some(4));
     }
 
     #[test]
-    fn a_pass_is_split_by_whole_samples_or_not_at_all() {
+    fn short_passes_neither_start_the_trial_nor_measure() {
         let mut t = Trial::new(3);
-        t.record(&[(0, 10, FIRST_ALONE)]);
-        assert_eq!(t.plan(8), vec![(0, 3), (1, 3), (2, 2)]);
-        assert_eq!(t.plan(5), vec![(0, 5)], "under two samples each: the first alone");
+        // A render's first passes: short in time and in samples.
+        for n in [1, 2, 4, 8, 16, 32] {
+            t.record(0, n, ms(3 * n as u64));
+        }
+        assert!(!t.running(), "passes under {LONG_PASS:?} do not count");
+        t.record(0, 64, ms(5)); // (64 samples per pixel: long in samples)
+        assert!(!t.running());
+        t.record(0, 20, ms(250)); // (long in time)
+        assert!(t.running());
+        t.record(t.next(), 40, ms(500)); // (the first pass of the trial is not measured)
+        assert_eq!(t.per_sample(), vec![0.0; 3]);
+        // The least measured runs next: the second after the first.
+        t.record(t.next(), 40, ms(500));
+        assert_eq!(t.next(), 1);
     }
 
     /// Renders too short to decide add up: each resumes the last one's measurements, drops its own
-    /// first split pass (its pipelines are new) and decides as one long render would.
+    /// first pass of the trial (its pipelines are new) and decides as one long render would.
     #[test]
     fn short_renders_resume_the_trial() {
         let dir = std::env::temp_dir().join(format!("caustic-partial-test-{}", std::process::id()));
@@ -344,10 +364,9 @@ mod tests {
             renders += 1;
             assert!(renders < 50, "never decided");
             let mut t = decisions.load_partial(3, 2).unwrap_or_else(|| Trial::new(2));
-            for _ in 0..3 {
-                let plan = t.plan(4);
-                let timed: Vec<_> = plan.iter().map(|&(i, n)| (i, n, ms(cost_ms[i] * n as u64))).collect();
-                t.record(&timed);
+            for _ in 0..2 {
+                let i = t.next();
+                t.record(i, 64, ms(cost_ms[i] * 64));
             }
             if let Some(choice) = t.decided() {
                 decisions.store(3, Variant { path_loop: PathLoop::Plain, workgroup: [8, 8] });
@@ -356,7 +375,7 @@ mod tests {
             decisions.store_partial(3, &t);
         };
         assert_eq!(decided, 1);
-        assert!(renders > 2, "decided in {renders} renders of three passes");
+        assert!(renders > 2, "decided in {renders} renders of two passes");
         assert!(decisions.load_partial(3, 2).is_none(), "a decision ends the kept trial");
         assert!(Trial::from_text("1 2 3", 2).is_none() && Trial::from_text("1 2 x 4 5", 2).is_none());
         std::fs::remove_dir_all(dir).unwrap();
@@ -366,7 +385,8 @@ mod tests {
     fn one_candidate_is_decided_from_the_start() {
         let t = Trial::new(1);
         assert_eq!(t.decided(), Some(0));
-        assert_eq!(t.plan(64), vec![(0, 64)]);
+        assert_eq!(t.next(), 0);
+        assert!(!t.running());
     }
 
     #[test]
