@@ -12,12 +12,12 @@
 //!
 //! The trial: the first candidate alone until its long passes (`LONG_PASS`) add up to `FIRST_ALONE`
 //! (a short render cannot pay for a trial), then whole passes in turn, each to the candidate measured
-//! least so far, until each has run `DECIDE_AFTER`; the fastest per sample wins. Whole passes, not
-//! shares of one: a share is a short dispatch, and a dispatch waits for its longest path, which
-//! weighs the candidates differently. On the H100 (session 19), the diamond's regenerating loop in
+//! least so far, until each has run `DECIDE_AFTER` in long passes; the fastest per sample wins.
+//! Whole passes, not shares of one: a share is a short dispatch, and a dispatch waits for its
+//! longest path, which weighs the candidates differently. On the H100 (session 19), the diamond's regenerating loop in
 //! 8×8 measured 56 ms per sample per pixel in shares of three samples and 41 in whole renders, its
 //! plain loop 63 against 58; glass's regenerating loop in 32×24 7.39 against 6.86 and its plain loop
-//! in 8×8 7.28 against 7.06, so the shares chose the plain 8×8 for glass, 3% slower than the best.
+//! in 8×8 7.28 against 7.06, so the shares chose plain loops for glass, 3–4% slower than the best.
 //! Every candidate computes the same image to the bit (the loops and the sizes only change which
 //! thread runs which sample when), so the trial changes the speed alone. The choice is kept on disk
 //! (`Decisions`) for the next render of the same scene setup on the same adapter, which then builds
@@ -189,7 +189,7 @@ const FIRST_ALONE: Duration = Duration::from_millis(100);
 /// render grows its passes from one sample towards a second (`render::TARGET_PASS`); the first
 /// ones are dominated by their longest paths.
 const LONG_PASS: (Duration, u32) = (Duration::from_millis(250), 64);
-/// Then each candidate runs whole passes until it has run this long.
+/// Then each candidate runs whole passes until it has run this long in long ones.
 const DECIDE_AFTER: Duration = Duration::from_millis(200);
 
 /// The trial of `count` candidates (indices into `candidates`' list) over a render's first passes.
@@ -245,13 +245,15 @@ impl Trial {
         if self.decided.is_some() {
             return;
         }
+        let long = elapsed >= LONG_PASS.0 || samples >= LONG_PASS.1;
         if !self.running() {
-            if elapsed >= LONG_PASS.0 || samples >= LONG_PASS.1 {
+            if long {
                 self.first_alone += elapsed;
             }
             return;
         }
-        if !std::mem::replace(&mut self.warm, true) {
+        // (Each render starts again from one-sample passes: those measure no candidate either.)
+        if !std::mem::replace(&mut self.warm, true) || !long {
             return;
         }
         self.time[choice] += elapsed;
@@ -322,15 +324,15 @@ mod tests {
     fn the_first_runs_alone_then_the_fastest_per_sample_wins() {
         let t = Trial::new(2);
         assert_eq!(t.next(), 0, "the first candidate alone first");
-        // One pass alone (288 ms: long, and ≥ 100), one unmeasured pass of the trial, then one each
-        // (288 and 240 ms ≥ 200): decided in the fourth.
-        let (t, passes) = trial(&[12, 10], 24);
+        // One pass alone (360 ms: long, and ≥ 100), one unmeasured pass of the trial, then one each
+        // (360 and 300 ms ≥ 200): decided in the fourth.
+        let (t, passes) = trial(&[12, 10], 30);
         assert_eq!(t.decided(), Some(1));
         assert_eq!(passes, 5);
         assert_eq!(t.next(), 1);
         assert_eq!(trial(&[10, 12], 30).0.decided(), Some(0));
         // Six candidates (two loops by three sizes): every one is timed, the cheapest wins.
-        assert_eq!(trial(&[10, 12, 9, 11, 7, 8], 30).0.decided(), Some(4));
+        assert_eq!(trial(&[10, 12, 9, 11, 7, 8], 40).0.decided(), Some(4));
     }
 
     #[test]
@@ -341,11 +343,13 @@ mod tests {
             t.record(0, n, ms(3 * n as u64));
         }
         assert!(!t.running(), "passes under {LONG_PASS:?} do not count");
+        assert_eq!(t.next(), 0);
         t.record(0, 64, ms(5)); // (64 samples per pixel: long in samples)
         assert!(!t.running());
         t.record(0, 20, ms(250)); // (long in time)
         assert!(t.running());
         t.record(t.next(), 40, ms(500)); // (the first pass of the trial is not measured)
+        t.record(t.next(), 2, ms(10)); // (nor a short one)
         assert_eq!(t.per_sample(), vec![0.0; 3]);
         // The least measured runs next: the second after the first.
         t.record(t.next(), 40, ms(500));
