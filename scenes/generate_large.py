@@ -137,6 +137,13 @@ def main():
     args = sys.argv[1:]
     instanced = "--instanced" in args
     args = [a for a in args if a != "--instanced"]
+    if any(a in ("-h", "--help") for a in args):
+        print(__doc__)
+        return
+    unknown = [a for a in args if a.startswith("-")]
+    if unknown:
+        # (A mistyped option used to become the output directory.)
+        sys.exit(f"generate_large.py: unknown option {unknown[0]}\n{__doc__}")
     if not args:
         sys.exit(__doc__)
     targets = [int(float(t)) for t in args[1:]] or [10**6, 10**7, 5 * 10**7]
