@@ -57,6 +57,7 @@ impl<'a> Accel<'a> {
             return crate::instancing::trace(self, ray, any_hit, skip);
         }
         let inv_dir = Vec3::ONE / ray.dir;
+        let shear = shape::triangle::RayShear::of(ray);
         let mut stack = [0u32; STACK_SIZE];
         let mut top = 0usize;
         let mut node_index = 0u32;
@@ -83,7 +84,7 @@ impl<'a> Accel<'a> {
                     }
                     // SAFETY: leaf ranges lie inside `prims` (see above).
                     let prim = unsafe { self.prims.index_unchecked(i as usize) };
-                    if let Some((t, uv)) = shape::intersect(prim, ray, best_t) {
+                    if let Some((t, uv)) = shape::intersect(prim, ray, &shear, best_t) {
                         best_t = t;
                         best_prim = i;
                         best_uv = uv;

@@ -99,6 +99,7 @@ fn descend(accel: &Accel, node: u32, ray: &Ray, inv_dir: Vec3, best_t: f32) -> (
 /// for a ray already in the group's space; primitive `skip` is ignored.
 fn trace_blas(accel: &Accel, root: u32, ray: &Ray, any_hit: bool, skip: u32, t_max: f32) -> Option<Hit> {
     let inv_dir = Vec3::ONE / ray.dir;
+    let shear = shape::triangle::RayShear::of(ray);
     let mut stack = [0u32; STACK_SIZE];
     let mut top = 0usize;
     let mut best = Hit { t: t_max, prim: NONE, uv: Vec2::ZERO, instance: NONE };
@@ -112,7 +113,7 @@ fn trace_blas(accel: &Accel, root: u32, ray: &Ray, any_hit: bool, skip: u32, t_m
             let mut i = node.first;
             while i < node.first + node.prim_count {
                 if i != skip {
-                    if let Some((t, uv)) = shape::intersect(&accel.prims[i as usize], ray, best.t) {
+                    if let Some((t, uv)) = shape::intersect(&accel.prims[i as usize], ray, &shear, best.t) {
                         best = Hit { t, prim: i, uv, instance: NONE };
                         if any_hit {
                             return Some(best);

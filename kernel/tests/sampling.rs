@@ -168,7 +168,12 @@ fn area_light_chi2(name: &str, prim: Primitive, normal: Vec3) {
         |wi| {
             let ray =
                 caustic_kernel::camera::Ray { origin: Vec3::ZERO, dir: wi, t_min: 0.0, t_max: f32::MAX };
-            match caustic_kernel::shape::intersect(&prim, &ray, f32::MAX) {
+            match caustic_kernel::shape::intersect(
+                &prim,
+                &ray,
+                &caustic_kernel::shape::triangle::RayShear::of(&ray),
+                f32::MAX,
+            ) {
                 Some((t, _)) => light::area::pdf(&prim, Vec3::ZERO, wi * t, normal) as f64,
                 None => 0.0,
             }

@@ -23,13 +23,13 @@ pub struct Hit {
 
 /// Intersects one primitive, returning `(t, uv)` inside the ray's interval.
 #[inline]
-pub fn intersect(prim: &Primitive, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
+pub fn intersect(prim: &Primitive, ray: &Ray, shear: &triangle::RayShear, t_max: f32) -> Option<(f32, Vec2)> {
     if prim.kind == PRIM_SPHERE {
         sphere::intersect(vec3(prim.p0), prim.p1[0], ray, t_max)
     } else if prim.kind == PRIM_DISK {
         disk::intersect(vec3(prim.p0), vec3(prim.p1), vec3(prim.p2), ray, t_max)
     } else {
-        triangle::intersect(vec3(prim.p0), vec3(prim.p1), vec3(prim.p2), ray, t_max)
+        triangle::intersect_sheared(vec3(prim.p0), vec3(prim.p1), vec3(prim.p2), shear.get(ray), ray, t_max)
     }
 }
 

@@ -14,28 +14,85 @@ fn component(v: Vec3, axis: u32) -> f32 {
     }
 }
 
+/// The per-ray half of the watertight test: the axis along which the ray runs most (`kz`), the two
+/// others, and the shear that maps the ray onto +z.
+#[derive(Clone, Copy)]
+pub struct Shear {
+    kx: u32,
+    ky: u32,
+    kz: u32,
+    sx: f32,
+    sy: f32,
+    sz: f32,
+}
+
+impl Shear {
+    #[inline]
+    pub fn of(d: Vec3) -> Self {
+        let ad = d.abs();
+        let mut kz = 0u32;
+        if ad.y > ad.x {
+            kz = 1;
+        }
+        if ad.z > component(ad, kz) {
+            kz = 2;
+        }
+        let mut kx = if kz == 2 { 0 } else { kz + 1 };
+        let mut ky = if kx == 2 { 0 } else { kx + 1 };
+        let dz = component(d, kz);
+        if dz < 0.0 {
+            core::mem::swap(&mut kx, &mut ky);
+        }
+        Shear { kx, ky, kz, sx: component(d, kx) / dz, sy: component(d, ky) / dz, sz: 1.0 / dz }
+    }
+}
+
+/// A ray's `Shear` through one traversal. The CPU computes it once per ray (two divisions and the
+/// axis choice per triangle were 6% of glass on this 2-core machine, BENCHMARKS.md session 19);
+/// the GPU again per triangle, where six more values live through the traversal cost registers
+/// (session 6: hoisting it with the visited node lost 12–16% on the H100's mesh scenes).
+#[derive(Clone, Copy)]
+pub struct RayShear {
+    #[cfg(not(target_arch = "spirv"))]
+    shear: Shear,
+}
+
+impl RayShear {
+    #[inline]
+    pub fn of(ray: &Ray) -> Self {
+        #[cfg(not(target_arch = "spirv"))]
+        return RayShear { shear: Shear::of(ray.dir) };
+        #[cfg(target_arch = "spirv")]
+        {
+            let _ = ray;
+            RayShear {}
+        }
+    }
+
+    #[inline]
+    pub fn get(&self, ray: &Ray) -> Shear {
+        #[cfg(not(target_arch = "spirv"))]
+        {
+            let _ = ray;
+            self.shear
+        }
+        #[cfg(target_arch = "spirv")]
+        Shear::of(ray.dir)
+    }
+}
+
 /// Watertight ray/triangle intersection (Woop, Benthin, Wald 2013): rays through shared edges and
 /// vertices never slip between adjacent triangles. Returns `(t, (b1, b2))`.
-pub fn intersect(p0: Vec3, p1: Vec3, p2: Vec3, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
-    let d = ray.dir;
-    let ad = d.abs();
-    let mut kz = 0u32;
-    if ad.y > ad.x {
-        kz = 1;
-    }
-    if ad.z > component(ad, kz) {
-        kz = 2;
-    }
-    let mut kx = if kz == 2 { 0 } else { kz + 1 };
-    let mut ky = if kx == 2 { 0 } else { kx + 1 };
-    let dz = component(d, kz);
-    if dz < 0.0 {
-        core::mem::swap(&mut kx, &mut ky);
-    }
-    let sx = component(d, kx) / dz;
-    let sy = component(d, ky) / dz;
-    let sz = 1.0 / dz;
-
+#[inline]
+pub fn intersect_sheared(
+    p0: Vec3,
+    p1: Vec3,
+    p2: Vec3,
+    shear: Shear,
+    ray: &Ray,
+    t_max: f32,
+) -> Option<(f32, Vec2)> {
+    let Shear { kx, ky, kz, sx, sy, sz } = shear;
     let a = p0 - ray.origin;
     let b = p1 - ray.origin;
     let c = p2 - ray.origin;
