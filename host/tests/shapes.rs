@@ -422,7 +422,7 @@ fn cylinder_normals_and_uvs_follow_mitsuba() {
 #[test]
 fn disk_hits_uvs_and_normals_follow_mitsuba() {
     use caustic_kernel::camera::Ray;
-    use caustic_kernel::shape::{intersect, surface_point, Hit};
+    use caustic_kernel::shape::{intersect, surface_point, triangle::RayShear, Hit};
     let dir = temp_dir("disk");
     let scene = load_scene_with(&dir, "<shape type=\"disk\"/>\n<shape type=\"disk\"><transform name=\"to_world\"><scale x=\"-1\"/><translate z=\"-3\"/></transform></shape>").unwrap();
     let buffers = caustic::buffers::build(&scene).unwrap();
@@ -432,7 +432,7 @@ fn disk_hits_uvs_and_normals_follow_mitsuba() {
         let mirror = if k == 1 { -1.0 } else { 1.0 };
         for (x, y) in [(0.5f32, 0.0f32), (0.0, 0.7), (-0.3, -0.4), (0.99, 0.1), (1.01, 0.0), (0.8, 0.8)] {
             let ray = Ray { origin: Vec3::new(x, y, z + 1.0), dir: -Vec3::Z, t_min: 0.0, t_max: f32::MAX };
-            let hit = intersect(prim, &ray, f32::MAX);
+            let hit = intersect(prim, &ray, &RayShear::of(&ray), f32::MAX);
             let r = (x * x + y * y).sqrt();
             assert_eq!(hit.is_some(), r <= 1.0, "disk {k}: ({x}, {y}) at r = {r}");
             let Some((t, ab)) = hit else { continue };
