@@ -14,10 +14,11 @@
 //! (a short render cannot pay for a trial), then whole passes in turn, each to the candidate measured
 //! least so far, until each has run `DECIDE_AFTER` in long passes; the fastest per sample wins.
 //! Whole passes, not shares of one: a share is a short dispatch, and a dispatch waits for its
-//! longest path, which weighs the candidates differently. On the H100 (session 19), the diamond's regenerating loop in
-//! 8×8 measured 56 ms per sample per pixel in shares of three samples and 41 in whole renders, its
-//! plain loop 63 against 58; glass's regenerating loop in 32×24 7.39 against 6.86 and its plain loop
-//! in 8×8 7.28 against 7.06, so the shares chose plain loops for glass, 3–4% slower than the best.
+//! longest path, which weighs the candidates differently. On the H100 (session 19), the diamond's
+//! regenerating loop in 8×8 measured 56 ms per sample per pixel in shares of three samples and 41
+//! in whole renders, its plain loop 63 against 58; glass's regenerating loop in 32×24 7.39 against
+//! 6.86 and its plain loop in 8×8 7.28 against 7.06, so the shares chose plain loops for glass,
+//! 3–4% slower than the best.
 //! Every candidate computes the same image to the bit (the loops and the sizes only change which
 //! thread runs which sample when), so the trial changes the speed alone. The choice is kept on disk
 //! (`Decisions`) for the next render of the same scene setup on the same adapter, which then builds
