@@ -54,6 +54,7 @@ impl SceneBuffers {
             textures: &self.textures,
             tables: &self.tables,
             features: self.features,
+            wide_bvh: false,
         }
     }
 }

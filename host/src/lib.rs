@@ -31,6 +31,7 @@ pub mod schedule;
 pub mod session;
 pub mod shares;
 pub mod tev;
+pub mod wide_bvh;
 
 use anyhow::Result;
 use std::path::Path;

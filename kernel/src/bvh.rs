@@ -13,7 +13,9 @@ pub(crate) const MISS: f32 = f32::MAX;
 /// Depth of the traversal stack. The host rejects BVHs deeper than this, so it never overflows.
 pub const STACK_SIZE: usize = 48;
 
-/// Slab test; returns the entry distance, or `MISS` when the box is missed.
+/// Slab test; returns the entry distance, or `MISS` when the box is missed. A ray parallel to an axis
+/// in the plane of a face makes that slab's distance 0 · ∞ = NaN: on the CPU the box is then entered
+/// through its upper face and not its lower one (`tests/tests/wide_bvh.rs`; `wide_bvh` enters both).
 #[inline]
 pub(crate) fn intersect_aabb(node: &BvhNode, origin: Vec3, inv_dir: Vec3, t_min: f32, t_max: f32) -> f32 {
     let t0 = (vec3(node.min) - origin) * inv_dir;
@@ -36,17 +38,25 @@ pub struct Accel<'a> {
     pub prims: &'a [Primitive],
     pub tables: &'a [f32],
     pub features: u32,
+    /// `nodes` is a 4-wide BVH (`wide_bvh`; never with instances).
+    pub wide: bool,
 }
 
 impl<'a> Accel<'a> {
     #[inline]
     pub fn of(scene: &SceneView<'a>) -> Self {
-        Accel { nodes: scene.nodes, prims: scene.prims, tables: scene.tables, features: scene.features }
+        Accel {
+            nodes: scene.nodes,
+            prims: scene.prims,
+            tables: scene.tables,
+            features: scene.features,
+            wide: scene.wide_bvh,
+        }
     }
 
     /// Closest hit along the ray, or `None`. With `any_hit`, returns the first hit found (shadow rays).
     /// Primitive `skip` (or none, with `NONE`) is ignored. Scenes with instances take
-    /// `instancing::trace`; the rest, this one-level walk.
+    /// `instancing::trace`; a wide BVH, `wide_bvh::trace`; the rest, this one-level walk.
     ///
     /// The walk reads the buffers without bounds checks: every child index and leaf range of a BVH
     /// lies inside its buffers (`host/src/buffers.rs` checks each tree it builds), and the stack is
@@ -55,6 +65,9 @@ impl<'a> Accel<'a> {
     pub fn trace(&self, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> {
         if crate::features::has(self.features, crate::features::INSTANCING) {
             return crate::instancing::trace(self, ray, any_hit, skip);
+        }
+        if self.wide {
+            return crate::wide_bvh::trace(self, ray, any_hit, skip);
         }
         let inv_dir = Vec3::ONE / ray.dir;
         let shear = shape::triangle::RayShear::of(ray);

@@ -36,7 +36,17 @@ pub fn render(
     if id.x >= params.width || id.y >= params.height {
         return;
     }
-    let scene = SceneView { nodes, prims, attributes, materials, lights, textures, tables, features };
+    let scene = SceneView {
+        nodes,
+        prims,
+        attributes,
+        materials,
+        lights,
+        textures,
+        tables,
+        features,
+        wide_bvh: false,
+    };
     let pixel = id.y * params.width + id.x;
     if splats_camera_paths(&scene, params) {
         splat_camera_paths(&scene, params, pixel, &mut GpuWords(splat));
@@ -67,7 +77,17 @@ pub fn light(
     if id.x >= params.width || id.y >= params.height {
         return;
     }
-    let scene = SceneView { nodes, prims, attributes, materials, lights, textures, tables, features };
+    let scene = SceneView {
+        nodes,
+        prims,
+        attributes,
+        materials,
+        lights,
+        textures,
+        tables,
+        features,
+        wide_bvh: false,
+    };
     let pixel = id.y * params.width + id.x;
     trace_light_paths(&scene, params, pixel, &mut GpuWords(splat));
 }

@@ -458,4 +458,6 @@ pub struct SceneView<'a> {
     pub tables: &'a [f32],
     /// What the scene uses (`features`): unused paths are skipped (on the GPU, compiled out).
     pub features: u32,
+    /// `nodes` holds a 4-wide BVH (`wide_bvh`) rather than BVH2: the CPU backend's choice.
+    pub wide_bvh: bool,
 }

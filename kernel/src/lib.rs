@@ -32,6 +32,7 @@ pub mod splat;
 pub mod texture;
 pub mod two_sided;
 pub mod wavelength;
+pub mod wide_bvh;
 
 #[cfg(target_arch = "spirv")]
 pub mod entry;

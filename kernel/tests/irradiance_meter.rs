@@ -26,6 +26,7 @@ fn with_meter<R>(prims: &[Primitive], meter: &[u32], cdf: &[f32], f: impl FnOnce
         textures: &[],
         tables: &tables,
         features: 0,
+        wide_bvh: false,
     };
     f(&scene)
 }

@@ -4,10 +4,22 @@ use super::Backend;
 use crate::buffers::SceneBuffers;
 use crate::film::{Accumulation, Folding};
 use anyhow::Result;
-use caustic_kernel::layout::{FrameParams, PixelAccum};
+use caustic_kernel::layout::{FrameParams, PixelAccum, SceneView};
+
+/// Whether the CPU walks a 4-wide BVH (`crate::wide_bvh`, the default) or the scene's BVH2
+/// (`CAUSTIC_CPU_BVH=2`, for A/B timings and tests).
+pub fn wide_requested() -> Result<bool> {
+    match std::env::var("CAUSTIC_CPU_BVH").as_deref() {
+        Err(_) | Ok("4") => Ok(true),
+        Ok("2") => Ok(false),
+        Ok(other) => anyhow::bail!("CAUSTIC_CPU_BVH must be 2 or 4, not {other:?}"),
+    }
+}
 
 pub struct CpuBackend {
+    /// The scene's buffers, with the nodes widened where `wide` (in place: no second tree in memory).
     buffers: SceneBuffers,
+    wide: bool,
     /// The f32 sums the kernel adds to, as the GPU's accumulation buffer.
     device: Vec<PixelAccum>,
     folding: Folding,
@@ -23,7 +35,22 @@ impl CpuBackend {
         let folding = Folding::new(pixels, splatted, buffers.params.square_scale_log2);
         use super::path_loop::{requested, PathLoop, Request};
         let regenerate = requested().ok() == Some(Request::Fixed(PathLoop::Regenerate));
-        CpuBackend { buffers, device: vec![PixelAccum::default(); pixels], folding, regenerate }
+        let mut buffers = buffers;
+        // Instances keep their two-level BVH2 (`instancing`), and a tree too deep for the wide
+        // traversal's stack its BVH2.
+        let widened = (wide_requested().unwrap_or(true)
+            && !caustic_kernel::features::has(buffers.features, caustic_kernel::features::INSTANCING))
+        .then(|| crate::wide_bvh::widen(&buffers.nodes))
+        .flatten();
+        let wide = widened.is_some();
+        if let Some(nodes) = widened {
+            buffers.nodes = nodes;
+        }
+        CpuBackend { buffers, wide, device: vec![PixelAccum::default(); pixels], folding, regenerate }
+    }
+
+    fn view(buffers: &SceneBuffers, wide: bool) -> SceneView<'_> {
+        SceneView { wide_bvh: wide, ..buffers.view() }
     }
 
     fn fold(&mut self) {
@@ -34,19 +61,25 @@ impl CpuBackend {
 
 impl Backend for CpuBackend {
     fn describe(&self) -> String {
-        format!("cpu ({} threads)", rayon::current_num_threads())
+        let bvh = if self.wide { "4-wide BVH" } else { "BVH2" };
+        format!("cpu ({} threads, {bvh})", rayon::current_num_threads())
     }
 
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
         if self.folding.total.batches.is_some() {
             use caustic_kernel::splat::{resolved, SPLAT_STRIDE};
-            let words = caustic_cpu::light_pass(&self.buffers.view(), params);
+            let words = caustic_cpu::light_pass(&Self::view(&self.buffers, self.wide), params);
             let q = caustic_kernel::layout::square_scale(params);
             for (px, w) in self.device.iter_mut().zip(words.chunks_exact(SPLAT_STRIDE as usize)) {
                 *px = resolved(*px, w.try_into().expect("a pixel's words"), params.sample_count, q);
             }
         } else {
-            caustic_cpu::render_pass(&self.buffers.view(), params, &mut self.device, self.regenerate);
+            caustic_cpu::render_pass(
+                &Self::view(&self.buffers, self.wide),
+                params,
+                &mut self.device,
+                self.regenerate,
+            );
         }
         if self.folding.passed(params.sample_count) {
             self.fold();

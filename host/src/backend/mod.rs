@@ -130,9 +130,10 @@ pub fn create_on(
         crate::memory::available(),
         &format!("a {w}×{h} render"),
     )?;
-    // (A bad CAUSTIC_PATH_LOOP or CAUSTIC_WORKGROUP is an error on every backend.)
+    // (A bad CAUSTIC_PATH_LOOP, CAUSTIC_WORKGROUP or CAUSTIC_CPU_BVH is an error on every backend.)
     path_loop::requested()?;
     variant::requested_workgroups()?;
+    cpu::wide_requested()?;
     let cpu = || -> Box<dyn Backend + Send> { Box::new(cpu::CpuBackend::new(buffers.clone())) };
     let hardware_only = match choice {
         BackendChoice::Cpu => return Ok(cpu()),
