@@ -11,21 +11,20 @@ fn half_area(n: &BvhNode) -> f32 {
     d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
 }
 
-/// The up-to-four BVH2 nodes under inner node `n` that become one group's children.
-fn children(nodes: &[BvhNode], n: usize) -> Vec<usize> {
+/// The up-to-four BVH2 nodes under inner node `n` that become one group's children, and how many.
+fn children(nodes: &[BvhNode], n: usize) -> ([usize; 4], usize) {
     let first = nodes[n].first as usize;
-    let mut open = vec![first, first + 1];
-    while open.len() < 4 {
-        let inner = open
-            .iter()
-            .enumerate()
-            .filter(|(_, &c)| nodes[c].prim_count == 0)
-            .max_by(|(_, &a), (_, &b)| half_area(&nodes[a]).total_cmp(&half_area(&nodes[b])));
-        let Some((at, &c)) = inner else { break };
-        let first = nodes[c].first as usize;
-        open.splice(at..=at, [first, first + 1]);
+    let (mut open, mut len) = ([first, first + 1, 0, 0], 2);
+    while len < 4 {
+        let inner = (0..len)
+            .filter(|&i| nodes[open[i]].prim_count == 0)
+            .max_by(|&i, &j| half_area(&nodes[open[i]]).total_cmp(&half_area(&nodes[open[j]])));
+        let Some(i) = inner else { break };
+        let first = nodes[open[i]].first as usize;
+        (open[i], open[len]) = (first, first + 1);
+        len += 1;
     }
-    open
+    (open, len)
 }
 
 /// The wide BVH of `nodes` (a BVH2 of the layout `buffers::build_bvh` makes), or `None` when it
@@ -35,12 +34,13 @@ pub fn widen(nodes: &[BvhNode]) -> Option<Vec<BvhNode>> {
     let root = nodes.first()?;
     let mut out = vec![empty; 4];
     // (group in `out`, its BVH2 children, its depth in groups)
-    let mut pending = vec![(0usize, if root.prim_count > 0 { vec![0] } else { children(nodes, 0) }, 1usize)];
-    while let Some((group, kids, depth)) = pending.pop() {
+    let mut pending =
+        vec![(0usize, if root.prim_count > 0 { ([0; 4], 1) } else { children(nodes, 0) }, 1usize)];
+    while let Some((group, (kids, len), depth)) = pending.pop() {
         if depth > WIDE_DEPTH {
             return None;
         }
-        for (slot, &c) in kids.iter().enumerate() {
+        for (slot, &c) in kids[..len].iter().enumerate() {
             let n = nodes[c];
             out[4 * group + slot] = if n.prim_count > 0 {
                 n
