@@ -28,7 +28,9 @@ fn children(nodes: &[BvhNode], n: usize) -> ([usize; 4], usize) {
 }
 
 /// The wide BVH of `nodes` (a BVH2 of the layout `buffers::build_bvh` makes), or `None` when it
-/// would nest deeper than the traversal's stack allows (`WIDE_DEPTH`) or `nodes` is not one tree.
+/// would nest deeper than the traversal's stack allows (`WIDE_DEPTH`: a child left unopened goes
+/// down one BVH2 level per group, so a lopsided BVH2 within its own stack may not fit) or `nodes` is
+/// empty.
 pub fn widen(nodes: &[BvhNode]) -> Option<Vec<BvhNode>> {
     let empty = BvhNode { first: NONE, ..Default::default() };
     let root = nodes.first()?;
@@ -161,11 +163,9 @@ mod tests {
         assert_eq!(wide.iter().filter(|n| n.first == NONE).count(), 1);
     }
 
-    #[test]
-    fn a_chain_too_deep_for_the_stack_stays_binary() {
-        // Each inner node: a leaf and the next inner node. Opening takes three levels per group.
-        let levels = 3 * WIDE_DEPTH + 3;
-        // Node 0 is the root, its children at 1 (leaf) and 2 (inner), and so on.
+    /// Each inner node: a leaf and the next inner node, `levels` inner nodes in all. Node 0 is the
+    /// root, its children at 1 (leaf) and 2 (inner), and so on.
+    fn chain(levels: usize) -> Vec<BvhNode> {
         let mut chain = vec![node([0.0; 3], [1.0; 3], 0, 1)];
         for l in 0..levels {
             let last = l + 1 == levels;
@@ -177,7 +177,15 @@ mod tests {
                 node([0.0; 3], [1.0; 3], 0, next)
             });
         }
-        assert!(widen(&chain).is_none());
-        assert!(widen(&chain[..0]).is_none());
+        chain
+    }
+
+    #[test]
+    fn a_chain_too_deep_for_the_stack_stays_binary() {
+        // A group opens three of the chain's inner nodes.
+        let fits = widen(&chain(3 * WIDE_DEPTH)).expect("WIDE_DEPTH groups fit");
+        assert_eq!(fits.len(), 4 * WIDE_DEPTH);
+        assert!(widen(&chain(3 * WIDE_DEPTH + 1)).is_none());
+        assert!(widen(&[]).is_none());
     }
 }
