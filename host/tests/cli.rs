@@ -720,3 +720,41 @@ fn kernel_stats_writes_what_the_driver_gets_or_says_why_not() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// The CPU walks the 4-wide BVH unless `CAUSTIC_CPU_BVH=2` asks for BVH2, and its closing line says
+/// which; any other value is an error naming the variable.
+#[test]
+fn the_cpu_names_its_bvh_and_refuses_an_unknown_one() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let bench = |bvh: Option<&str>| {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_caustic"));
+        command.args(["bench", scene, "--backend", "cpu", "--spp", "1", "-D", "res=16"]);
+        command.env("XDG_RUNTIME_DIR", "/tmp").env_remove("CAUSTIC_CPU_BVH");
+        if let Some(v) = bvh {
+            command.env("CAUSTIC_CPU_BVH", v);
+        }
+        let out = command.output().expect("runs");
+        let text =
+            format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        (out.status.success(), text)
+    };
+    for (bvh, named) in [(None, "4-wide BVH"), (Some("4"), "4-wide BVH"), (Some("2"), "BVH2")] {
+        let (ok, text) = bench(bvh);
+        assert!(ok && text.contains(&format!("threads, {named})")), "{bvh:?}: {text}");
+    }
+    // (`bench` prints the backend as unavailable, with the reason; `render` stops with it.)
+    let (_, text) = bench(Some("8"));
+    assert!(text.contains("unavailable: CAUSTIC_CPU_BVH must be 2 or 4, not \"8\""), "{text}");
+    let image = std::env::temp_dir().join(format!("caustic-cpu-bvh-{}.exr", std::process::id()));
+    let out = Command::new(env!("CARGO_BIN_EXE_caustic"))
+        .args(["render", scene, "--backend", "cpu", "--spp", "1", "-D", "res=16", "-q", "-o"])
+        .arg(&image)
+        .env("XDG_RUNTIME_DIR", "/tmp")
+        .env("CAUSTIC_CPU_BVH", "8")
+        .output()
+        .expect("runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("CAUSTIC_CPU_BVH must be 2 or 4"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(!image.exists(), "no image from a render that did not start");
+}
