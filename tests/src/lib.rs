@@ -22,6 +22,29 @@ fn shared_path() -> PathBuf {
     }
 }
 
+/// xorshift64*: a deterministic stream per seed, for tests that draw their own inputs (the loader
+/// fuzzer's mutations, the wide BVH's rays).
+pub struct Xorshift(pub u64);
+
+impl Xorshift {
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+
+    /// Uniform in `0..n` (0 for `n == 0`).
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next_u64() % n.max(1) as u64) as usize
+    }
+
+    /// Uniform in [0, 1), from the top 24 bits.
+    pub fn uniform(&mut self) -> f32 {
+        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
 /// The shared data, for tests that need them: panics if the references are absent.
 pub fn shared_dir() -> PathBuf {
     let dir = shared_path();

@@ -7,20 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-/// xorshift64*: a deterministic stream per seed, so a failure reproduces with CAUSTIC_FUZZ_SEED.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
+// A deterministic stream per seed, so a failure reproduces with CAUSTIC_FUZZ_SEED.
+use caustic_tests::Xorshift as Rng;
 
 const INTERESTING: &[&[u8]] = &[
     b"0",
@@ -46,9 +34,9 @@ fn mutate(data: &[u8], rng: &mut Rng) -> Vec<u8> {
             }
             1 if !d.is_empty() => {
                 let i = at.min(d.len() - 1);
-                d[i] = rng.next() as u8;
+                d[i] = rng.next_u64() as u8;
             }
-            2 => d.insert(at, rng.next() as u8),
+            2 => d.insert(at, rng.next_u64() as u8),
             3 if at < d.len() => {
                 let end = (at + 1 + rng.below(16)).min(d.len());
                 d.drain(at..end);

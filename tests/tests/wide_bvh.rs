@@ -11,15 +11,12 @@ use caustic_kernel::layout::NONE;
 use caustic_tests::*;
 use glam::Vec3;
 
-/// xorshift64*: a fixed stream of numbers in [0, 1).
-struct Stream(u64);
+/// A fixed stream of rays' numbers.
+struct Stream(Xorshift);
 
 impl Stream {
     fn next(&mut self) -> f32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
+        self.0.uniform()
     }
 
     fn in_box(&mut self, min: Vec3, max: Vec3) -> Vec3 {
@@ -46,7 +43,7 @@ fn compare_on(file: &str) {
     let (binary, four) = (Accel::of(&binary_view), Accel::of(&wide_view));
     let root = buffers.nodes[0];
     let (lo, hi) = (Vec3::from(root.min), Vec3::from(root.max));
-    let mut s = Stream(0x9e37_79b9_7f4a_7c15);
+    let mut s = Stream(Xorshift(0x9e37_79b9_7f4a_7c15));
     let (mut rays, mut hits, mut on_faces, mut ties, mut near_ties, mut found_more) = (0, 0, 0, 0, 0, 0);
     for i in 0..40_000 {
         let ray = if i % 4 == 3 {
