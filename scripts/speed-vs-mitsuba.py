@@ -24,6 +24,8 @@ import subprocess
 import sys
 import time
 
+from mitsuba_scenes import scene_list
+
 MITSUBA_VERSION = "3.9.1"
 
 
@@ -41,17 +43,6 @@ def ensure_mitsuba(venv):
     subprocess.check_call([python, "-m", "pip", "install", "-q", f"mitsuba=={MITSUBA_VERSION}", "numpy"])
     os.environ["CAUSTIC_SPEED_REEXEC"] = "1"
     os.execv(python, [python] + sys.argv)
-
-
-def scene_list(shared, names):
-    listed = [l.strip() for l in open(os.path.join(shared, "scenes/mitsuba/SCENES.txt")) if l.strip()]
-    by_name = {os.path.splitext(os.path.basename(p))[0]: p for p in listed}
-    if names:
-        missing = [n for n in names if n not in by_name]
-        if missing:
-            sys.exit(f"unknown scenes {missing}; known: {sorted(by_name)}")
-        return [(n, by_name[n]) for n in names]
-    return list(by_name.items())
 
 
 def mitsuba_throughput(mi, dr, path, spp, rounds):

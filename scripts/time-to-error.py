@@ -27,21 +27,11 @@ import math
 import os
 import re
 import subprocess
-import sys
 import time
 
 import numpy as np
 
-
-def scene_list(shared, names):
-    listed = [l.strip() for l in open(os.path.join(shared, "scenes/mitsuba/SCENES.txt")) if l.strip()]
-    by_name = {os.path.splitext(os.path.basename(p))[0]: p for p in listed}
-    if names:
-        missing = [n for n in names if n not in by_name]
-        if missing:
-            sys.exit(f"unknown scenes {missing}; known: {sorted(by_name)}")
-        return [(n, by_name[n]) for n in names]
-    return list(by_name.items())
+from mitsuba_scenes import scene_list
 
 
 def errors(mi, image, reference):
@@ -102,7 +92,7 @@ def mitsuba_curve(mi, dr, path, max_spp, folder):
         f.write("\n".join(rows) + "\n")
 
 
-def caustic_render(binary, backend, film, path, spp, seed, out):
+def caustic_render(binary, backend, path, spp, seed, out):
     cmd = [binary, "render", path, "--backend", backend, "--spp", str(spp), "--seed", str(seed), "-o", out, "-q"]
     # A scene whose sampler reads `$spp` without a default (sensor_thinlens) needs it given, as
     # Mitsuba's side gives it to `load_file`.
@@ -118,14 +108,14 @@ def caustic_render(binary, backend, film, path, spp, seed, out):
     return float(found.group(1)), line
 
 
-def caustic_side(mi, binary, backend, film, path, spp, seeds, reference, scratch, warm_spp):
+def caustic_side(mi, binary, backend, path, spp, seeds, reference, scratch, warm_spp):
     out = os.path.join(scratch, "caustic.exr")
     # Warm-up: the GPU backend prunes and compiles its kernel for the scene and times its candidate
     # pipelines, then keeps its choice (host/src/backend/variant.rs): the timed renders use it.
-    _, line = caustic_render(binary, backend, film, path, warm_spp, 10_000, out)
+    _, line = caustic_render(binary, backend, path, warm_spp, 10_000, out)
     results = []
     for seed in seeds:
-        seconds, line = caustic_render(binary, backend, film, path, spp, seed, out)
+        seconds, line = caustic_render(binary, backend, path, spp, seed, out)
         results.append((seconds,) + errors(mi, load_exr(mi, out), reference))
     return results, line.split(" | ")[0]
 
@@ -139,7 +129,6 @@ def main():
     parser.add_argument("--binary", default="target/release/caustic")
     parser.add_argument("--variant", default="cuda_ad_rgb")
     parser.add_argument("--backend", default="gpu", choices=["gpu", "cpu", "auto"])
-    parser.add_argument("--film", default="fis", choices=["fis"])
     parser.add_argument("--shared", default=os.path.join(os.path.dirname(__file__), "../../shared"))
     parser.add_argument("--scenes", help="comma-separated scene names (default: all of SCENES.txt)")
     parser.add_argument("--spp", type=int, default=64)
@@ -160,7 +149,7 @@ def main():
     header = ("scene", "spp", "caustic MSE", "Mitsuba MSE", "MSE ratio", "caustic relMSE", "Mitsuba relMSE",
               "caustic s", "Mitsuba s", "time to equal error, Mitsuba / caustic")
     rows = []
-    print(f"# caustic {args.backend} ({args.film} film) against Mitsuba {mi.__version__} {args.variant}, "
+    print(f"# caustic {args.backend} against Mitsuba {mi.__version__} {args.variant}, "
           f"{args.spp} spp, seeds {seeds}", flush=True)
     print(" | ".join(header), flush=True)
     for name, relative in scene_list(args.shared, names):
@@ -169,7 +158,7 @@ def main():
         try:
             reference = load_exr(mi, reference_path)
             m = mitsuba_side(mi, dr, path, args.spp, seeds, reference)
-            c, backend = caustic_side(mi, args.binary, args.backend, args.film, path, args.spp, seeds, reference,
+            c, backend = caustic_side(mi, args.binary, args.backend, path, args.spp, seeds, reference,
                                       args.scratch, max(args.warm_spp, args.spp))
             if args.peer_curve:
                 mitsuba_curve(mi, dr, path, args.spp, os.path.join(args.peer_curve, name))
