@@ -17,8 +17,6 @@ Usage (from the repository root, after `cargo build --release`):
     python3 scripts/time-to-error.py --variant cuda_ad_rgb --backend gpu             # a CUDA GPU
     DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1 \\
         python3 scripts/time-to-error.py --variant llvm_ad_rgb --backend cpu --spp 16
-    python3 scripts/time-to-error.py --scenes cbox --peer-curve /tmp/curves          # Mitsuba's curve for
-        caustic convergence SCENE REF.exr --peer /tmp/curves/cbox/mitsuba.csv --plot cbox.svg
 
 Needs `import mitsuba` (pip install mitsuba==3.9.1) and numpy.
 """
@@ -67,31 +65,6 @@ def mitsuba_side(mi, dr, path, spp, seeds, reference):
     return results
 
 
-def mitsuba_curve(mi, dr, path, max_spp, folder):
-    """Mitsuba's renders at 1, 2, 4, ... max_spp spp, each timed warm, listed in folder/mitsuba.csv as
-    `caustic convergence --peer` reads them."""
-    os.makedirs(folder, exist_ok=True)
-    rows = ["spp,seconds,image"]
-    spp = 1
-    while True:
-        scene = mi.load_file(path, spp=spp)
-        dr.eval(mi.render(scene, spp=spp, seed=0))  # compiles this spp's kernels
-        dr.sync_thread()
-        start = time.perf_counter()
-        image = mi.render(scene, spp=spp, seed=1)
-        dr.eval(image)
-        dr.sync_thread()
-        seconds = time.perf_counter() - start
-        name = f"mitsuba_{spp}.exr"
-        mi.Bitmap(image).write(os.path.join(folder, name))
-        rows.append(f"{spp},{seconds:.6f},{name}")
-        if spp >= max_spp:
-            break
-        spp = min(2 * spp, max_spp)
-    with open(os.path.join(folder, "mitsuba.csv"), "w") as f:
-        f.write("\n".join(rows) + "\n")
-
-
 def caustic_render(binary, backend, path, spp, seed, out):
     cmd = [binary, "render", path, "--backend", backend, "--spp", str(spp), "--seed", str(seed), "-o", out, "-q"]
     # A scene whose sampler reads `$spp` without a default (sensor_thinlens) needs it given, as
@@ -136,8 +109,6 @@ def main():
     parser.add_argument("--warm-spp", type=int, default=256, help="caustic's warm-up render")
     parser.add_argument("--scratch", default="/tmp/caustic-time-to-error")
     parser.add_argument("--csv", help="also write the table here")
-    parser.add_argument("--peer-curve", help="also write Mitsuba's renders at 1, 2, 4, ... spp for "
-                        "`caustic convergence --peer` to DIR/<scene>/mitsuba.csv")
     args = parser.parse_args()
 
     import drjit as dr
@@ -160,8 +131,6 @@ def main():
             m = mitsuba_side(mi, dr, path, args.spp, seeds, reference)
             c, backend = caustic_side(mi, args.binary, args.backend, path, args.spp, seeds, reference,
                                       args.scratch, max(args.warm_spp, args.spp))
-            if args.peer_curve:
-                mitsuba_curve(mi, dr, path, args.spp, os.path.join(args.peer_curve, name))
         except Exception as e:  # a scene one side cannot render is reported, the rest go on
             print(f"{name} | failed: {e}", flush=True)
             continue
