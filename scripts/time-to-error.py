@@ -8,9 +8,9 @@ reference (../shared/refs/mitsuba). Per renderer the table gives the mean square
 relative MSE (as `caustic compare` computes it: (a-b)^2 / (b^2 + 0.01), averaged) over the seeds, and
 the render seconds (Mitsuba: `mi.render` to the synchronised image; caustic: its render loop, as its
 closing line reports it; loading excluded on both sides). Since the error of an unbiased render falls
-as 1/time, the time either renderer needs to reach the other's error scales as MSE x seconds: the
-last column, (Mitsuba's MSE x seconds) / (caustic's), is how many times faster caustic reaches equal
-error (its samples per second times its error per sample, both against Mitsuba's). The reference's
+as 1/time, the time either renderer needs to reach the other's error scales as error x seconds: the
+last column, (Mitsuba's relative MSE x seconds) / (caustic's), is how many times faster caustic
+reaches equal error (its samples per second times its error per sample, both against Mitsuba's). The reference's
 own noise adds the same small amount to both errors.
 
 Usage (from the repository root, after `cargo build --release`):
@@ -32,7 +32,7 @@ import numpy as np
 from mitsuba_scenes import scene_list
 
 
-def errors(mi, image, reference):
+def errors(image, reference):
     """(MSE, relative MSE) of an RGB image against the reference."""
     a = np.asarray(image, dtype=np.float64)[..., :3]
     b = np.asarray(reference, dtype=np.float64)[..., :3]
@@ -61,7 +61,7 @@ def mitsuba_side(mi, dr, path, spp, seeds, reference):
         dr.eval(image)
         dr.sync_thread()
         seconds = time.perf_counter() - start
-        results.append((seconds,) + errors(mi, image, reference))
+        results.append((seconds,) + errors(image, reference))
     return results
 
 
@@ -69,8 +69,9 @@ def caustic_render(binary, backend, path, spp, seed, out):
     cmd = [binary, "render", path, "--backend", backend, "--spp", str(spp), "--seed", str(seed), "-o", out, "-q"]
     # A scene whose sampler reads `$spp` without a default (sensor_thinlens) needs it given, as
     # Mitsuba's side gives it to `load_file`.
-    if "$spp" in open(path).read():
-        cmd += ["-D", f"spp={spp}"]
+    with open(path) as f:
+        if "$spp" in f.read():
+            cmd += ["-D", f"spp={spp}"]
     done = subprocess.run(cmd, capture_output=True, text=True)
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed: {done.stderr.strip()[-400:]}")
@@ -85,11 +86,11 @@ def caustic_side(mi, binary, backend, path, spp, seeds, reference, scratch, warm
     out = os.path.join(scratch, "caustic.exr")
     # Warm-up: the GPU backend prunes and compiles its kernel for the scene and times its candidate
     # pipelines, then keeps its choice (host/src/backend/variant.rs): the timed renders use it.
-    _, line = caustic_render(binary, backend, path, warm_spp, 10_000, out)
-    results = []
+    caustic_render(binary, backend, path, warm_spp, 10_000, out)
+    results, line = [], ""
     for seed in seeds:
         seconds, line = caustic_render(binary, backend, path, spp, seed, out)
-        results.append((seconds,) + errors(mi, load_exr(mi, out), reference))
+        results.append((seconds,) + errors(load_exr(mi, out), reference))
     return results, line.split(" | ")[0]
 
 
