@@ -148,3 +148,28 @@ fn prb_renders_as_mitsubas_prb() {
     let result = scene_against_reference(&unbounded, "prb.exr", 65536.0, BackendChoice::Cpu, 1024, 3, label);
     assert_disagrees_with_reference(result, label);
 }
+
+/// Next-event estimation picks each emitter equally often, as Mitsuba's `path` and `direct` do
+/// (within a mesh emitter, its triangles by power); light tracing starts half its paths by power.
+#[test]
+fn emitters_are_chosen_as_mitsuba_chooses_them_for_next_event_estimation() {
+    // The wall scene's point light (intensity 3: power 4π·3) and rectangle (two triangles, radiance
+    // 5 on area 1: power 5π).
+    let pmfs = |integrator: &str| -> Vec<f32> {
+        let scene = load_xml(&wall_scene(integrator, false, 2.0), &format!("selection-{integrator}"));
+        caustic::buffers::build(&scene).expect("builds").lights.iter().map(|l| l.pmf).collect()
+    };
+    for integrator in ["path", "direct"] {
+        let pmf = pmfs(integrator);
+        // Scene order: the rectangle's two triangles, then the point light.
+        let expected = [0.25, 0.25, 0.5];
+        assert!(
+            pmf.len() == 3 && pmf.iter().zip(expected).all(|(p, e)| (p - e).abs() < 1e-6),
+            "{integrator}: {pmf:?}"
+        );
+    }
+    let pmf = pmfs("ptracer");
+    let (rectangle, point) = (5.0 * std::f32::consts::PI, 12.0 * std::f32::consts::PI);
+    let point_share = 0.5 * point / (rectangle + point) + 0.25;
+    assert!(pmf.len() == 3 && (pmf[2] - point_share).abs() < 1e-5, "ptracer: {pmf:?}");
+}
