@@ -67,16 +67,11 @@ impl Checkpoint {
         }
         let checksum = crc32fast::hash(&bytes);
         bytes.extend_from_slice(&checksum.to_le_bytes());
-        let partial = path.with_extension("partial");
-        std::fs::write(&partial, &bytes)
-            .with_context(|| format!("cannot write the checkpoint {}", partial.display()))?;
-        std::fs::rename(&partial, path)
-            .with_context(|| format!("cannot move the checkpoint into place at {}", path.display()))
+        crate::files::write(path, &bytes).context("cannot save the checkpoint")
     }
 
     pub fn load(path: &Path) -> Result<Checkpoint> {
-        let bytes =
-            std::fs::read(path).with_context(|| format!("cannot read the checkpoint {}", path.display()))?;
+        let bytes = crate::files::read_own(path, "the checkpoint")?;
         let word =
             |at: usize| -> Option<u32> { Some(u32::from_le_bytes(bytes.get(at..at + 4)?.try_into().ok()?)) };
         if bytes.len() >= 8 && bytes[..7] == MAGIC[..7] && bytes[..8] != MAGIC[..] {

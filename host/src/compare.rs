@@ -7,7 +7,7 @@
 //! error combines the render's variance, the reference's (estimated from the render's per-sample variance
 //! and the reference's sample count) and the reference's storage precision (half floats).
 use crate::film::{variance_path, Film};
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use glam::Vec3;
 use statrs::distribution::{ContinuousCDF, Normal};
 use std::path::Path;
@@ -168,5 +168,5 @@ pub fn save_error_image(path: &Path, width: u32, height: u32, errors: &[f32], sc
         };
         image::Rgb(rgb.map(|c| (c * 255.0) as u8))
     });
-    img.save(path).with_context(|| format!("cannot write {}", path.display()))
+    crate::files::write(path, &crate::film::png_bytes(&img)?)
 }

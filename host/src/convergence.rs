@@ -104,16 +104,18 @@ pub fn write_csv(path: &Path, curves: &[(&str, &[ConvergencePoint])]) -> Result<
             );
         }
     }
-    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+    crate::files::write(path, text.as_bytes())
 }
 
 /// Plots relative MSE against render seconds on log–log axes (SVG), one series per labelled curve,
 /// with a dashed line of slope −1 through the first curve's last point for reference.
 pub fn write_plot(path: &Path, curves: &[(String, Vec<ConvergencePoint>)]) -> Result<()> {
-    draw_plot(path, curves).with_context(|| format!("cannot write {}", path.display()))
+    let mut svg = String::new();
+    draw_plot(&mut svg, curves).with_context(|| format!("cannot draw {}", path.display()))?;
+    crate::files::write(path, svg.as_bytes())
 }
 
-fn draw_plot(path: &Path, curves: &[(String, Vec<ConvergencePoint>)]) -> Result<()> {
+fn draw_plot(svg: &mut String, curves: &[(String, Vec<ConvergencePoint>)]) -> Result<()> {
     use plotters::prelude::*;
     let all: Vec<&ConvergencePoint> =
         curves.iter().flat_map(|(_, c)| c).filter(|p| p.seconds > 0.0 && p.rel_mse > 0.0).collect();
@@ -122,7 +124,7 @@ fn draw_plot(path: &Path, curves: &[(String, Vec<ConvergencePoint>)]) -> Result<
     }
     let (t0, t1) = all.iter().fold((f64::MAX, 0.0f64), |(a, b), p| (a.min(p.seconds), b.max(p.seconds)));
     let (e0, e1) = all.iter().fold((f64::MAX, 0.0f64), |(a, b), p| (a.min(p.rel_mse), b.max(p.rel_mse)));
-    let root = SVGBackend::new(path, (800, 560)).into_drawing_area();
+    let root = SVGBackend::with_string(svg, (800, 560)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| anyhow::anyhow!("{e}"))?;
     let mut chart = ChartBuilder::on(&root)
         .caption("relative MSE against render time", ("sans-serif", 22))
@@ -169,5 +171,7 @@ fn draw_plot(path: &Path, curves: &[(String, Vec<ConvergencePoint>)]) -> Result<
         .draw()
         .map_err(|e| anyhow::anyhow!("{e}"))?;
     root.present().map_err(|e| anyhow::anyhow!("{e}"))?;
+    drop(chart);
+    drop(root);
     Ok(())
 }

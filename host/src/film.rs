@@ -223,7 +223,7 @@ impl Film {
             "png" => {
                 let img =
                     image::RgbImage::from_fn(self.width, self.height, |x, y| image::Rgb(self.srgb8(x, y)));
-                img.save(path).with_context(|| format!("cannot write {}", path.display()))
+                crate::files::write(path, &png_bytes(&img)?)
             }
             "ppm" => {
                 let mut bytes = format!("P6\n{} {}\n255\n", self.width, self.height).into_bytes();
@@ -232,7 +232,7 @@ impl Film {
                         bytes.extend(self.srgb8(x, y));
                     }
                 }
-                std::fs::write(path, bytes).with_context(|| format!("cannot write {}", path.display()))
+                crate::files::write(path, &bytes)
             }
             other => bail!("{}: unknown image format '.{other}' (use .exr, .png or .ppm)", path.display()),
         }
@@ -260,12 +260,22 @@ impl Film {
 
     pub fn load_exr(path: &Path) -> Result<Film> {
         use exr::prelude::*;
-        let image = read_first_rgba_layer_from_file(
-            path,
-            |resolution, _| (resolution.width(), vec![[0.0f32; 3]; resolution.width() * resolution.height()]),
-            |(w, data), pos, (r, g, b, _a): (f32, f32, f32, f32)| data[pos.y() * *w + pos.x()] = [r, g, b],
-        )
-        .with_context(|| format!("cannot read EXR image {}", path.display()))?;
+        let bytes = crate::files::read(path, "EXR image")?;
+        let image = read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .rgba_channels(
+                |resolution, _| {
+                    (resolution.width(), vec![[0.0f32; 3]; resolution.width() * resolution.height()])
+                },
+                |(w, data), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+                    data[pos.y() * *w + pos.x()] = [r, g, b]
+                },
+            )
+            .first_valid_layer()
+            .all_attributes()
+            .from_buffered(std::io::Cursor::new(bytes))
+            .with_context(|| format!("cannot read EXR image {}", path.display()))?;
         let size = image.layer_data.size;
         let (_, rgb) = image.layer_data.channel_data.pixels;
         Ok(Film {
@@ -334,12 +344,22 @@ fn write_exr(path: &Path, width: u32, height: u32, data: &[[f32; 3]], comment: O
     });
     let mut image = Image::from_channels((width as usize, height as usize), channels);
     image.layer_data.attributes.comments = comment.map(Text::from);
-    image.write().to_file(path).with_context(|| format!("cannot write {}", path.display()))
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image.write().to_buffered(&mut bytes).with_context(|| format!("cannot encode {}", path.display()))?;
+    crate::files::write(path, bytes.get_ref())
+}
+
+/// A PNG file's bytes (encoded in memory: `files::write` writes them whole or not at all).
+pub fn png_bytes(img: &image::RgbImage) -> Result<Vec<u8>> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut bytes, image::ImageFormat::Png).context("cannot encode a PNG image")?;
+    Ok(bytes.into_inner())
 }
 
 /// The `comments` attribute of an EXR file's first layer, if it has one.
 pub fn exr_comment(path: &Path) -> Result<Option<String>> {
-    let meta = exr::meta::MetaData::read_from_file(path, false)
+    let bytes = crate::files::read(path, "EXR image")?;
+    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
         .with_context(|| format!("cannot read EXR header {}", path.display()))?;
     Ok(meta.headers.first().and_then(|h| h.own_attributes.comments.as_ref()).map(|t| t.to_string()))
 }

@@ -85,7 +85,7 @@ fn radiance_with_standard_signature(bytes: &[u8]) -> Option<Vec<u8>> {
 }
 
 fn load_with_image_crate(path: &Path, raw: bool) -> Result<LinearImage> {
-    let bytes = std::fs::read(path)?;
+    let bytes = crate::files::read(path, "image")?;
     let reader = match radiance_with_standard_signature(&bytes) {
         Some(fixed) => image::ImageReader::with_format(std::io::Cursor::new(fixed), image::ImageFormat::Hdr),
         None => {
@@ -165,7 +165,7 @@ fn load_exr(path: &Path) -> Result<LinearImage> {
         .all_channels()
         .first_valid_layer()
         .all_attributes()
-        .from_file(path)?;
+        .from_buffered(std::io::Cursor::new(crate::files::read(path, "EXR image")?))?;
     let layer = image.layer_data;
     let (width, height) = (layer.size.width(), layer.size.height());
     let channels = &layer.channel_data.list;

@@ -9,6 +9,7 @@ pub mod buffers;
 pub mod checkpoint;
 pub mod compare;
 pub mod convergence;
+pub mod files;
 pub mod film;
 pub mod filter_table;
 pub mod image_io;

@@ -1,5 +1,5 @@
 //! The `caustic` command line: render, compare, bench, convergence.
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use caustic::backend::{self, BackendChoice, GpuSelection};
 use caustic::film::{variance_path, Film};
 use caustic::scene::IntegratorChoice;
@@ -168,6 +168,7 @@ fn main() {
     if !matches!(cli.command, Command::Compare { .. }) {
         backend::runtime_dir::ensure_xdg_runtime_dir();
     }
+    caustic::files::write_errors_are_errors();
     // A render saves what it has on SIGINT/SIGTERM; the other commands stop as by default.
     if matches!(cli.command, Command::Render { .. }) {
         if let Err(e) = caustic::interrupt::install() {
@@ -337,10 +338,16 @@ fn cmd_compare(
     error_image: Option<&Path>,
 ) -> Result<()> {
     if let Some(path) = error_image {
+        if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
+            bail!("{}: the error image is a PNG file (name it .png)", path.display());
+        }
         caustic::film::check_writable(path)?;
     }
     let a = Film::load_with_variance(image)?;
     let b = Film::load_exr(reference)?;
+    if let Some(path) = error_image {
+        caustic::files::check_output(path)?;
+    }
     compare::check_finite(&a, image)?;
     compare::check_finite(&b, reference)?;
     let ratio =
@@ -379,6 +386,13 @@ fn cmd_convergence(
     let loaded = caustic::load_scene_with(scene_path, defines, LoadOptions { strict: *strict })?;
     let reference_film = Film::load_exr(reference)?;
     compare::check_finite(&reference_film, reference)?;
+    // No output may be an input (the scene, the reference, a peer's curve), found before rendering.
+    for path in peers {
+        caustic::files::note_input(path);
+    }
+    for path in [csv, plot].into_iter().flatten() {
+        caustic::files::check_output(path)?;
+    }
     // The scene's own integrator, or each one asked for: one curve each, measured one after the other.
     let choices: Vec<Option<IntegratorChoice>> =
         if integrator.is_empty() { vec![None] } else { integrator.iter().copied().map(Some).collect() };
@@ -498,8 +512,7 @@ fn cmd_kernel_stats(
             let name = format!("{}-{:?}-{w}x{h}.spv", r.entry.replace("::", "-"), r.variant.path_loop)
                 .to_lowercase();
             let path = dir.join(name);
-            std::fs::write(&path, bytemuck::cast_slice::<u32, u8>(&r.module))
-                .with_context(|| format!("cannot write {}", path.display()))?;
+            caustic::files::write(&path, bytemuck::cast_slice::<u32, u8>(&r.module))?;
             say!("wrote {}", path.display());
         }
     }

@@ -34,12 +34,12 @@ fn check_material(m: &tobj::Material, obj: &Path) -> Result<()> {
 /// lines), or the OBJ's path when it cannot be found.
 fn mtl_location(obj: &Path, name: &str, key: &str) -> String {
     let dir = obj.parent().unwrap_or(Path::new(""));
-    let text = std::fs::read_to_string(obj).unwrap_or_default();
+    let text = crate::files::read_to_string(obj, "OBJ file").unwrap_or_default();
     let libraries =
         text.lines().filter_map(|l| l.trim().strip_prefix("mtllib ")).flat_map(str::split_whitespace);
     for library in libraries {
         let path = dir.join(library);
-        let Ok(mtl) = std::fs::read_to_string(&path) else { continue };
+        let Ok(mtl) = crate::files::read_to_string(&path, "material library") else { continue };
         let mut current = false;
         for (i, line) in mtl.lines().enumerate() {
             let mut words = line.split_whitespace();

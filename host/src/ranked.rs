@@ -48,6 +48,9 @@ fn prepare(job: &RenderJob, rank: usize) -> Result<Prepared> {
         }
     }
     let (buffers, spp) = session::prepare_scene(job)?;
+    if rank == 0 {
+        session::check_outputs(job)?;
+    }
     let gpus = session::rank_gpus(job, rank)?;
     let mut backend = backend::create_on(job.backend, &gpus, &buffers)?;
     let fingerprint = job.checkpoint.as_ref().map(|_| checkpoint::fingerprint(&buffers, job.seed, spp));

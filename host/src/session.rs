@@ -95,6 +95,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         check_checkpoint_path(path, output)?;
     }
     let (buffers, spp) = prepare_scene(job)?;
+    check_outputs(job)?;
     let mut backend = backend::create_on(job.backend, &job.gpus, &buffers)?;
     let seed = job.seed;
     // Hashing every scene buffer is only worth it when there is a checkpoint to match.
@@ -168,6 +169,19 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         interrupted,
         spp_done,
     }))
+}
+
+/// Refuses, before rendering, any output of `job` that is one of the files its scene was loaded
+/// from (through any link), naming both: the image, its variance file and its checkpoint.
+pub(crate) fn check_outputs(job: &RenderJob) -> Result<()> {
+    crate::files::check_output(&job.output)?;
+    if job.variance {
+        crate::files::check_output(&film::variance_path(&job.output))?;
+    }
+    if let Some((path, _)) = &job.checkpoint {
+        crate::files::check_output(path)?;
+    }
+    Ok(())
 }
 
 /// Loads the scene with the job's overrides and builds its buffers; the samples per pixel to render.

@@ -758,3 +758,101 @@ fn the_cpu_names_its_bvh_and_refuses_an_unknown_one() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(!image.exists(), "no image from a render that did not start");
 }
+
+/// No output may be one of the command's inputs, through a symbolic or a hard link or under the
+/// name of a texture the scene reads: each is refused before rendering, naming both files, and the
+/// input is left as it was.
+#[test]
+fn an_output_that_is_an_input_is_refused_and_the_input_kept() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-inputs-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let texture = dir.join("wall.png");
+    image::RgbImage::from_pixel(2, 2, image::Rgb([200, 100, 50])).save(&texture).unwrap();
+    let scene = dir.join("scene.xml");
+    std::fs::write(
+        &scene,
+        r#"<scene version="3.0.0">
+    <sensor type="perspective"><transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+    <shape type="rectangle"><bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="wall.png"/></texture></bsdf></shape>
+    <emitter type="constant"/>
+</scene>"#,
+    )
+    .unwrap();
+    let (scene_text, texture_bytes) = (std::fs::read(&scene).unwrap(), std::fs::read(&texture).unwrap());
+    let soft = dir.join("soft.exr");
+    std::os::unix::fs::symlink(&scene, &soft).unwrap();
+    let hard = dir.join("hard.png");
+    std::fs::hard_link(&scene, &hard).unwrap();
+    let render = |out: &std::path::Path, extra: &[&str]| {
+        let mut args = vec!["render", scene.to_str().unwrap(), "--backend", "cpu", "--spp", "1", "-q"];
+        args.extend_from_slice(extra);
+        args.extend(["-o", out.to_str().unwrap()]);
+        caustic(&args)
+    };
+    for out in [&soft, &hard, &texture] {
+        let o = render(out, &[]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && err.contains("refusing to write"), "{}: {err}", out.display());
+        assert!(err.contains(out.to_str().unwrap()), "names the output: {err}");
+    }
+    let o = render(&hard, &[]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("scene.xml"), "names the input");
+    // The variance file and the checkpoint are outputs too.
+    std::fs::hard_link(&scene, dir.join("v.variance.exr")).unwrap();
+    let o = render(&dir.join("v.exr"), &["--variance"]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("v.variance.exr"), "variance file refused");
+    let o = render(&dir.join("c.exr"), &["--checkpoint", hard.to_str().unwrap()]);
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("refusing"));
+    assert_eq!(std::fs::read(&scene).unwrap(), scene_text);
+    assert_eq!(std::fs::read(&texture).unwrap(), texture_bytes);
+    // A plain output beside them is written.
+    let o = render(&dir.join("fine.exr"), &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+
+    // `compare`: an error image that is the reference (hard link) or not a PNG.
+    let reference = dir.join("fine.exr");
+    let reference_bytes = std::fs::read(&reference).unwrap();
+    let alias = dir.join("alias.png");
+    std::fs::hard_link(&reference, &alias).unwrap();
+    let r = reference.to_str().unwrap();
+    for error_image in [alias.to_str().unwrap(), r] {
+        let o = caustic(&["compare", r, r, "--error-image", error_image]);
+        assert!(!o.status.success(), "{error_image}");
+    }
+    assert_eq!(std::fs::read(&reference).unwrap(), reference_bytes);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A write that fails (here past the file-size limit) leaves the file it would have replaced as it
+/// was, exits non-zero, and leaves no temporary file behind.
+#[test]
+fn a_failed_write_keeps_the_previous_image() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-fsize-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("image.ppm");
+    std::fs::write(&out, b"the previous image").unwrap();
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    // 64x64 sRGB bytes (12 KB) past a limit of 4 blocks (2-4 KB).
+    let o = Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "ulimit -f 4 && exec \"$0\" render {scene} --backend cpu --spp 1 -D res=64 -q -o {}",
+            out.display()
+        ))
+        .arg(env!("CARGO_BIN_EXE_caustic"))
+        .env("XDG_RUNTIME_DIR", "/tmp")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("image.ppm") && !err.contains("panicked"), "{err}");
+    assert_eq!(std::fs::read(&out).unwrap(), b"the previous image");
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.iter().all(|n| !n.contains(".partial")), "temporary left: {names:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}

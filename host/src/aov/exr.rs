@@ -32,7 +32,12 @@ pub fn write(film: &Film, path: &Path) -> Result<()> {
         channels,
     );
     layer.attributes.comments = film.comment.as_deref().map(Text::from);
-    Image::from_layer(layer).write().to_file(path).with_context(|| format!("cannot write {}", path.display()))
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    Image::from_layer(layer)
+        .write()
+        .to_buffered(&mut bytes)
+        .with_context(|| format!("cannot encode {}", path.display()))?;
+    crate::files::write(path, bytes.get_ref())
 }
 
 /// Channels by name, each with its samples (row-major).
@@ -47,7 +52,7 @@ pub fn read_channels(path: &Path) -> Result<(u32, u32, NamedChannels)> {
         .all_channels()
         .first_valid_layer()
         .all_attributes()
-        .from_file(path)
+        .from_buffered(std::io::Cursor::new(crate::files::read(path, "EXR image")?))
         .with_context(|| format!("cannot read EXR image {}", path.display()))?;
     let size = image.layer_data.size;
     let channels = image

@@ -19,15 +19,29 @@ pub type Materials = std::result::Result<Vec<tobj::Material>, String>;
 pub fn load_obj(path: &Path, with_materials: bool) -> Result<(Mesh, Materials)> {
     let options =
         tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
-    // tobj 4 panics on an MTL colour of fewer than three numbers (`Kd 0.8 0.1`: an unwrap inside
-    // it, found by tests/tests/fuzz.rs); that panic becomes an error naming the file.
-    let loaded = std::panic::catch_unwind(|| tobj::load_obj(path, &options)).map_err(|_| {
-        anyhow::anyhow!("cannot load OBJ mesh {}: its material library has a malformed line", path.display())
-    })?;
+    // Both files are read through `files` (regular files only, recorded as inputs), and a material
+    // library that does not load says which file and line are at fault.
+    let text = crate::files::read(path, "OBJ mesh")?;
+    let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
+    let mtl_error = std::cell::RefCell::new(None::<String>);
+    let load_mtl = |name: &Path| -> tobj::MTLLoadResult {
+        let mtl = dir.join(name);
+        let result = crate::files::read(&mtl, "material library").and_then(|bytes| {
+            check_mtl_colours(&mtl, &bytes)?;
+            tobj::load_mtl_buf(&mut &bytes[..]).map_err(|e| anyhow::anyhow!("{}: {e}", mtl.display()))
+        });
+        result.map_err(|e| {
+            mtl_error.borrow_mut().get_or_insert(format!("{e:#}"));
+            tobj::LoadError::MaterialParseError
+        })
+    };
+    let loaded = tobj::load_obj_buf(&mut &text[..], &options, load_mtl);
     let (models, materials) = loaded.with_context(|| format!("cannot load OBJ mesh {}", path.display()))?;
     let materials = if with_materials {
-        materials
-            .map_err(|e| format!("{}: material library not loaded ({e}); using defaults", path.display()))
+        materials.map_err(|e| {
+            let why = mtl_error.into_inner().unwrap_or_else(|| e.to_string());
+            format!("{}: material library not loaded ({why}); using defaults", path.display())
+        })
     } else {
         Ok(Vec::new())
     };
@@ -44,6 +58,20 @@ pub fn load_obj(path: &Path, with_materials: bool) -> Result<(Mesh, Materials)> 
     mesh.validate(path)?;
     mesh.flip_tex_coords();
     Ok((mesh, materials))
+}
+
+/// Refuses an MTL colour (`Ka`, `Kd`, `Ks`, `Ke`) of fewer than three numbers, naming the file and
+/// line: tobj 4 panics on one (an unwrap inside it, found by tests/tests/fuzz.rs).
+fn check_mtl_colours(mtl: &Path, bytes: &[u8]) -> Result<()> {
+    for (i, line) in String::from_utf8_lossy(bytes).lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if let Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next() {
+            if words.count() < 3 {
+                anyhow::bail!("{}:{}: '{key}' needs three numbers", mtl.display(), i + 1);
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Whether `values` holds one `dim`-tuple per vertex of `m` (tobj leaves it short when only some

@@ -5,19 +5,18 @@
 //! become named attributes as Mitsuba names them (`ply_attributes`). Other elements are skipped.
 use super::ply_attributes::{self, Field, Group};
 use super::{Attribute, Mesh};
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{anyhow, bail, Result};
 use glam::{Vec2, Vec3};
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{
     ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult, PropertyType, ScalarType,
 };
-use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 
 /// Loads a PLY mesh and the warnings its attributes raised; every failure and warning names the file.
 pub fn load_ply(path: &Path) -> Result<(Mesh, Vec<String>)> {
-    let file = File::open(path).with_context(|| format!("cannot open PLY mesh {}", path.display()))?;
+    let file = crate::files::open(path, "PLY mesh")?;
     let mut warnings = Vec::new();
     let mesh = read_ply(BufReader::new(file), &mut warnings)
         .map_err(|e| anyhow!("{}: invalid PLY file: {e:#}", path.display()))?;

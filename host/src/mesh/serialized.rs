@@ -27,7 +27,7 @@ const MAX_DEFLATE_RATIO: u64 = 1032;
 /// Mitsuba 3 ignores the stream's "face normals" flag (0x0010) and only honours the shape's
 /// `face_normals` property; so do we. Vertex colours are skipped.
 pub fn load_serialized(path: &Path, shape_index: u32) -> Result<Mesh> {
-    let file = File::open(path).with_context(|| format!("cannot open serialized mesh {}", path.display()))?;
+    let file = crate::files::open(path, "serialized mesh")?;
     let mesh = read_mesh(file, shape_index).map_err(|e| {
         anyhow!("{}: invalid serialized mesh (shape_index {shape_index}): {e:#}", path.display())
     })?;

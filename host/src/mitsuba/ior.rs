@@ -230,8 +230,7 @@ pub fn spd_file_to_rgb(path: &Path) -> Result<[f32; 3]> {
 /// Parses an `.spd` file: one `wavelength value` pair (nm) per line, `#` starts a comment.
 /// Wavelengths must increase; at least one pair is needed.
 pub fn read_spd(path: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read spectrum file {}", path.display()))?;
+    let text = crate::files::read_to_string(path, "spectrum file")?;
     let mut wavelengths = Vec::new();
     let mut values = Vec::new();
     for (index, line) in text.lines().enumerate() {

@@ -179,8 +179,7 @@ impl Loader {
     }
 
     fn load_file(&mut self, path: &Path) -> Result<()> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read scene file {}", path.display()))?;
+        let text = crate::files::read_to_string(path, "scene file")?;
         let src = Source::parse(path, &text)?;
         let root = src.doc.root_element();
         let loc = src.loc(root);
