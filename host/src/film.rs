@@ -260,7 +260,7 @@ impl Film {
 
     pub fn load_exr(path: &Path) -> Result<Film> {
         use exr::prelude::*;
-        let bytes = crate::files::read(path, "EXR image")?;
+        let bytes = crate::image_io::read_exr(path)?;
         let image = read()
             .no_deep_data()
             .largest_resolution_level()

@@ -43,6 +43,9 @@ pub fn load_linear_rgb(path: &Path, raw: bool) -> Result<LinearImage> {
     let is_exr = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("exr"));
     let image = if is_exr { load_exr(path) } else { load_with_image_crate(path, raw) };
     let image = image.with_context(|| format!("cannot load image {}", path.display()))?;
+    if image.width == 0 || image.height == 0 {
+        bail!("{}: the image has no texels ({}×{})", path.display(), image.width, image.height);
+    }
     check_texels(&image, path)?;
     Ok(image)
 }
@@ -62,6 +65,32 @@ fn check_texels(image: &LinearImage, path: &Path) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The bytes of EXR file `path`, refused (naming it) when its header claims more texels than this
+/// machine's available memory holds decoded: a data window of 65535×32767 in a file of a few
+/// hundred bytes made the decoder abort the process allocating it.
+pub fn read_exr(path: &Path) -> Result<Vec<u8>> {
+    let bytes = crate::files::read(path, "EXR image")?;
+    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(&bytes), false)
+        .with_context(|| format!("cannot read EXR image {}", path.display()))?;
+    // f32 samples as decoded, and a copy as the caller converts them.
+    let need = |h: &exr::meta::header::Header| h.layer_size.area() as u64 * h.channels.list.len() as u64 * 8;
+    if let (Some(h), Some(have)) = (meta.headers.iter().max_by_key(|h| need(h)), crate::memory::available()) {
+        if need(h) > have {
+            bail!(
+                "{}: its header claims a {}×{} image of {} channels, {:.1} GiB decoded, more than the {:.1} GiB \
+                 this machine has available",
+                path.display(),
+                h.layer_size.width(),
+                h.layer_size.height(),
+                h.channels.list.len(),
+                need(h) as f64 / (1u64 << 30) as f64,
+                have as f64 / (1u64 << 30) as f64
+            );
+        }
+    }
+    Ok(bytes)
 }
 
 /// The sRGB transfer curve, decoded (encoded value in [0, 1] → linear).
@@ -165,7 +194,7 @@ fn load_exr(path: &Path) -> Result<LinearImage> {
         .all_channels()
         .first_valid_layer()
         .all_attributes()
-        .from_buffered(std::io::Cursor::new(crate::files::read(path, "EXR image")?))?;
+        .from_buffered(std::io::Cursor::new(read_exr(path)?))?;
     let layer = image.layer_data;
     let (width, height) = (layer.size.width(), layer.size.height());
     let channels = &layer.channel_data.list;
@@ -352,5 +381,44 @@ mod tests {
             );
             assert!(img.rgb.iter().any(|c| *c > 0.0), "{name} is all black");
         }
+    }
+
+    /// A header claiming 65535×32767 texels in a file of a few hundred bytes is refused before any
+    /// decoding, naming the file; the same file with its true size loads.
+    #[test]
+    fn an_exr_header_claiming_more_than_memory_is_refused() {
+        let path = scratch_file("claims.exr");
+        let film = crate::film::Film {
+            width: 1,
+            height: 1,
+            rgb: vec![[0.5; 3]],
+            variance: None,
+            invalid_samples: 0,
+            comment: None,
+            sum_variance_factor: 1.0,
+            aovs: Vec::new(),
+        };
+        film.save(&path).unwrap();
+        assert!(load_linear_rgb(&path, false).is_ok());
+        let mut bytes = std::fs::read(&path).unwrap();
+        // `dataWindow` (box2i: xMin, yMin, xMax, yMax) made 65535×32767.
+        let at = bytes.windows(11).position(|w| w == b"dataWindow\0").unwrap() + 11 + 6 + 4;
+        bytes[at + 8..at + 12].copy_from_slice(&65534i32.to_le_bytes());
+        bytes[at + 12..at + 16].copy_from_slice(&32766i32.to_le_bytes());
+        std::fs::write(&path, &bytes).unwrap();
+        if crate::memory::available().is_some_and(|m| m < 65535 * 32767 * 3 * 8) {
+            let e = format!("{:#}", load_linear_rgb(&path, false).unwrap_err());
+            assert!(e.contains("claims.exr") && e.contains("65535×32767"), "{e}");
+        }
+        assert!(load_linear_rgb(&path, false).is_err());
+    }
+
+    /// A Radiance file of no texels (`-Y 0 +X 0`), which the decoder accepts, is refused by name.
+    #[test]
+    fn an_image_of_no_texels_is_refused() {
+        let path = scratch_file("empty.hdr");
+        std::fs::write(&path, b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 0\n").unwrap();
+        let e = format!("{:#}", load_linear_rgb(&path, false).unwrap_err());
+        assert!(e.contains("empty.hdr"), "{e}");
     }
 }

@@ -246,7 +246,8 @@ fn main() {
     };
     if let Err(e) = result {
         eprintln!("error: {}", error_chain(&e));
-        std::process::exit(1);
+        // Stopped by a signal (while loading, say): the status says which, as for a render.
+        std::process::exit(caustic::interrupt::requested().map_or(1, caustic::interrupt::exit_code));
     }
 }
 
@@ -319,6 +320,14 @@ fn cmd_batch(ranks: Option<&dyn caustic::ranks::Ranks>, jobs: &[RenderJob]) -> R
                 eprintln!("error: {who}{}: {}", job.output.display(), error_chain(&e));
                 failed += 1;
             }
+        }
+        // A signal ends the batch: the image under way was saved as partial, the rest are not
+        // started.
+        if let Some(signal) = caustic::interrupt::requested() {
+            if let Some(ranks) = ranks {
+                ranks.barrier();
+            }
+            std::process::exit(caustic::interrupt::exit_code(signal));
         }
     }
     if let Some(ranks) = ranks {

@@ -856,3 +856,33 @@ fn a_failed_write_keeps_the_previous_image() {
     assert!(names.iter().all(|n| !n.contains(".partial")), "temporary left: {names:?}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// SIGTERM during a batch saves the image under way as partial and ends the batch with 143: the
+/// next image is not started.
+#[test]
+fn a_signal_ends_a_batch() {
+    let dir = std::env::temp_dir().join(format!("caustic-cli-batch-signal-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let copy = dir.join("second.xml");
+    std::fs::copy(scene, &copy).unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_caustic"))
+        .args(["render", scene, copy.to_str().unwrap(), "--backend", "cpu", "--spp", "1000000"])
+        .args(["-D", "res=32", "-q", "-o", dir.to_str().unwrap()])
+        .env("XDG_RUNTIME_DIR", "/tmp")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("runs");
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    // SAFETY: kill(2) on the child's own process id.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGTERM) }, 0);
+    let out = child.wait_with_output().expect("exits");
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert_eq!(out.status.code(), Some(143), "{stdout}\n{stderr}");
+    assert!(stdout.contains("(interrupted)") && stdout.lines().count() == 1, "{stdout}");
+    assert!(dir.join("cornell-box.exr").exists(), "the partial image is saved");
+    assert!(!dir.join("second.exr").exists(), "the next image was started");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -300,6 +300,30 @@ fn deep_nesting_is_an_error_not_a_stack_overflow() {
     assert_eq!(caustic::load_scene(&path, &[]).expect("loads").shapes.len(), 1);
 }
 
+/// Files that each include the next one twice, 26 deep, ask for 2^26 loads within the depth limit:
+/// the total is bounded, and the error comes at once, naming the file and line.
+#[test]
+fn an_include_explosion_is_bounded() {
+    const LEVELS: usize = 26;
+    let mut top = PathBuf::new();
+    for level in (0..LEVELS).rev() {
+        let body = if level + 1 < LEVELS {
+            let next = format!("<include filename=\"explode-{}.xml\"/>\n", level + 1);
+            format!("<scene version=\"3.0.0\">\n{next}{next}</scene>\n")
+        } else {
+            "<scene version=\"3.0.0\"/>\n".to_string()
+        };
+        top = write_scene(&format!("explode-{level}.xml"), &body);
+    }
+    let start = std::time::Instant::now();
+    let e = match caustic::load_scene(&top, &[]) {
+        Ok(_) => panic!("2^26 includes loaded"),
+        Err(e) => format!("{e:#}"),
+    };
+    assert!(e.contains("more than 10000 files") && e.contains("explode-"), "{e}");
+    assert!(start.elapsed().as_secs() < 30, "took {:?}", start.elapsed());
+}
+
 /// A scene with nothing to hit renders black on both backends (it panicked the CPU runner: the empty
 /// BVH's root was traversed as an inner node).
 #[test]

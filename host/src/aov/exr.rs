@@ -52,7 +52,7 @@ pub fn read_channels(path: &Path) -> Result<(u32, u32, NamedChannels)> {
         .all_channels()
         .first_valid_layer()
         .all_attributes()
-        .from_buffered(std::io::Cursor::new(crate::files::read(path, "EXR image")?))
+        .from_buffered(std::io::Cursor::new(crate::image_io::read_exr(path)?))
         .with_context(|| format!("cannot read EXR image {}", path.display()))?;
     let size = image.layer_data.size;
     let channels = image

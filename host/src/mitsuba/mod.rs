@@ -40,6 +40,10 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use xml::{Loc, Source};
 
+/// The most `<include>` loads one scene may make, repeats counted (Mitsuba's own scenes make a
+/// handful).
+const MAX_INCLUDES: u32 = 10_000;
+
 /// The state of loading one scene (shared by included files).
 pub(crate) struct Loader {
     /// `<default>` values and `-D` overrides (the latter win).
@@ -81,6 +85,9 @@ pub(crate) struct Loader {
     /// What the scene asks for that the loaded scene does not do (reported or refused at the end).
     deviations: Deviations,
     include_depth: u32,
+    /// Files `<include>`d so far, repeats counted: bounded (`MAX_INCLUDES`), since files that each
+    /// include the next twice ask for 2^depth loads within the depth limit.
+    includes: u32,
     /// Every `id` given so far, in any file of the scene, with where: Mitsuba refuses a duplicate.
     ids: HashMap<String, Loc>,
     /// Where the scene's integrator was given: Mitsuba refuses a second.
@@ -119,6 +126,7 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         warnings: Vec::new(),
         deviations: Deviations::default(),
         include_depth: 0,
+        includes: 0,
         ids: HashMap::new(),
         integrator_loc: None,
         attribute_requests: Vec::new(),
@@ -231,8 +239,15 @@ impl Loader {
                     let file =
                         self.resolve(&self.substitute(xml::attr(node, "filename", &loc)?, &loc)?, &loc)?;
                     self.include_depth += 1;
+                    self.includes += 1;
                     if self.include_depth > 32 {
                         bail!("{loc}: <include> nested more than 32 deep (a cycle?)");
+                    }
+                    if self.includes > MAX_INCLUDES {
+                        bail!("{loc}: the scene includes more than {MAX_INCLUDES} files in all (repeats counted)");
+                    }
+                    if let Some(signal) = crate::interrupt::requested() {
+                        bail!("{loc}: loading stopped by signal {signal}");
                     }
                     self.load_file(&file).with_context(|| format!("{loc}: in the file included here"))?;
                     self.include_depth -= 1;

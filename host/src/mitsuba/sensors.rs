@@ -374,7 +374,10 @@ impl Loader {
         let y = props.integer("crop_offset_y", 0)?;
         let w = props.integer("crop_width", width as i64)?;
         let h = props.integer("crop_height", height as i64)?;
-        if x < 0 || y < 0 || w < 1 || h < 1 || x + w > width as i64 || y + h > height as i64 {
+        // Checked sums: an offset near i64::MAX wrapped past the test and gave a window outside the film.
+        let outside =
+            |offset: i64, size: i64, film: u32| offset.checked_add(size).is_none_or(|end| end > film as i64);
+        if x < 0 || y < 0 || w < 1 || h < 1 || outside(x, w, width) || outside(y, h, height) {
             bail!(
                 "{}: the crop window ({x}, {y}) + {w}×{h} must lie inside the {width}×{height} film",
                 props.loc
