@@ -103,6 +103,20 @@ impl Checkpoint {
             pixels: bytemuck::pod_collect_to_vec(&floats),
             batches: (batches != u32::MAX).then_some(batches),
         };
+        // Sums no render can make (a checksum guards against damage, not against a crafted file):
+        // every value finite, squares and invalid counts not negative.
+        let possible = |p: &PixelTotal| {
+            let values = p.sum.iter().chain(&p.sum_sq).chain([&p.count, &p.invalid]);
+            values.clone().all(|v| v.is_finite()) && p.sum_sq.iter().all(|&v| v >= 0.0) && p.invalid >= 0.0
+        };
+        if let Some(i) = accum.pixels.iter().position(|p| !possible(p)) {
+            bail!(
+                "{}: the checkpoint's sums for pixel {i} are not ones a render makes ({:?}); remove it to start \
+                 afresh",
+                path.display(),
+                accum.pixels[i]
+            );
+        }
         Ok(Checkpoint { scene, seed, spp_total, spp_done, accum })
     }
 }
@@ -143,6 +157,21 @@ mod tests {
     }
 
     /// One flipped bit anywhere, header or sums, and the file is refused with its name.
+    #[test]
+    fn impossible_sums_are_refused() {
+        let dir = std::env::temp_dir().join(format!("caustic-checkpoint-sums-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("c.ckpt");
+        for bad in [-1.0, f64::NAN, f64::INFINITY] {
+            let mut c = sample();
+            c.accum.pixels[2].sum_sq[1] = bad;
+            c.save(&path).unwrap();
+            let e = format!("{:#}", Checkpoint::load(&path).unwrap_err());
+            assert!(e.contains("c.ckpt") && e.contains("pixel 2"), "{bad}: {e}");
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
     #[test]
     fn a_damaged_checkpoint_is_refused() {
         let path = temp("damaged.ckpt");

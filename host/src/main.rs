@@ -361,7 +361,8 @@ fn cmd_compare(
     compare::check_finite(&b, reference)?;
     let ratio =
         if image_spp > 0 && reference_spp > 0 { image_spp as f64 / reference_spp as f64 } else { 0.0 };
-    let c = compare::compare(&a, &b, ratio)?;
+    let c = compare::compare(&a, &b, ratio)
+        .with_context(|| format!("{} against {}", image.display(), reference.display()))?;
     say!("RMSE                 {:.6}", c.rmse);
     say!("relative MSE         {:.6}", c.rel_mse);
     say!("mean luminance ratio {:.5}", c.luminance_ratio);
@@ -415,6 +416,16 @@ fn cmd_convergence(
         let spp = spp.unwrap_or(scene.sensor.spp);
         let buffers = buffers::build(&scene)
             .with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
+        let (width, height) = (buffers.params.width, buffers.params.height);
+        if (reference_film.width, reference_film.height) != (width, height) {
+            bail!(
+                "{} is {}×{} but {} renders {width}×{height}",
+                reference.display(),
+                reference_film.width,
+                reference_film.height,
+                scene_path.display()
+            );
+        }
         let mut backend = backend::create_on(choice, gpus, &buffers)?;
         // A one-sample warm-up (pipeline compilation, caches) on a backend of its own, untimed.
         render::render(backend.as_mut(), &buffers, 1, seed.wrapping_add(1), |_| {})?;

@@ -17,6 +17,10 @@ pub use obj::load_obj;
 pub use ply::load_ply;
 pub use serialized::load_serialized;
 
+/// The largest texture coordinate a mesh may carry: past 2^24 an f32 has no fractional part left to
+/// address a texel with, and near f32's limit the lookup's arithmetic overflows.
+pub const MAX_TEXTURE_COORDINATE: f32 = 16_777_216.0;
+
 /// An indexed triangle mesh. `normals` and `uvs`, when present, run parallel to `positions`, so a
 /// vertex whose corners disagree on a normal or uv is stored once per distinct value (Mitsuba
 /// welds OBJ corners the same way).
@@ -91,6 +95,19 @@ impl Mesh {
         }
         if let Some(p) = self.positions.iter().find(|p| !p.is_finite()) {
             bail!("{}: the mesh has a non-finite vertex position {p}", path.display());
+        }
+        // Every attribute that reaches the kernel, as the positions: a NaN or infinite normal or uv
+        // made texture lookups give non-finite samples, counted as black without a word.
+        if let Some((v, n)) = self.normals.iter().flatten().enumerate().find(|(_, n)| !n.is_finite()) {
+            bail!("{}: vertex {v} has a non-finite normal {n}", path.display());
+        }
+        let addressable = |uv: &Vec2| uv.is_finite() && uv.abs().max_element() <= MAX_TEXTURE_COORDINATE;
+        if let Some((v, uv)) = self.uvs.iter().flatten().enumerate().find(|(_, uv)| !addressable(uv)) {
+            bail!(
+                "{}: vertex {v} has texture coordinates {uv}: they must be finite and within \
+                 ±{MAX_TEXTURE_COORDINATE}",
+                path.display()
+            );
         }
         Ok(())
     }

@@ -26,6 +26,11 @@ impl TevStream {
             .with_context(|| format!("--tev {address}: no address"))?;
         let socket = TcpStream::connect_timeout(&target, Duration::from_secs(3))
             .with_context(|| format!("cannot reach tev at {address} (is `tev` running?)"))?;
+        // A viewer that accepts the connection and never reads would block the render for good: a
+        // write that waits this long fails, and the render carries on without the viewer.
+        socket
+            .set_write_timeout(Some(Duration::from_secs(5)))
+            .with_context(|| format!("tev at {address}: cannot set a write timeout"))?;
         let mut client = TevClient::wrap(socket);
         // tev_client asserts on empty images; the film is never empty, but say so here too.
         anyhow::ensure!(width > 0 && height > 0, "an empty image cannot be streamed");

@@ -479,3 +479,39 @@ fn a_huge_rectangle_is_kept() {
     let pmf: Vec<f32> = buffers.lights.iter().map(|l| l.pmf).collect();
     assert!(pmf.len() == 2 && pmf.iter().all(|p| (p - 0.5).abs() < 1e-6), "{pmf:?}");
 }
+
+/// Two AOVs of one name are refused when the scene loads, naming its line (they were found only
+/// when the EXR was written, after the render).
+#[test]
+fn a_duplicate_aov_channel_is_refused_at_load() {
+    let e = load_err(
+        "aov-twice.xml",
+        &format!(
+            "<scene version=\"3.0.0\">\n<integrator type=\"aov\">\n<string name=\"aovs\" value=\"d:depth,d:depth\"/>\n</integrator>\n{SENSOR}</scene>"
+        ),
+    );
+    assert!(e.contains("aov-twice.xml:2") && e.contains("'d.T'"), "{e}");
+}
+
+/// Texture coordinates and normals that are not finite, or uvs past the addressable range, are
+/// refused naming the mesh file and vertex, as positions are.
+#[test]
+fn non_finite_mesh_attributes_are_refused() {
+    for (name, line) in [("uv-nan", "vt nan 0.5"), ("uv-huge", "vt 1e30 0.5")] {
+        let obj = write_scene(
+            &format!("{name}.obj"),
+            &format!("v 0 0 0\nv 1 0 0\nv 0 1 0\n{line}\nvt 0 0\nvt 1 1\nf 1/1 2/2 3/3\n"),
+        );
+        let e = load_err(
+            &format!("{name}.xml"),
+            &format!(
+                "<scene version=\"3.0.0\">{SENSOR}<shape type=\"obj\"><string name=\"filename\" value=\"{}\"/></shape></scene>",
+                obj.display()
+            ),
+        );
+        assert!(
+            e.contains(&format!("{name}.obj")) && e.contains("vertex 0") && e.contains("texture coordinates"),
+            "{name}: {e}"
+        );
+    }
+}

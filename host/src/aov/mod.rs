@@ -129,6 +129,17 @@ impl AovSpec {
         names
     }
 
+    /// A channel name the image and its AOVs would share (the EXR can hold one of each), if any.
+    pub fn duplicate_channel(&self) -> Option<String> {
+        let mut names: Vec<String> = ["R", "G", "B"].map(String::from).to_vec();
+        if let Some(n) = &self.nested {
+            names.extend(["R", "G", "B"].map(|c| format!("{n}.{c}")));
+        }
+        names.extend(self.computed_channels());
+        let mut seen = std::collections::HashSet::new();
+        names.into_iter().find(|n| !seen.insert(n.clone()))
+    }
+
     /// Puts the rendered AOVs (`computed`: `computed_channels`' order, per pixel; their variances of
     /// the mean in `variance`) into `film`: the depth integrator's replace the image; otherwise
     /// they become its extra channels, after the nested image's copy, and without a nested

@@ -138,7 +138,12 @@ impl Loader {
                 format!("{}: aov with several nested integrators renders only the first", props.loc);
             self.ignored("aov's second integrator".to_string(), &props.loc, message);
         }
-        self.aovs = Some(crate::aov::AovSpec { nested: name, aovs, depth_image: false });
+        let spec = crate::aov::AovSpec { nested: name, aovs, depth_image: false };
+        // Found here, not when the EXR is written after the render.
+        if let Some(channel) = spec.duplicate_channel() {
+            bail!("{}: two output channels would be named '{channel}'", props.loc);
+        }
+        self.aovs = Some(spec);
         Ok(integrator)
     }
 }
