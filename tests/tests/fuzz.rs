@@ -152,3 +152,105 @@ fn loaders_never_panic_on_mutated_files() {
     assert!(panics.is_empty(), "loaders panicked:\n{}", panics.join("\n"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The writers against misuse: after loading the corpus scene and OBJ (so that their files are
+/// this process's inputs), every writer (the image as EXR, PNG and PPM, the variance file, a
+/// checkpoint, a convergence curve and plot) is pointed at random targets: the inputs themselves,
+/// symbolic and hard links to them, fresh names, a directory, a path through a file. No input may
+/// change, no writer may panic, and a write either succeeds whole or leaves what was there.
+#[test]
+fn writers_never_overwrite_an_input_or_leave_half_a_file() {
+    use caustic::convergence::ConvergencePoint;
+    use caustic::film::Film;
+    let seed: u64 = std::env::var("CAUSTIC_FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(0x5eed);
+    let dir = std::env::temp_dir().join(format!("caustic-fuzz-outputs-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut inputs = Vec::new();
+    for f in std::fs::read_dir(corpus()).unwrap() {
+        let name = f.unwrap().file_name().to_string_lossy().into_owned();
+        std::fs::copy(corpus().join(&name), dir.join(&name)).unwrap();
+        inputs.push(name);
+    }
+    inputs.sort();
+    caustic::load_scene(&dir.join("scene.xml"), &[]).unwrap();
+    caustic::load_scene(&dir.join("mesh.obj"), &[]).unwrap();
+    caustic::image_io::load_linear_rgb(&dir.join("texture.png"), false).unwrap();
+    let snapshot: Vec<Vec<u8>> = inputs.iter().map(|n| std::fs::read(dir.join(n)).unwrap()).collect();
+    let film = Film {
+        width: 3,
+        height: 2,
+        rgb: vec![[0.25, 0.5, 1.0]; 6],
+        variance: Some(vec![[0.01; 3]; 6]),
+        invalid_samples: 0,
+        comment: None,
+        sum_variance_factor: 1.0,
+        aovs: Vec::new(),
+    };
+    let point = ConvergencePoint { spp: 4, seconds: 0.5, rmse: 0.1, rel_mse: 0.01, luminance_ratio: 1.0 };
+    let mut rng = Rng(seed | 1);
+    let (mut written, mut refused) = (0, 0);
+    for round in 0..300 {
+        // The target: an input, a link to one, a fresh name, a directory, or through a file.
+        let input = dir.join(&inputs[rng.below(inputs.len())]);
+        let extension = ["exr", "png", "ppm", "ckpt", "csv", "svg"][rng.below(6)];
+        let target = match rng.below(5) {
+            0 => input.clone(),
+            1 => {
+                let link = dir.join(format!("soft-{round}.{extension}"));
+                std::os::unix::fs::symlink(&input, &link).unwrap();
+                link
+            }
+            2 => {
+                let link = dir.join(format!("hard-{round}.{extension}"));
+                std::fs::hard_link(&input, &link).unwrap();
+                link
+            }
+            3 => dir.join(format!("fresh-{}.{extension}", rng.below(4))),
+            _ => dir.join(["scene.xml", "texture.png"][rng.below(2)]).join(format!("x.{extension}")),
+        };
+        let before = std::fs::read(&target).ok();
+        let writer = rng.below(5);
+        let result = std::panic::catch_unwind(|| match writer {
+            0 => film.save(&target),
+            1 => film.save_variance(&target),
+            2 => caustic::checkpoint::Checkpoint {
+                scene: 1,
+                seed: 2,
+                spp_total: 8,
+                spp_done: 4,
+                accum: caustic::film::Accumulation::new(6, false),
+            }
+            .save(&target),
+            3 => caustic::convergence::write_csv(&target, &[("path", &[point][..])]),
+            _ => caustic::convergence::write_plot(&target, &[("path".to_string(), vec![point])]),
+        });
+        let result = result.unwrap_or_else(|_| panic!("a writer panicked on {}", target.display()));
+        let after = std::fs::read(&target).ok();
+        match result {
+            Ok(()) => {
+                written += 1;
+                assert!(after.as_ref().is_some_and(|a| !a.is_empty()), "{} written empty", target.display());
+            }
+            Err(_) => {
+                refused += 1;
+                assert_eq!(before, after, "a failed write changed {}", target.display());
+            }
+        }
+        for (name, bytes) in inputs.iter().zip(&snapshot) {
+            assert_eq!(
+                &std::fs::read(dir.join(name)).unwrap(),
+                bytes,
+                "{name} changed writing {}",
+                target.display()
+            );
+        }
+    }
+    let partial = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().ends_with(".partial"));
+    assert_eq!(partial.count(), 0, "temporary files left behind");
+    println!("{written} writes, {refused} refused");
+    assert!(written > 0 && refused > 0, "both outcomes exercised");
+    std::fs::remove_dir_all(&dir).ok();
+}
