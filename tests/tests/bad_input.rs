@@ -515,3 +515,31 @@ fn non_finite_mesh_attributes_are_refused() {
         );
     }
 }
+
+/// A crop window whose offset plus size overflows is refused (it panicked in release on the CPU,
+/// and on the GPU a window outside the film was accepted); a mesh or material library that is a
+/// link to a device (`/dev/zero`) is refused by name instead of read until memory runs out.
+#[test]
+fn overflowing_crops_and_endless_streams_are_refused() {
+    let film = |crop: &str| {
+        format!(
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/>{crop}</film></sensor></scene>"
+        )
+    };
+    let e = load_err(
+        "crop-overflow.xml",
+        &film("<integer name=\"crop_offset_x\" value=\"9223372036854775807\"/><integer name=\"crop_width\" value=\"1\"/>"),
+    );
+    assert!(e.contains("crop-overflow.xml") && e.contains("crop window"), "{e}");
+    let zero = write_scene("zero-link.ply", "");
+    std::fs::remove_file(&zero).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let e = load_err(
+        "zero-mesh.xml",
+        &format!(
+            "<scene version=\"3.0.0\">{SENSOR}<shape type=\"ply\"><string name=\"filename\" value=\"{}\"/></shape></scene>",
+            zero.display()
+        ),
+    );
+    assert!(e.contains("zero-link.ply") && e.contains("not a regular file"), "{e}");
+}
