@@ -395,7 +395,6 @@ mod tests {
             variance: None,
             invalid_samples: 0,
             comment: None,
-            sum_variance_factor: 1.0,
             aovs: Vec::new(),
         };
         film.save(&path).unwrap();

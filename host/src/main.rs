@@ -396,10 +396,7 @@ fn cmd_convergence(
     let loaded = caustic::load_scene_with(scene_path, defines, LoadOptions { strict: *strict })?;
     let reference_film = Film::load_exr(reference)?;
     compare::check_finite(&reference_film, reference)?;
-    // No output may be an input (the scene, the reference, a peer's curve), found before rendering.
-    for path in peers {
-        caustic::files::note_input(path);
-    }
+    // No output may be an input (the scene, the reference), found before rendering.
     for path in [csv, plot].into_iter().flatten() {
         caustic::files::check_output(path)?;
     }

@@ -184,7 +184,6 @@ fn writers_never_overwrite_an_input_or_leave_half_a_file() {
         variance: Some(vec![[0.01; 3]; 6]),
         invalid_samples: 0,
         comment: None,
-        sum_variance_factor: 1.0,
         aovs: Vec::new(),
     };
     let point = ConvergencePoint { spp: 4, seconds: 0.5, rmse: 0.1, rel_mse: 0.01, luminance_ratio: 1.0 };
