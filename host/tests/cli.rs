@@ -14,6 +14,23 @@ fn caustic(args: &[&str]) -> std::process::Output {
         .expect("runs")
 }
 
+/// Runs caustic with `args` and `more`, sends it `signal` once the render is under way (the handler
+/// is installed first thing), and returns what it did.
+fn signalled(args: &[&str], more: &[&str], signal: i32) -> std::process::Output {
+    let child = Command::new(env!("CARGO_BIN_EXE_caustic"))
+        .args(args)
+        .args(more)
+        .env("XDG_RUNTIME_DIR", "/tmp")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("runs");
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    // SAFETY: kill(2) on the child's own process id.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, signal) }, 0);
+    child.wait_with_output().expect("exits")
+}
+
 #[test]
 fn missing_scene_is_a_clean_error() {
     let out = caustic(&["render", "/nonexistent/scene.xml", "--backend", "cpu", "-q"]);
@@ -482,20 +499,12 @@ fn an_interrupted_render_saves_its_partial_image() {
     std::fs::create_dir_all(&dir).unwrap();
     let (image, checkpoint) = (dir.join("partial.exr"), dir.join("partial.ck"));
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
-    let child = Command::new(env!("CARGO_BIN_EXE_caustic"))
-        .args(["render", scene, "--backend", "cpu", "--spp", "1000000", "-D", "res=32", "-q"])
-        .args(["--checkpoint-every", "inf", "--checkpoint", checkpoint.to_str().unwrap()])
-        .args(["-o", image.to_str().unwrap()])
-        .env("XDG_RUNTIME_DIR", "/tmp")
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("runs");
-    // Long enough for the render to be under way (the handler is installed first thing).
-    std::thread::sleep(std::time::Duration::from_secs(2));
-    // SAFETY: kill(2) on the child's own process id.
-    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
-    let out = child.wait_with_output().expect("exits");
+    let (ck, im) = (checkpoint.to_str().unwrap(), image.to_str().unwrap());
+    let out = signalled(
+        &["render", scene, "--backend", "cpu", "--spp", "1000000", "-D", "res=32", "-q"],
+        &["--checkpoint-every", "inf", "--checkpoint", ck, "-o", im],
+        libc::SIGINT,
+    );
     let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     assert_eq!(out.status.code(), Some(130), "{stdout}\n{stderr}");
     assert!(stdout.contains("partial:") && stdout.contains("of 1000000 spp (interrupted)"), "{stdout}");
@@ -867,18 +876,11 @@ fn a_signal_ends_a_batch() {
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
     let copy = dir.join("second.xml");
     std::fs::copy(scene, &copy).unwrap();
-    let child = Command::new(env!("CARGO_BIN_EXE_caustic"))
-        .args(["render", scene, copy.to_str().unwrap(), "--backend", "cpu", "--spp", "1000000"])
-        .args(["-D", "res=32", "-q", "-o", dir.to_str().unwrap()])
-        .env("XDG_RUNTIME_DIR", "/tmp")
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("runs");
-    std::thread::sleep(std::time::Duration::from_secs(2));
-    // SAFETY: kill(2) on the child's own process id.
-    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGTERM) }, 0);
-    let out = child.wait_with_output().expect("exits");
+    let out = signalled(
+        &["render", scene, copy.to_str().unwrap(), "--backend", "cpu", "--spp", "1000000"],
+        &["-D", "res=32", "-q", "-o", dir.to_str().unwrap()],
+        libc::SIGTERM,
+    );
     let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     assert_eq!(out.status.code(), Some(143), "{stdout}\n{stderr}");
     assert!(stdout.contains("(interrupted)") && stdout.lines().count() == 1, "{stdout}");
