@@ -17,6 +17,9 @@ Usage (from the repository root, after `cargo build --release`):
     python3 scripts/time-to-error.py --variant cuda_ad_rgb --backend gpu             # a CUDA GPU
     DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1 \\
         python3 scripts/time-to-error.py --variant llvm_ad_rgb --backend cpu --spp 16
+    python3 scripts/time-to-error.py --scenes cbox,shape_ply_bunny --film fis        # caustic's other film
+    python3 scripts/time-to-error.py --scenes cbox --peer-curve /tmp/curves          # Mitsuba's curve for
+        caustic convergence SCENE REF.exr --peer /tmp/curves/cbox/mitsuba.csv --plot cbox.svg
 
 Needs `import mitsuba` (pip install mitsuba==3.9.1) and numpy.
 """
@@ -65,8 +68,34 @@ def mitsuba_side(mi, dr, path, spp, seeds, reference):
     return results
 
 
-def caustic_render(binary, backend, path, spp, seed, out):
-    cmd = [binary, "render", path, "--backend", backend, "--spp", str(spp), "--seed", str(seed), "-o", out, "-q"]
+def mitsuba_curve(mi, dr, path, max_spp, folder):
+    """Mitsuba's renders at 1, 2, 4, ... max_spp spp, each timed warm, listed in folder/mitsuba.csv as
+    `caustic convergence --peer` reads them."""
+    os.makedirs(folder, exist_ok=True)
+    rows = ["spp,seconds,image"]
+    spp = 1
+    while True:
+        scene = mi.load_file(path, spp=spp)
+        dr.eval(mi.render(scene, spp=spp, seed=0))  # compiles this spp's kernels
+        dr.sync_thread()
+        start = time.perf_counter()
+        image = mi.render(scene, spp=spp, seed=1)
+        dr.eval(image)
+        dr.sync_thread()
+        seconds = time.perf_counter() - start
+        name = f"mitsuba_{spp}.exr"
+        mi.Bitmap(image).write(os.path.join(folder, name))
+        rows.append(f"{spp},{seconds:.6f},{name}")
+        if spp >= max_spp:
+            break
+        spp = min(2 * spp, max_spp)
+    with open(os.path.join(folder, "mitsuba.csv"), "w") as f:
+        f.write("\n".join(rows) + "\n")
+
+
+def caustic_render(binary, backend, film, path, spp, seed, out):
+    cmd = [binary, "render", path, "--backend", backend, "--film", film, "--spp", str(spp),
+           "--seed", str(seed), "-o", out, "-q"]
     # A scene whose sampler reads `$spp` without a default (sensor_thinlens) needs it given, as
     # Mitsuba's side gives it to `load_file`.
     with open(path) as f:
@@ -82,14 +111,14 @@ def caustic_render(binary, backend, path, spp, seed, out):
     return float(found.group(1)), line
 
 
-def caustic_side(mi, binary, backend, path, spp, seeds, reference, scratch, warm_spp):
+def caustic_side(mi, binary, backend, film, path, spp, seeds, reference, scratch, warm_spp):
     out = os.path.join(scratch, "caustic.exr")
     # Warm-up: the GPU backend prunes and compiles its kernel for the scene and times its candidate
     # pipelines, then keeps its choice (host/src/backend/variant.rs): the timed renders use it.
-    caustic_render(binary, backend, path, warm_spp, 10_000, out)
+    caustic_render(binary, backend, film, path, warm_spp, 10_000, out)
     results, line = [], ""
     for seed in seeds:
-        seconds, line = caustic_render(binary, backend, path, spp, seed, out)
+        seconds, line = caustic_render(binary, backend, film, path, spp, seed, out)
         results.append((seconds,) + errors(load_exr(mi, out), reference))
     return results, line.split(" | ")[0]
 
@@ -103,6 +132,7 @@ def main():
     parser.add_argument("--binary", default="target/release/caustic")
     parser.add_argument("--variant", default="cuda_ad_rgb")
     parser.add_argument("--backend", default="gpu", choices=["gpu", "cpu", "auto"])
+    parser.add_argument("--film", default="splat", choices=["splat", "fis"])
     parser.add_argument("--shared", default=os.path.join(os.path.dirname(__file__), "../../shared"))
     parser.add_argument("--scenes", help="comma-separated scene names (default: all of SCENES.txt)")
     parser.add_argument("--spp", type=int, default=64)
@@ -110,6 +140,8 @@ def main():
     parser.add_argument("--warm-spp", type=int, default=256, help="caustic's warm-up render")
     parser.add_argument("--scratch", default="/tmp/caustic-time-to-error")
     parser.add_argument("--csv", help="also write the table here")
+    parser.add_argument("--peer-curve", help="also write Mitsuba's renders at 1, 2, 4, ... spp for "
+                        "`caustic convergence --peer` to DIR/<scene>/mitsuba.csv")
     args = parser.parse_args()
 
     import drjit as dr
@@ -121,7 +153,7 @@ def main():
     header = ("scene", "spp", "caustic MSE", "Mitsuba MSE", "MSE ratio", "caustic relMSE", "Mitsuba relMSE",
               "caustic s", "Mitsuba s", "time to equal error, Mitsuba / caustic")
     rows = []
-    print(f"# caustic {args.backend} against Mitsuba {mi.__version__} {args.variant}, "
+    print(f"# caustic {args.backend} ({args.film} film) against Mitsuba {mi.__version__} {args.variant}, "
           f"{args.spp} spp, seeds {seeds}", flush=True)
     print(" | ".join(header), flush=True)
     for name, relative in scene_list(args.shared, names):
@@ -130,8 +162,10 @@ def main():
         try:
             reference = load_exr(mi, reference_path)
             m = mitsuba_side(mi, dr, path, args.spp, seeds, reference)
-            c, backend = caustic_side(mi, args.binary, args.backend, path, args.spp, seeds, reference,
+            c, backend = caustic_side(mi, args.binary, args.backend, args.film, path, args.spp, seeds, reference,
                                       args.scratch, max(args.warm_spp, args.spp))
+            if args.peer_curve:
+                mitsuba_curve(mi, dr, path, args.spp, os.path.join(args.peer_curve, name))
         except Exception as e:  # a scene one side cannot render is reported, the rest go on
             print(f"{name} | failed: {e}", flush=True)
             continue

@@ -1,8 +1,10 @@
 //! The CPU backend: the kernel's per-pixel function, called natively on every core.
+use caustic_kernel::film_splat::{gather, resolved, words_per_pixel, CellReader, FilmCells};
 use caustic_kernel::integrator::{
-    accumulated, render_pixel, splat_camera_paths, splats_camera_paths, trace_light_paths, SceneView,
+    accumulated, render_pixel, splat_camera_paths, splat_pixel, splats_camera_paths, trace_light_paths,
+    SceneView,
 };
-use caustic_kernel::layout::{FrameParams, PixelAccum};
+use caustic_kernel::layout::{square_scale, FrameParams, PixelAccum};
 use caustic_kernel::splat::{AtomicWords, SPLAT_STRIDE};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -31,6 +33,73 @@ pub fn render_pass(scene: &SceneView, params: &FrameParams, accum: &mut [PixelAc
                 }
             }
         }
+    });
+}
+
+/// One pixel's cells of the splatting film (its slots, consecutive).
+struct PixelCells<'a>(&'a mut [f32]);
+
+impl CellReader for PixelCells<'_> {
+    #[inline]
+    fn get(&self, _: u32, slot: u32) -> f32 {
+        self.0[slot as usize]
+    }
+}
+
+impl FilmCells for PixelCells<'_> {
+    #[inline]
+    fn set(&mut self, _: u32, slot: u32, value: f32) {
+        self.0[slot as usize] = value;
+    }
+}
+
+/// Every pixel's cells, pixel after pixel, `stride` slots each.
+struct AllCells<'a> {
+    values: &'a [f32],
+    stride: usize,
+}
+
+impl CellReader for AllCells<'_> {
+    #[inline]
+    fn get(&self, pixel: u32, slot: u32) -> f32 {
+        self.values[pixel as usize * self.stride + slot as usize]
+    }
+}
+
+/// A pass of the splatting film (`caustic_kernel::film_splat`), exactly as the GPU's `render` and
+/// `resolve` dispatches run it: every pixel's samples into the cells it owns, then every pixel's
+/// sums gathered from its neighbourhood into `accum`. `cells` is scratch kept between passes.
+pub fn film_pass(
+    scene: &SceneView,
+    params: &FrameParams,
+    accum: &mut [PixelAccum],
+    regenerate: bool,
+    cells: &mut Vec<f32>,
+) {
+    let pixels = (params.width * params.height) as usize;
+    assert_eq!(accum.len(), pixels, "accumulation buffer does not match the image size");
+    let stride = words_per_pixel(params) as usize;
+    cells.resize(pixels * stride, 0.0);
+    // Tiles as `render_pass` walks them.
+    let (width, tile) = (params.width as usize, caustic_kernel::layout::TILE as usize);
+    cells.par_chunks_mut(width * tile * stride).enumerate().for_each(|(band, rows)| {
+        let height = rows.len() / (width * stride);
+        for x0 in (0..width).step_by(tile) {
+            for dy in 0..height {
+                for x in x0..(x0 + tile).min(width) {
+                    let local = dy * width + x;
+                    let pixel = ((band * tile + dy) * width + x) as u32;
+                    let mut own = PixelCells(&mut rows[local * stride..(local + 1) * stride]);
+                    splat_pixel(scene, params, pixel, regenerate, &mut own);
+                }
+            }
+        }
+    });
+    let all = AllCells { values: cells, stride };
+    let q = square_scale(params);
+    accum.par_iter_mut().enumerate().for_each(|(pixel, a)| {
+        let g = gather(&all, params, pixel as u32 % params.width, pixel as u32 / params.width);
+        *a = resolved(*a, &g, q);
     });
 }
 

@@ -116,6 +116,7 @@ mod tests {
             checkpoint: None,
             tev: None,
             integrator: None,
+            film: Default::default(),
         }
     }
 

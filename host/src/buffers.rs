@@ -753,6 +753,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         bsdf_samples,
         wavelength_table,
         square_scale_log2: square_scale_log2(&lights, &textures, &tables),
+        film_reach: film_reach(s, integrator_kind),
         camera,
         ..Default::default()
     };
@@ -884,6 +885,33 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
         f |= features::NORMAL_MAPPING;
     }
     f
+}
+
+/// How far the splatting film spreads a camera sample (`FrameParams::film_reach`), or 0 for filter
+/// importance sampling: asked for (`--film fis`), where light tracing's MIS weighs camera samples by
+/// the filter's density (ptracer, ibpt), for the irradiance and radiance meters (one value, no
+/// neighbours), where splatting is the same (a box of radius ½), and for a filter wider than
+/// `film_splat::MAX_REACH` pixels, with a warning.
+fn film_reach(sensor: &crate::scene::Sensor, integrator: u32) -> u32 {
+    use caustic_kernel::film_splat::{reach_for_radius, MAX_REACH};
+    let meter = matches!(sensor.projection, Projection::RadianceMeter | Projection::IrradianceMeter { .. });
+    if sensor.film != crate::scene::FilmMode::Splat
+        || meter
+        || integrator == INTEGRATOR_PTRACER
+        || integrator == INTEGRATOR_IBPT
+    {
+        return 0;
+    }
+    let reach = reach_for_radius(sensor.filter.radius());
+    if reach > MAX_REACH {
+        eprintln!(
+            "warning: the reconstruction filter's radius {} reaches {reach} pixels, past the splatting \
+             film's {MAX_REACH}: its samples are drawn from the filter instead (as --film fis)",
+            sensor.filter.radius()
+        );
+        return 0;
+    }
+    reach
 }
 
 /// What light tracing does not cover yet is refused, never rendered without it: the orthographic

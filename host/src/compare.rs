@@ -95,7 +95,10 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
         rel_mse: rel / values,
         luminance_ratio: if lum_b > 0.0 { lum_a / lum_b } else { f64::NAN },
         pass_fraction: image.variance.as_ref().map(|_| passed as f64 / n as f64),
-        luminance_z: image.variance.as_ref().map(|_| (lum_a - lum_b) / lum_var.sqrt().max(1e-12)),
+        luminance_z: image
+            .variance
+            .as_ref()
+            .map(|_| (lum_a - lum_b) / (lum_var * image.sum_variance_factor).sqrt().max(1e-12)),
         z_critical,
         error_map,
     })

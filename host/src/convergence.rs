@@ -6,7 +6,7 @@ use crate::backend::Backend;
 use crate::buffers::SceneBuffers;
 use crate::compare::compare;
 use crate::film::Film;
-use crate::render::render_with_checkpoints;
+use crate::render::{render_observed, PassObserver};
 use anyhow::{bail, Context, Result};
 use caustic_kernel::layout::SAMPLER_INDEPENDENT;
 use std::path::Path;
@@ -53,13 +53,35 @@ pub fn measure(
     let mut buffers = buffers.clone();
     buffers.params.sampler = SAMPLER_INDEPENDENT;
     let stops = checkpoints(max_spp);
-    let mut points = Vec::with_capacity(stops.len());
-    let (width, height) = (buffers.params.width, buffers.params.height);
-    render_with_checkpoints(backend, &buffers, 0, max_spp, seed, &stops, |done, seconds, backend| {
-        if stops.contains(&done) {
-            let film = Film::from_accum(width, height, &backend.read_accum()?);
-            let c = compare(&film, reference, 0.0)?;
-            points.push(ConvergencePoint {
+    let mut curve = Curve {
+        stops: &stops,
+        reference,
+        size: (buffers.params.width, buffers.params.height),
+        points: Vec::new(),
+    };
+    render_observed(backend, &buffers, 0, max_spp, seed, &stops, &mut curve)?;
+    Ok(curve.points)
+}
+
+/// Compares the image with the reference at each stop.
+struct Curve<'a> {
+    stops: &'a [u32],
+    reference: &'a Film,
+    size: (u32, u32),
+    points: Vec<ConvergencePoint>,
+}
+
+impl PassObserver for &mut Curve<'_> {
+    fn at_rest(
+        &mut self,
+        done: u32,
+        seconds: f64,
+        backend: &mut dyn Backend,
+    ) -> Result<std::ops::ControlFlow<()>> {
+        if self.stops.contains(&done) {
+            let film = Film::from_accum(self.size.0, self.size.1, &backend.read_accum()?);
+            let c = compare(&film, self.reference, 0.0)?;
+            self.points.push(ConvergencePoint {
                 spp: done,
                 seconds,
                 rmse: c.rmse,
@@ -68,7 +90,43 @@ pub fn measure(
             });
         }
         Ok(std::ops::ControlFlow::Continue(()))
-    })?;
+    }
+
+    /// The curve reads the image alone: passes grow as a render's without `--variance` do.
+    fn needs_variance(&self) -> bool {
+        false
+    }
+}
+
+/// Another renderer's curve: the renders a CSV lists (a header, then `spp,seconds,image` rows, each
+/// image's path relative to the CSV's folder), each compared with `reference` as caustic's own
+/// points are. Errors name the file and line.
+pub fn peer_curve(csv: &Path, reference: &Film) -> Result<Vec<ConvergencePoint>> {
+    let text = std::fs::read_to_string(csv).with_context(|| format!("cannot read {}", csv.display()))?;
+    let dir = csv.parent().unwrap_or(Path::new("."));
+    let mut points = Vec::new();
+    for (number, line) in text.lines().enumerate().skip(1).filter(|(_, l)| !l.trim().is_empty()) {
+        let at = || format!("{}:{}", csv.display(), number + 1);
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        let [spp, seconds, image] = fields[..] else {
+            bail!("{}: expected spp,seconds,image, found {line:?}", at());
+        };
+        let spp: u32 = spp.parse().with_context(|| format!("{}: spp {spp:?}", at()))?;
+        let seconds: f64 = seconds.parse().with_context(|| format!("{}: seconds {seconds:?}", at()))?;
+        let film = Film::load_exr(&dir.join(image)).with_context(at)?;
+        crate::compare::check_finite(&film, &dir.join(image))?;
+        let c = compare(&film, reference, 0.0).with_context(at)?;
+        points.push(ConvergencePoint {
+            spp,
+            seconds,
+            rmse: c.rmse,
+            rel_mse: c.rel_mse,
+            luminance_ratio: c.luminance_ratio,
+        });
+    }
+    if points.is_empty() {
+        bail!("{}: no renders listed (a header, then spp,seconds,image rows)", csv.display());
+    }
     Ok(points)
 }
 

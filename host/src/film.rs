@@ -18,6 +18,11 @@ pub struct Film {
     pub invalid_samples: u64,
     /// A note written into EXR files' `comments` attribute (a partial render says so there).
     pub comment: Option<String>,
+    /// How many times the summed variances of the pixels the variance of their sum is: 1 where each
+    /// camera sample reaches one pixel, more under the splatting film, whose neighbouring pixels
+    /// share samples (`splat_sum_variance_factor`). `compare` scales the mean luminance's standard
+    /// error by its root; the variance file carries it (`SUM_VARIANCE_NOTE`).
+    pub sum_variance_factor: f64,
     /// Extra EXR channels after R, G, B: the AOVs of Mitsuba's `aov` integrator (`crate::aov`),
     /// empty otherwise. PNG and PPM files and the tev stream show the image only.
     pub aovs: Vec<AovChannel>,
@@ -61,6 +66,13 @@ pub struct Accumulation {
     /// pass of `k` samples, and the film estimates the variance from batch means: a light path adds
     /// to arbitrary pixels, so no per-sample square exists for a pixel.
     pub batches: Option<u32>,
+}
+
+/// Whether a render with these parameters estimates each pixel's variance from batch means (its
+/// `Accumulation::batches`): light tracing's splats and the splatting film's gathered sums give a
+/// pixel no per-sample square.
+pub fn batch_means(params: &caustic_kernel::layout::FrameParams) -> bool {
+    caustic_kernel::film_splat::words_per_pixel(params) > 0
 }
 
 impl Accumulation {
@@ -162,16 +174,19 @@ impl Film {
         let mut variance = Vec::with_capacity(rgb.capacity());
         let mut invalid = 0u64;
         for px in &accum.pixels {
-            let n = px.count.max(1.0);
+            // Samples, or the splatting film's summed filter weights, which may be below one (a
+            // corner pixel at one sample) or, under a negative lobe at a handful of samples, below
+            // zero: Mitsuba's `hdrfilm` divides by them all the same. A pixel nothing reached is black.
+            let n = if px.count != 0.0 { px.count } else { 1.0 };
             let mean: [f64; 3] = std::array::from_fn(|c| px.sum[c] / n);
             // Variance of the mean: per sample, (Σx² − n·x̄²) / (n(n−1)); from b batch means weighted
-            // by their sizes, (Σ S²/k − n·x̄²) / (n(b−1)).
+            // by their sizes (samples, or summed weights), (Σ S²/k − n·x̄²) / (n(b−1)).
             let dof = match accum.batches {
                 None => (n - 1.0).max(1.0),
                 Some(b) => (b as f64 - 1.0).max(1.0),
             };
             let var: [f64; 3] =
-                std::array::from_fn(|c| (px.sum_sq[c] - n * mean[c] * mean[c]).max(0.0) / (n * dof));
+                std::array::from_fn(|c| (px.sum_sq[c] - n * mean[c] * mean[c]).max(0.0) / (n.abs() * dof));
             rgb.push(mean.map(|m| m as f32));
             variance.push(var);
             invalid += px.invalid as u64;
@@ -183,8 +198,16 @@ impl Film {
             variance: Some(variance),
             invalid_samples: invalid,
             comment: None,
+            sum_variance_factor: 1.0,
             aovs: Vec::new(),
         }
+    }
+
+    /// `from_accum` for a render of `buffers`, with its film's `sum_variance_factor`.
+    pub fn develop(buffers: &crate::buffers::SceneBuffers, accum: &Accumulation) -> Film {
+        let mut film = Film::from_accum(buffers.params.width, buffers.params.height, accum);
+        film.sum_variance_factor = splat_sum_variance_factor(&buffers.params, &buffers.tables);
+        film
     }
 
     /// The window of `width` × `height` pixels starting at (`x`, `y`) (clamped to the image).
@@ -199,6 +222,7 @@ impl Film {
             variance: self.variance.as_ref().map(|v| rows.clone().map(|i| v[i]).collect()),
             invalid_samples: self.invalid_samples,
             comment: self.comment.clone(),
+            sum_variance_factor: self.sum_variance_factor,
             aovs: self
                 .aovs
                 .iter()
@@ -251,7 +275,12 @@ impl Film {
             );
         }
         let narrow: Vec<[f32; 3]> = v.iter().map(|p| p.map(|x| x.min(f32::MAX as f64) as f32)).collect();
-        write_exr(path, self.width, self.height, &narrow, self.comment.as_deref())
+        let factor = format!("{SUM_VARIANCE_NOTE}{}", self.sum_variance_factor);
+        let comment = match &self.comment {
+            Some(c) => format!("{c}\n{factor}"),
+            None => factor,
+        };
+        write_exr(path, self.width, self.height, &narrow, Some(&comment))
     }
 
     fn srgb8(&self, x: u32, y: u32) -> [u8; 3] {
@@ -285,6 +314,7 @@ impl Film {
             variance: None,
             invalid_samples: 0,
             comment: None,
+            sum_variance_factor: 1.0,
             aovs: Vec::new(),
         })
     }
@@ -299,8 +329,50 @@ impl Film {
                 bail!("{}: size differs from {}", var_path.display(), path.display());
             }
             film.variance = Some(v.rgb.iter().map(|p| p.map(f64::from)).collect());
+            let comment = exr_comment(&var_path)?.unwrap_or_default();
+            let note = comment.lines().find_map(|l| l.strip_prefix(SUM_VARIANCE_NOTE));
+            if let Some(note) = note {
+                film.sum_variance_factor = match note.trim().parse::<f64>() {
+                    Ok(f) if f.is_finite() && f >= 1.0 => f,
+                    _ => bail!(
+                        "{}: a damaged note in its comments: {SUM_VARIANCE_NOTE}{note}",
+                        var_path.display()
+                    ),
+                };
+            }
         }
         Ok(film)
+    }
+}
+
+/// How a variance file's `comments` attribute carries `Film::sum_variance_factor` (a line of its
+/// own, the number after this).
+pub const SUM_VARIANCE_NOTE: &str = "caustic: variance of a sum of pixels / sum of their variances = ";
+
+/// `Film::sum_variance_factor` of the splatting film (1 without it), from the filter as the kernel
+/// tabulates it. Each sample adds w·L to the pixels it reaches, so in an image of locally even noise
+/// the variance of a sum of pixels is E[(Σw)²] / E[Σw²] times their summed variances, over samples
+/// uniform in a pixel; the filter is separable, so that is the square of the same ratio along one
+/// axis. Measured by midpoints over a pixel.
+pub fn splat_sum_variance_factor(params: &caustic_kernel::layout::FrameParams, tables: &[f32]) -> f64 {
+    if params.film_reach == 0 || caustic_kernel::integrator::splats(params.integrator) {
+        return 1.0;
+    }
+    const STEPS: u32 = 1024;
+    let r = params.film_reach as i32;
+    let (mut squared_sum, mut sum_of_squares) = (0.0f64, 0.0f64);
+    for k in 0..STEPS {
+        let u = (k as f32 + 0.5) / STEPS as f32;
+        let w: Vec<f64> = (-r..=r)
+            .map(|i| caustic_kernel::film::filter_weight(tables, params, i as f32 + 0.5 - u) as f64)
+            .collect();
+        squared_sum += w.iter().sum::<f64>().powi(2);
+        sum_of_squares += w.iter().map(|x| x * x).sum::<f64>();
+    }
+    if sum_of_squares > 0.0 {
+        (squared_sum / sum_of_squares).powi(2).max(1.0)
+    } else {
+        1.0
     }
 }
 

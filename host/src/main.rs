@@ -2,7 +2,7 @@
 use anyhow::{bail, Context, Result};
 use caustic::backend::{self, BackendChoice, GpuSelection};
 use caustic::film::{variance_path, Film};
-use caustic::scene::IntegratorChoice;
+use caustic::scene::{FilmMode, IntegratorChoice};
 use caustic::session::{self, RenderJob};
 use caustic::{buffers, compare, render, LoadOptions};
 use clap::{Parser, Subcommand};
@@ -82,6 +82,11 @@ enum Command {
         /// Write a log–log plot of relative MSE against seconds (SVG).
         #[arg(long)]
         plot: Option<PathBuf>,
+        /// Another renderer's curve beside caustic's: a CSV of its renders of the scene (`spp,seconds,image`,
+        /// image paths relative to the CSV's folder; `scripts/time-to-error.py --peer-curve` writes one for
+        /// Mitsuba), compared with the same reference and labelled by the file's name. Repeatable.
+        #[arg(long)]
+        peer: Vec<PathBuf>,
     },
     /// Measure rendering throughput (Msamples/s) per backend.
     Bench {
@@ -138,6 +143,11 @@ struct RunArgs {
     /// `convergence` takes several, comma-separated, and measures one curve each.
     #[arg(long, value_enum, value_delimiter = ',')]
     integrator: Vec<IntegratorChoice>,
+    /// How camera samples reach the film: `splat` adds each to every pixel its filter covers, as
+    /// Mitsuba does; `fis` draws its offset from the filter and gives it to its own pixel
+    /// (uncorrelated noise between pixels, more of it per sample). Light tracing always uses `fis`.
+    #[arg(long, value_enum, default_value = "splat")]
+    film: FilmMode,
     /// Refuse a scene that would not render as written (an unsupported plugin replaced or left out,
     /// a property not read) instead of warning.
     #[arg(long)]
@@ -212,6 +222,7 @@ fn main() {
                 progress_bar: !quiet,
                 checkpoint: checkpoint.map(|path| (path, every)),
                 tev,
+                film: run.film,
                 integrator: match run.integrator.as_slice() {
                     [] => None,
                     [one] => Some(*one),
@@ -227,8 +238,8 @@ fn main() {
                 Err(e) => Err(e),
             }
         }
-        Command::Convergence { scene, run, reference, csv, plot } => {
-            cmd_convergence(&scene, &run, &reference, csv.as_deref(), plot.as_deref())
+        Command::Convergence { scene, run, reference, csv, plot, peer } => {
+            cmd_convergence(&scene, &run, &reference, csv.as_deref(), plot.as_deref(), &peer)
         }
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
             cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref())
@@ -386,9 +397,10 @@ fn cmd_convergence(
     reference: &Path,
     csv: Option<&Path>,
     plot: Option<&Path>,
+    peers: &[PathBuf],
 ) -> Result<()> {
     use caustic::convergence;
-    let RunArgs { backend: choice, gpus, spp, define: defines, seed, integrator, strict } = run;
+    let RunArgs { backend: choice, gpus, spp, define: defines, seed, integrator, strict, film } = run;
     let (choice, seed) = (*choice, *seed);
     for path in [csv, plot].into_iter().flatten() {
         caustic::film::check_writable(path)?;
@@ -409,6 +421,7 @@ fn cmd_convergence(
         if let Some(choice) = integrator {
             scene.integrator = scene.integrator.overridden(choice);
         }
+        scene.sensor.film = *film;
         let name = integrator_name(&scene.integrator.kind);
         let spp = spp.unwrap_or(scene.sensor.spp);
         let buffers = buffers::build(&scene)
@@ -457,6 +470,25 @@ fn cmd_convergence(
             backend.describe()
         );
         curves.push((label, name, points));
+    }
+    let peer_names: Vec<String> =
+        peers.iter().map(|p| p.file_stem().unwrap_or_default().to_string_lossy().into_owned()).collect();
+    for (path, name) in peers.iter().zip(&peer_names) {
+        let points = convergence::peer_curve(path, &reference_film)?;
+        say!("{name} | {} | renders listed there", path.display());
+        say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
+        say!("|---|---|---|---|---|");
+        for p in &points {
+            say!(
+                "| {} | {:.4} | {:.6} | {:.6e} | {:.5} |",
+                p.spp,
+                p.seconds,
+                p.rmse,
+                p.rel_mse,
+                p.luminance_ratio
+            );
+        }
+        curves.push((name.clone(), name.as_str(), points));
     }
     if let Some(path) = csv {
         let named: Vec<(&str, &[convergence::ConvergencePoint])> =

@@ -4,7 +4,6 @@
 use crate::buffers::SceneBuffers;
 use anyhow::{bail, Result};
 use caustic_kernel::layout::PixelAccum;
-use caustic_kernel::splat::SPLAT_STRIDE;
 
 /// Host bytes a render of `buffers` needs at its peak: the scene, and per pixel the device's f32
 /// sums (the CPU's own, or the GPU's read-back staging and the copy collected from it), three f64
@@ -15,11 +14,7 @@ pub fn render_need(buffers: &SceneBuffers) -> u64 {
     let accum = std::mem::size_of::<PixelAccum>() as u64;
     let total = std::mem::size_of::<crate::film::PixelTotal>() as u64;
     let image = 3 * 4 + 3 * 8;
-    let splat = if caustic_kernel::integrator::splats(buffers.params.integrator) {
-        SPLAT_STRIDE as u64 * 4
-    } else {
-        0
-    };
+    let splat = caustic_kernel::film_splat::words_per_pixel(&buffers.params) as u64 * 4;
     scene_bytes(buffers) + pixels * (2 * accum + 3 * total + image + splat)
 }
 
@@ -27,7 +22,7 @@ pub fn render_need(buffers: &SceneBuffers) -> u64 {
 pub fn scene_bytes(buffers: &SceneBuffers) -> u64 {
     super::backend::limits::buffer_sizes(buffers)
         .into_iter()
-        .filter(|(what, _)| !matches!(*what, "film accumulator" | "light-tracing splats"))
+        .filter(|(what, _)| !matches!(*what, "film accumulator" | "splats"))
         .map(|(_, size)| size)
         .sum()
 }

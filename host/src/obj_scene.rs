@@ -3,7 +3,7 @@
 use crate::buffers::rgba;
 use crate::mesh;
 use crate::scene::{
-    look_at, warn, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape,
+    look_at, warn, FilmMode, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape,
 };
 use anyhow::{bail, Result};
 use caustic_kernel::layout::{Material, BSDF_DIFFUSE, BSDF_PHONG};
@@ -202,6 +202,7 @@ pub fn load(path: &Path, strict: bool) -> Result<Scene> {
             filter: Filter::Gaussian { stddev: 0.5, radius: 2.0 },
             sampler: SamplerKind::Stratified,
             spp: 64,
+            film: FilmMode::Splat,
         },
         integrator: Integrator::default(),
         materials,

@@ -158,7 +158,7 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
     let seconds = clock.elapsed().as_secs_f64();
     let shares: Vec<String> = ranks.shares().iter().map(u64::to_string).collect();
     show(&accum);
-    let mut film = Film::from_accum(width, height, &accum);
+    let mut film = Film::develop(&buffers, &accum);
     crate::aov::add_to(&mut film, &buffers, spp, job.seed);
     session::save_film(&mut film, job)?;
     if let Some((path, _)) = &job.checkpoint {

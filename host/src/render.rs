@@ -35,7 +35,8 @@ fn target_pass(default: Duration) -> Result<Duration> {
 }
 
 const MAX_SAMPLES_PER_PASS: u32 = 256;
-/// Splatting integrators (ptracer, ibpt) estimate each pixel's variance from batch means over passes:
+/// Splatting integrators (ptracer, ibpt) and the splatting film estimate each pixel's variance from
+/// batch means over passes:
 /// at least this many passes make that estimate trustworthy (with the 8 or so passes that pass-size
 /// doubling gives a small image, the z-scores of light-traced images were t-distributed with 8 degrees
 /// of freedom, and tests comparing them saw |z| of 3.5 from noise alone).
@@ -65,6 +66,12 @@ pub trait PassObserver {
     /// How long a pass should take (`TARGET_PASS`; shorter where someone watches the image).
     fn pass_target(&self) -> Duration {
         TARGET_PASS
+    }
+    /// Whether the image's variance will be read. Batch means (light tracing, the splatting film)
+    /// then need `MIN_BATCHES` passes; without it, passes grow as they would for any render (at 64
+    /// spp, 32 passes of 2 spp each waited on the GPU in turn).
+    fn needs_variance(&self) -> bool {
+        true
     }
 }
 
@@ -96,7 +103,7 @@ pub fn render(
     }
     let stats = render_observed(backend, buffers, 0, spp, seed, &[], Progress(progress))?;
     let accum = backend.read_accum()?;
-    Ok((Film::from_accum(buffers.params.width, buffers.params.height, &accum), stats))
+    Ok((Film::develop(buffers, &accum), stats))
 }
 
 /// One device as a lane: `start` keeps the pass, `finish` runs it.
@@ -197,7 +204,7 @@ pub fn render_span(
         &mut one
     };
     let n = lanes.count();
-    let max_per_pass = if caustic_kernel::integrator::splats(buffers.params.integrator) {
+    let max_per_pass = if crate::film::batch_means(&buffers.params) && observer.needs_variance() {
         (spp / MIN_BATCHES).clamp(1, MAX_SAMPLES_PER_PASS)
     } else {
         MAX_SAMPLES_PER_PASS

@@ -146,6 +146,20 @@ pub struct Sensor {
     pub filter: Filter,
     pub sampler: SamplerKind,
     pub spp: u32,
+    /// How camera samples reach the film (`--film`).
+    pub film: FilmMode,
+}
+
+/// How camera samples reach the film (`caustic_kernel::film`): splatted into every pixel the filter
+/// covers, as Mitsuba's `hdrfilm` does (the default), or each to its own pixel with its offset drawn
+/// from the filter, whose noise is uncorrelated between pixels (a denoiser's input) at a higher
+/// error per sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum FilmMode {
+    #[default]
+    Splat,
+    /// Filter importance sampling.
+    Fis,
 }
 
 #[derive(Clone, Debug)]

@@ -44,6 +44,8 @@ pub struct RenderJob {
     pub tev: Option<String>,
     /// Replaces the scene's integrator.
     pub integrator: Option<IntegratorChoice>,
+    /// How camera samples reach the film (`--film`).
+    pub film: crate::scene::FilmMode,
 }
 
 /// What a finished session did.
@@ -135,6 +137,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         spp,
         size: (width, height),
         done_at: &done_at,
+        variance: job.variance,
     };
     let mut seconds = 0.0;
     if start < spp {
@@ -146,7 +149,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
     // A signal stopped the render before its end (the image says so; the checkpoint is kept).
     let interrupted = crate::interrupt::requested().filter(|_| done_at.get() < spp);
     let spp_done = if interrupted.is_some() { done_at.get() } else { spp };
-    let mut film = Film::from_accum(width, height, &accum);
+    let mut film = Film::develop(&buffers, &accum);
     if buffers.aovs.is_some() && job.progress_bar {
         eprintln!("tracing the AOVs ({spp_done} spp, on the CPU)");
     }
@@ -192,6 +195,7 @@ pub(crate) fn prepare_scene(job: &RenderJob) -> Result<(buffers::SceneBuffers, u
     if let Some(choice) = job.integrator {
         scene.integrator = scene.integrator.overridden(choice);
     }
+    scene.sensor.film = job.film;
     let spp = job.spp.unwrap_or(scene.sensor.spp);
     if spp == 0 {
         bail!("--spp must be at least 1");
@@ -250,6 +254,8 @@ struct Observer<'a> {
     size: (u32, u32),
     /// The samples per pixel done at the last rest (what an interrupted render's image holds).
     done_at: &'a Cell<u32>,
+    /// `--variance`: the variance file is written.
+    variance: bool,
 }
 
 impl Observer<'_> {
@@ -262,6 +268,10 @@ impl Observer<'_> {
 }
 
 impl render::PassObserver for Observer<'_> {
+    fn needs_variance(&self) -> bool {
+        self.variance
+    }
+
     fn pass_target(&self) -> Duration {
         if self.viewer.is_some() {
             render::INTERACTIVE_PASS

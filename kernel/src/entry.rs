@@ -1,8 +1,10 @@
 //! GPU compute entry points (SPIR-V only). They do nothing but fetch the buffers and call the same
 //! functions the CPU runner calls. Binding numbers and the workgroup size are the literals rust-gpu's
 //! attributes need; their names live in `layout` (`binding::*`, `TILE`), which the host uses.
+use crate::film_splat::{gather, resolved as film_resolved, WordCells};
 use crate::integrator::{
-    accumulated, render_pixel, splat_camera_paths, splats_camera_paths, trace_light_paths, SceneView,
+    accumulated, render_pixel, splat_camera_paths, splat_pixel, splats_camera_paths, trace_light_paths,
+    SceneView,
 };
 use crate::layout::{
     square_scale, BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
@@ -52,6 +54,11 @@ pub fn render(
         splat_camera_paths(&scene, params, pixel, &mut GpuWords(splat));
         return;
     }
+    if params.film_reach != 0 {
+        let mut cells = WordCells { words: splat, pixels: params.width * params.height };
+        splat_pixel(&scene, params, pixel, regenerate != 0, &mut cells);
+        return;
+    }
     let sums = render_pixel(&scene, params, pixel, regenerate != 0);
     accum[pixel as usize] = accumulated(accum[pixel as usize], &sums, params.sample_count);
 }
@@ -93,7 +100,8 @@ pub fn light(
 }
 
 /// After a splatting pass: folds each pixel's splat words into its accumulator and clears them, so
-/// that no pass needs its words read back.
+/// that no pass needs its words read back; for the splatting film, gathers each pixel's sums from
+/// the cells of its neighbourhood (`film_splat`) into its accumulator.
 #[spirv(compute(threads(8, 8, 1)))] // layout::TILE
 pub fn resolve(
     #[spirv(global_invocation_id)] id: UVec3,
@@ -102,6 +110,13 @@ pub fn resolve(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] splat: &mut [u32],    // SPLAT
 ) {
     if id.x >= params.width || id.y >= params.height {
+        return;
+    }
+    if params.film_reach != 0 {
+        let pixel = (id.y * params.width + id.x) as usize;
+        let cells = WordCells { words: splat, pixels: params.width * params.height };
+        let gathered = gather(&cells, params, id.x, id.y);
+        accum[pixel] = film_resolved(accum[pixel], &gathered, square_scale(params));
         return;
     }
     let pixel = (id.y * params.width + id.x) as usize;

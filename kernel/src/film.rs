@@ -1,8 +1,14 @@
 //! Film sampling: where in the image a camera sample lands. (The host's `film` module is the other
 //! end: it develops the accumulated sums into an image and writes files.)
 //!
-//! Reconstruction filters are applied by filter importance sampling: each sample's offset from the
-//! pixel centre is drawn from the (separable) filter itself, so no splatting to neighbours is needed.
+//! Camera samples reach the film in one of two ways (`FrameParams::film_reach`). The default splats
+//! each sample, drawn uniformly in its pixel (`sample_position`), into every pixel its filter covers
+//! (`film_splat`), as Mitsuba's `hdrfilm` does: one sample serves several pixels, and negative lobes
+//! cancel in the ratio of sums instead of adding noise. The other, kept for uncorrelated noise (a
+//! denoiser's input) and for light tracing's MIS, is filter importance sampling (`sample_position` too):
+//! each sample's offset from the pixel centre is drawn from the (separable) filter itself and the
+//! sample goes to its own pixel alone. Measured on the Cornell box with the default gaussian filter,
+//! its MSE at equal samples was 7x the splatting film's (BENCHMARKS.md, "The film").
 //! In expectation this is the image Mitsuba's `hdrfilm` develops (sum of w·L over sum of w),
 //! including at the border, where Mitsuba only draws samples inside the image: the filter is
 //! truncated to the image there. The filter comes as a tabulated CDF over `[-radius, radius]` so
@@ -97,7 +103,18 @@ fn axis_weight(tables: &[f32], params: &FrameParams, d: f32, lo: f32, hi: f32) -
     }
 }
 
-/// Film position and weight of sample `sample_index` in pixel (px, py).
+/// The reconstruction filter's weight at offset `d` (pixels) along one axis, in the table's units
+/// (signed where the filter has negative lobes; zero outside the radius). The splatting film's
+/// weights are products of two, and its ratio of sums cancels the units.
+#[inline]
+pub fn filter_weight(tables: &[f32], params: &FrameParams, d: f32) -> f32 {
+    filter_density(tables, params, signed_table(params), d)
+}
+
+/// Film position and weight of sample `sample_index` in pixel (px, py): under filter importance
+/// sampling its offset is drawn from the filter (and its weight is signed where the filter has
+/// negative lobes); for the splatting film (`FrameParams::film_reach` > 0) it is uniform over the
+/// pixel with weight 1, and `film_splat` weights it for each pixel it reaches.
 pub fn sample_position(
     params: &FrameParams,
     tables: &[f32],
@@ -112,15 +129,19 @@ pub fn sample_position(
     let cx = (params.crop_x + px) as f32 + 0.5;
     let cy = (params.crop_y + py) as f32 + 0.5;
     let (full_w, full_h) = (params.full_width as f32, params.full_height as f32);
-    let (x_lo, x_hi) = ((-cx).max(-r), (full_w - cx).min(r));
-    let (y_lo, y_hi) = ((-cy).max(-r), (full_h - cy).min(r));
-    let dx = sample_filter_1d(tables, params, u.x, x_lo, x_hi);
-    let dy = sample_filter_1d(tables, params, u.y, y_lo, y_hi);
-    let weight = if params.filter_signed != 0 {
-        axis_weight(tables, params, dx, x_lo, x_hi) * axis_weight(tables, params, dy, y_lo, y_hi)
-    } else {
-        1.0
-    };
+    // (One FilmSample built after the branch, from scalars: naga has rejected structs merged from
+    // two branches, `integrator::camera_sample`.)
+    let (mut dx, mut dy, mut weight) = (u.x - 0.5, u.y - 0.5, 1.0);
+    if params.film_reach == 0 {
+        let (x_lo, x_hi) = ((-cx).max(-r), (full_w - cx).min(r));
+        let (y_lo, y_hi) = ((-cy).max(-r), (full_h - cy).min(r));
+        dx = sample_filter_1d(tables, params, u.x, x_lo, x_hi);
+        dy = sample_filter_1d(tables, params, u.y, y_lo, y_hi);
+        if params.filter_signed != 0 {
+            weight =
+                axis_weight(tables, params, dx, x_lo, x_hi) * axis_weight(tables, params, dy, y_lo, y_hi);
+        }
+    }
     FilmSample { pos: Vec2::new((cx + dx) / full_w, (cy + dy) / full_h), weight }
 }
 

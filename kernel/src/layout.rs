@@ -439,7 +439,11 @@ pub struct FrameParams {
     /// in f32, and every variance infinite. A power of two, so the scaling itself is exact; 0 (the
     /// default) is no scaling.
     pub square_scale_log2: i32,
-    pub _pad: [u32; 2],
+    /// The film (`film_splat`): 0 gives each camera sample to its own pixel, its offset drawn from
+    /// the filter (filter importance sampling); `r` > 0 splats it, drawn uniformly in its pixel, into
+    /// the (2r+1)² pixels around it with the filter's weight, as Mitsuba's `hdrfilm` does.
+    pub film_reach: u32,
+    pub _pad: u32,
 
     pub camera: crate::camera::Camera,
 }

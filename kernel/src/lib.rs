@@ -16,6 +16,7 @@ pub mod bvh;
 pub mod camera;
 pub mod features;
 pub mod film;
+pub mod film_splat;
 pub mod frame;
 pub mod instancing;
 pub mod integrator;

@@ -419,6 +419,7 @@ fn hostile_numbers_in_files_are_refused_naming_where() {
             variance: None,
             invalid_samples: 0,
             comment: None,
+            sum_variance_factor: 1.0,
             aovs: Vec::new(),
         };
         film.save(&write_scene(name, "").with_file_name(name)).unwrap();

@@ -110,6 +110,7 @@ fn bitmap_format_refusals_name_file_and_line() {
         variance: None,
         invalid_samples: 0,
         comment: None,
+        sum_variance_factor: 1.0,
         aovs: Vec::new(),
     };
     film.save(&exr).unwrap();

@@ -27,6 +27,7 @@ fn furnace(inner: Material) -> Scene {
             filter: Filter::Box { radius: 0.5 },
             sampler: SamplerKind::Independent,
             spp: 64,
+            film: FilmMode::Splat,
         },
         integrator: Integrator::default(),
         materials: vec![inner, Material { kind: BSDF_DIFFUSE, ..Default::default() }],
@@ -170,6 +171,7 @@ fn convergence_against_the_exact_furnace_image() {
         variance: None,
         invalid_samples: 0,
         comment: None,
+        sum_variance_factor: 1.0,
         aovs: Vec::new(),
     };
     let mut backend = caustic::backend::create(BackendChoice::Cpu, &buffers).unwrap();

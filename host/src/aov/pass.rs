@@ -78,9 +78,11 @@ fn sample(
 ) -> f32 {
     let scene = buffers.view();
     let (px, py) = (pixel % params.width, pixel / params.width);
-    // As `integrator::camera_sample` draws the image's ray.
+    // As `integrator::camera_sample` draws the image's ray, by filter importance sampling: the AOVs
+    // are accumulated per pixel (the same filtered values in expectation as the splatting film's).
     let mut sampler = Sampler::new(seed, pixel, sample_index);
-    let film = sample_position(params, scene.tables, px, py, sample_index, &mut sampler);
+    let fis = FrameParams { film_reach: 0, ..*params };
+    let film = sample_position(&fis, scene.tables, px, py, sample_index, &mut sampler);
     let u_lens = sampler.next_2d();
     let ray = params.camera.generate_ray(film.pos, u_lens);
     let weight = if params.filter_signed != 0 { film.weight } else { 1.0 };

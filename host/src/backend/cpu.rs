@@ -26,13 +26,15 @@ pub struct CpuBackend {
     /// The path tracer's loop (`path_loop`): the regenerating one only where `CAUSTIC_PATH_LOOP` asks
     /// for it; a CPU core has no warp for it to keep busy.
     regenerate: bool,
+    /// The splatting film's cells (`caustic_kernel::film_splat`), kept between passes.
+    cells: Vec<f32>,
 }
 
 impl CpuBackend {
     pub fn new(buffers: SceneBuffers) -> Self {
         let pixels = (buffers.params.width * buffers.params.height) as usize;
-        let splatted = caustic_kernel::integrator::splats(buffers.params.integrator);
-        let folding = Folding::new(pixels, splatted, buffers.params.square_scale_log2);
+        let batched = crate::film::batch_means(&buffers.params);
+        let folding = Folding::new(pixels, batched, buffers.params.square_scale_log2);
         use super::path_loop::{requested, PathLoop, Request};
         let regenerate = requested().ok() == Some(Request::Fixed(PathLoop::Regenerate));
         let mut buffers = buffers;
@@ -46,7 +48,8 @@ impl CpuBackend {
         if let Some(nodes) = widened {
             buffers.nodes = nodes;
         }
-        CpuBackend { buffers, wide, device: vec![PixelAccum::default(); pixels], folding, regenerate }
+        let device = vec![PixelAccum::default(); pixels];
+        CpuBackend { buffers, wide, device, folding, regenerate, cells: Vec::new() }
     }
 
     fn view(buffers: &SceneBuffers, wide: bool) -> SceneView<'_> {
@@ -66,20 +69,18 @@ impl Backend for CpuBackend {
     }
 
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
-        if self.folding.total.batches.is_some() {
+        let view = Self::view(&self.buffers, self.wide);
+        if params.film_reach != 0 && !caustic_kernel::integrator::splats(params.integrator) {
+            caustic_cpu::film_pass(&view, params, &mut self.device, self.regenerate, &mut self.cells);
+        } else if caustic_kernel::integrator::splats(params.integrator) {
             use caustic_kernel::splat::{resolved, SPLAT_STRIDE};
-            let words = caustic_cpu::light_pass(&Self::view(&self.buffers, self.wide), params);
+            let words = caustic_cpu::light_pass(&view, params);
             let q = caustic_kernel::layout::square_scale(params);
             for (px, w) in self.device.iter_mut().zip(words.chunks_exact(SPLAT_STRIDE as usize)) {
                 *px = resolved(*px, w.try_into().expect("a pixel's words"), params.sample_count, q);
             }
         } else {
-            caustic_cpu::render_pass(
-                &Self::view(&self.buffers, self.wide),
-                params,
-                &mut self.device,
-                self.regenerate,
-            );
+            caustic_cpu::render_pass(&view, params, &mut self.device, self.regenerate);
         }
         if self.folding.passed(params.sample_count) {
             self.fold();

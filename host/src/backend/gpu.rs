@@ -13,7 +13,6 @@ use caustic_kernel::integrator::{splats, traces_camera_paths};
 use caustic_kernel::layout::{
     binding, FrameParams, PixelAccum, INTEGRATOR_PATH, SPEC_FEATURES, SPEC_REGENERATE,
 };
-use caustic_kernel::splat::SPLAT_STRIDE;
 use std::time::Instant;
 use wgpu::util::DeviceExt;
 
@@ -181,8 +180,9 @@ impl GpuBackend {
         let first_loop = candidates[0].path_loop;
         let light_pipeline =
             splats(integrator).then(|| factory.build(first_loop, DEFAULT_WORKGROUP, LIGHT_ENTRY));
-        let resolve_pipeline =
-            splats(integrator).then(|| factory.build(first_loop, DEFAULT_WORKGROUP, RESOLVE_ENTRY));
+        // (Also the splatting film's gather.)
+        let batched = crate::film::batch_means(&buffers.params);
+        let resolve_pipeline = batched.then(|| factory.build(first_loop, DEFAULT_WORKGROUP, RESOLVE_ENTRY));
         if let Some(e) = pollster::block_on(scope.pop()) {
             bail!("the GPU rejected the kernel on {}: {e}", info.name);
         }
@@ -214,9 +214,9 @@ impl GpuBackend {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        // Light tracing splats into fixed-point words; the other integrators get a placeholder word.
-        let splatted = splats(buffers.params.integrator);
-        let splat_size = if splatted { pixels * SPLAT_STRIDE as u64 * 4 } else { 4 * SPLAT_STRIDE as u64 };
+        // Light tracing's fixed-point words or the splatting film's cells; else a placeholder word.
+        let per_pixel = caustic_kernel::film_splat::words_per_pixel(&buffers.params) as u64;
+        let splat_size = (pixels * per_pixel).max(1) * 4;
         let splat_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("splat"),
             size: splat_size,
@@ -258,7 +258,7 @@ impl GpuBackend {
             params_buffer,
             accum_buffer,
             accum_size,
-            folding: Folding::new(pixels as usize, splatted, buffers.params.square_scale_log2),
+            folding: Folding::new(pixels as usize, batched, buffers.params.square_scale_log2),
             resolve_pipeline,
             adapter_name,
             max_dispatch_samples: if info.device_type == wgpu::DeviceType::Cpu {

@@ -6,7 +6,6 @@
 use crate::buffers::SceneBuffers;
 use anyhow::Result;
 use caustic_kernel::layout::{PixelAccum, TILE};
-use caustic_kernel::splat::SPLAT_STRIDE;
 
 /// Every storage buffer the GPU backend binds, by name, with its size in bytes.
 pub fn buffer_sizes(buffers: &SceneBuffers) -> Vec<(&'static str, u64)> {
@@ -14,7 +13,8 @@ pub fn buffer_sizes(buffers: &SceneBuffers) -> Vec<(&'static str, u64)> {
         std::mem::size_of_val(v) as u64
     }
     let pixels = buffers.params.width as u64 * buffers.params.height as u64;
-    let splat = if caustic_kernel::integrator::splats(buffers.params.integrator) { pixels } else { 1 };
+    // (A placeholder word where nothing splats: a binding cannot be empty.)
+    let splat = (pixels * caustic_kernel::film_splat::words_per_pixel(&buffers.params) as u64).max(1);
     vec![
         ("frame parameters", std::mem::size_of_val(&buffers.params) as u64),
         ("BVH nodes", bytes(&buffers.nodes)),
@@ -25,7 +25,7 @@ pub fn buffer_sizes(buffers: &SceneBuffers) -> Vec<(&'static str, u64)> {
         ("tables (texels, sampling tables)", bytes(&buffers.tables)),
         ("textures", bytes(&buffers.textures)),
         ("film accumulator", pixels * std::mem::size_of::<PixelAccum>() as u64),
-        ("light-tracing splats", splat * SPLAT_STRIDE as u64 * 4),
+        ("splats", splat * 4),
     ]
 }
 

@@ -162,8 +162,8 @@ pub fn create_on(
         return Ok(devices.pop().expect("one device"));
     }
     let pixels = (buffers.params.width * buffers.params.height) as usize;
-    let splatted = caustic_kernel::integrator::splats(buffers.params.integrator);
-    Ok(Box::new(pool::Pool::new(devices, Accumulation::new(pixels, splatted))?))
+    let batched = crate::film::batch_means(&buffers.params);
+    Ok(Box::new(pool::Pool::new(devices, Accumulation::new(pixels, batched))?))
 }
 
 /// `create_on` with every suitable GPU (today's single adapter where there is one).

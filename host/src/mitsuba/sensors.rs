@@ -6,7 +6,7 @@
 use super::props::{Entry, Props};
 use super::xml::Source;
 use super::Loader;
-use crate::scene::{look_at, Crop, Filter, Projection, SamplerKind, Sensor};
+use crate::scene::{look_at, Crop, FilmMode, Filter, Projection, SamplerKind, Sensor};
 use anyhow::{bail, Result};
 use glam::{Mat4, Vec3};
 
@@ -40,6 +40,7 @@ pub fn default_sensor() -> Sensor {
         filter: Filter::Gaussian { stddev: 0.5, radius: 2.0 },
         sampler: SamplerKind::Independent,
         spp: 4,
+        film: FilmMode::Splat,
     }
 }
 

@@ -9,6 +9,7 @@ use crate::bsdf::perturb::{self, Perturbation, Shading};
 use crate::camera::{Ray, CAMERA_IRRADIANCE_METER};
 use crate::features;
 use crate::film;
+use crate::film_splat::{CellSink, FilmCells};
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
 use crate::irradiance_meter;
@@ -83,14 +84,72 @@ fn primary_ray(
     params.camera.generate_ray(film, u_lens)
 }
 
-/// Renders `params.sample_count` samples of one pixel (row-major index): the path tracer one path
-/// after the other, or, with `regenerate`, as one loop of bounces over all the samples (a path that
-/// ends hands its lane the next sample at once: `path::CameraPath`). Each sample draws the same random
-/// numbers either way and the sums add in the same order, so the two give the same image to the bit;
-/// which runs faster depends on the scene, and the GPU backend measures it (`host`'s
-/// `backend::path_loop`). `direct` has one loop.
+/// Where a pixel's camera samples go: its own sums (`PixelSums`, filter importance sampling) or the
+/// cells of the splatting film (`film_splat::CellSink`).
+pub trait SampleSink {
+    /// One sample's estimate `l` (finite or not), which landed at `film`.
+    fn sample(&mut self, scene: &SceneView, params: &FrameParams, film: film::FilmSample, l: Rgb);
+    /// `n` samples the driver cut short (`render_samples`), counted as invalid.
+    fn cut_short(&mut self, params: &FrameParams, n: u32);
+}
+
+impl SampleSink for PixelSums {
+    #[inline]
+    fn sample(&mut self, scene: &SceneView, params: &FrameParams, film: film::FilmSample, l: Rgb) {
+        add_sample(self, scene, params, l, film.weight);
+    }
+    #[inline]
+    fn cut_short(&mut self, _: &FrameParams, n: u32) {
+        self.invalid += n;
+    }
+}
+
+impl<C: FilmCells> SampleSink for CellSink<'_, C> {
+    #[inline]
+    fn sample(&mut self, scene: &SceneView, params: &FrameParams, film: film::FilmSample, l: Rgb) {
+        // (The host splats neither an irradiance meter's samples nor a signed weight: `film_reach` is
+        // 0 for the meter, and splatted samples carry weight 1.)
+        self.add(scene.tables, params, film, l);
+    }
+    #[inline]
+    fn cut_short(&mut self, params: &FrameParams, n: u32) {
+        self.add_invalid(params, n);
+    }
+}
+
+/// Renders `params.sample_count` samples of one pixel (row-major index) into its own sums.
 pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32, regenerate: bool) -> PixelSums {
     let mut sums = PixelSums { sum: Rgb::ZERO, sum_sq: Rgb::ZERO, invalid: 0 };
+    render_samples(scene, params, pixel, regenerate, &mut sums);
+    sums
+}
+
+/// Renders `params.sample_count` samples of one pixel into the splatting film's cells it owns
+/// (`film_splat`; `cells` is cleared first).
+pub fn splat_pixel<C: FilmCells>(
+    scene: &SceneView,
+    params: &FrameParams,
+    pixel: u32,
+    regenerate: bool,
+    cells: &mut C,
+) {
+    let mut sink = CellSink::new(cells, params, pixel);
+    render_samples(scene, params, pixel, regenerate, &mut sink);
+}
+
+/// Renders `params.sample_count` samples of one pixel (row-major index) into `sink`: the path tracer
+/// one path after the other, or, with `regenerate`, as one loop of bounces over all the samples (a
+/// path that ends hands its lane the next sample at once: `path::CameraPath`). Each sample draws the
+/// same random numbers either way and the sums add in the same order, so the two give the same image
+/// to the bit; which runs faster depends on the scene, and the GPU backend measures it (`host`'s
+/// `backend::path_loop`). `direct` has one loop.
+pub fn render_samples<S: SampleSink>(
+    scene: &SceneView,
+    params: &FrameParams,
+    pixel: u32,
+    regenerate: bool,
+    sink: &mut S,
+) {
     let mut s = 0;
     // The bit, not `params.integrator`: it is set exactly for `direct` (`features::DIRECT_INTEGRATOR`).
     let direct = features::has(scene.features, features::DIRECT_INTEGRATOR);
@@ -102,7 +161,7 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32, regener
             } else {
                 path::li(scene, params, ray, &mut sampler, 1.0)
             };
-            add_sample(&mut sums, scene, params, l, film_sample.weight);
+            sink.sample(scene, params, film_sample, l);
             s += 1;
         }
     } else if params.sample_count > 0 {
@@ -110,7 +169,7 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32, regener
         let mut path = path::CameraPath::new(ray, 1.0);
         loop {
             if !path.bounce(scene, params, &mut sampler) {
-                add_sample(&mut sums, scene, params, path.result, film_sample.weight);
+                sink.sample(scene, params, film_sample, path.result);
                 s += 1;
                 if s >= params.sample_count {
                     break;
@@ -126,8 +185,7 @@ pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32, regener
     // and a pass of 128 samples through the facing mirrors of `stiff.rs` lost up to half of some
     // pixels' samples that way without a trace. Counted as invalid they are reported; the GPU backend
     // splits passes on software adapters so that it rarely happens.
-    sums.invalid += params.sample_count - s;
-    sums
+    sink.cut_short(params, params.sample_count - s);
 }
 
 /// Adds one sample's estimate (an irradiance meter's times its weight, any under a signed filter
