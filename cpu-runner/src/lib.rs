@@ -1,8 +1,7 @@
 //! The CPU backend: the kernel's per-pixel function, called natively on every core.
 use caustic_kernel::film_splat::{gather, resolved, words_per_pixel, CellReader, FilmCells};
 use caustic_kernel::integrator::{
-    accumulated, render_pixel, splat_camera_paths, splat_pixel, splats_camera_paths, trace_light_paths,
-    SceneView,
+    accumulated, render_pixel, splat_camera_paths, splats_camera_paths, trace_light_paths, SceneView,
 };
 use caustic_kernel::layout::{square_scale, FrameParams, PixelAccum};
 use caustic_kernel::splat::{AtomicWords, SPLAT_STRIDE};
@@ -25,11 +24,9 @@ pub fn render_pass(scene: &SceneView, params: &FrameParams, accum: &mut [PixelAc
                 for x in x0..(x0 + tile).min(width) {
                     let slot = &mut rows[dy * width + x];
                     let pixel = ((band * tile + dy) * width + x) as u32;
-                    *slot = accumulated(
-                        *slot,
-                        &render_pixel(scene, params, pixel, regenerate),
-                        params.sample_count,
-                    );
+                    // (No cells: the film does not splat in this pass.)
+                    let sums = render_pixel(scene, params, pixel, regenerate, &mut PixelCells(&mut []));
+                    *slot = accumulated(*slot, &sums, params.sample_count);
                 }
             }
         }
@@ -41,14 +38,14 @@ struct PixelCells<'a>(&'a mut [f32]);
 
 impl CellReader for PixelCells<'_> {
     #[inline]
-    fn get(&self, _: u32, slot: u32) -> f32 {
+    fn get(&self, _: &FrameParams, _: u32, slot: u32) -> f32 {
         self.0[slot as usize]
     }
 }
 
 impl FilmCells for PixelCells<'_> {
     #[inline]
-    fn set(&mut self, _: u32, slot: u32, value: f32) {
+    fn set(&mut self, _: &FrameParams, _: u32, slot: u32, value: f32) {
         self.0[slot as usize] = value;
     }
 }
@@ -61,7 +58,7 @@ struct AllCells<'a> {
 
 impl CellReader for AllCells<'_> {
     #[inline]
-    fn get(&self, pixel: u32, slot: u32) -> f32 {
+    fn get(&self, _: &FrameParams, pixel: u32, slot: u32) -> f32 {
         self.values[pixel as usize * self.stride + slot as usize]
     }
 }
@@ -90,7 +87,7 @@ pub fn film_pass(
                     let local = dy * width + x;
                     let pixel = ((band * tile + dy) * width + x) as u32;
                     let mut own = PixelCells(&mut rows[local * stride..(local + 1) * stride]);
-                    splat_pixel(scene, params, pixel, regenerate, &mut own);
+                    render_pixel(scene, params, pixel, regenerate, &mut own);
                 }
             }
         }

@@ -59,7 +59,7 @@ impl<'a> Accel<'a> {
     /// `instancing::trace`; a wide BVH, `wide_bvh::trace`; the rest, this one-level walk.
     ///
     /// The walk reads the buffers without bounds checks: every child index and leaf range of a BVH
-    /// lies inside its buffers (`host/src/buffers.rs` checks each tree it builds), and the stack is
+    /// lies inside its buffers (the host's `buffers` module checks each tree it builds), and the stack is
     /// pushed only below `STACK_SIZE`. (A check is a compare and a branch per read, five reads per
     /// inner node, in the loop where the GPU spends most of its time.)
     pub fn trace(&self, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> {

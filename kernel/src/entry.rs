@@ -3,8 +3,7 @@
 //! attributes need; their names live in `layout` (`binding::*`, `TILE`), which the host uses.
 use crate::film_splat::{gather, resolved as film_resolved, WordCells};
 use crate::integrator::{
-    accumulated, render_pixel, splat_camera_paths, splat_pixel, splats_camera_paths, trace_light_paths,
-    SceneView,
+    accumulated, render_pixel, splat_camera_paths, splats_camera_paths, trace_light_paths, SceneView,
 };
 use crate::layout::{
     square_scale, BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
@@ -54,13 +53,13 @@ pub fn render(
         splat_camera_paths(&scene, params, pixel, &mut GpuWords(splat));
         return;
     }
-    if params.film_reach != 0 {
-        let mut cells = WordCells { words: splat, pixels: params.width * params.height };
-        splat_pixel(&scene, params, pixel, regenerate != 0, &mut cells);
-        return;
+    // The splatting film's cells (untouched under filter importance sampling): `resolve` gathers
+    // them into the accumulator.
+    let mut cells = WordCells(splat);
+    let sums = render_pixel(&scene, params, pixel, regenerate != 0, &mut cells);
+    if params.film_reach == 0 {
+        accum[pixel as usize] = accumulated(accum[pixel as usize], &sums, params.sample_count);
     }
-    let sums = render_pixel(&scene, params, pixel, regenerate != 0);
-    accum[pixel as usize] = accumulated(accum[pixel as usize], &sums, params.sample_count);
 }
 
 /// Light paths (`ptracer`, IBPT's light half): one invocation per path index, laid out like the pixels
@@ -114,7 +113,7 @@ pub fn resolve(
     }
     if params.film_reach != 0 {
         let pixel = (id.y * params.width + id.x) as usize;
-        let cells = WordCells { words: splat, pixels: params.width * params.height };
+        let cells = WordCells(splat);
         let gathered = gather(&cells, params, id.x, id.y);
         accum[pixel] = film_resolved(accum[pixel], &gathered, square_scale(params));
         return;

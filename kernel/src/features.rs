@@ -40,7 +40,8 @@ pub const TEXTURES: u32 = 1 << 20;
 /// Mitsuba's `direct` integrator. Set exactly when the scene's integrator is `direct`, also under
 /// `CAUSTIC_SPECIALIZE=0`: `render_pixel` chooses its loop by this bit alone, so that a kernel
 /// specialised for `direct` leaves out the path tracer's loop, and one for `path` the direct one (the
-/// regenerating path loop's registers cost `integrator_direct_both` 23% on the H100, session 9).
+/// regenerating path loop's registers cost `integrator_direct_both` 23% on the H100: BENCHMARKS.md,
+/// "Pass length and path regeneration").
 pub const DIRECT_INTEGRATOR: u32 = 1 << 21;
 /// Light tracing (`ptracer`).
 pub const LIGHT_TRACER: u32 = 1 << 22;

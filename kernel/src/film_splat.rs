@@ -5,7 +5,7 @@
 //!
 //! Without atomics, so that one seed gives one image on both backends, run after run: the pixel that
 //! draws the samples owns a neighbourhood of (2r+1)² cells (r = `FrameParams::film_reach`), one per
-//! pixel its samples can reach, and adds each sample's w·L and w to them (`CellSink`); after the
+//! pixel its samples can reach, and adds each sample's w·L and w to them (`add`); after the
 //! camera pass, each pixel gathers the cells that its neighbours hold for it (`gather`) and adds them
 //! to its accumulator (`resolved`). Only the invocation that owns a cell writes it, and the gather
 //! runs as a dispatch of its own, so no two invocations touch one word at once.
@@ -71,113 +71,113 @@ pub fn words_per_pixel(params: &FrameParams) -> u32 {
 /// Where the cells live, slot by slot for each pixel; implemented by each backend (the GPU's
 /// `SPLAT` buffer, the CPU's per-pixel arrays). `gather` only reads them.
 pub trait CellReader {
-    fn get(&self, pixel: u32, slot: u32) -> f32;
+    fn get(&self, params: &FrameParams, pixel: u32, slot: u32) -> f32;
 }
 
 /// Cells a pixel's samples are added to.
 pub trait FilmCells: CellReader {
-    fn set(&mut self, pixel: u32, slot: u32, value: f32);
+    fn set(&mut self, params: &FrameParams, pixel: u32, slot: u32, value: f32);
 }
 
-/// The GPU's layout: slot `s` of pixel `p` at word `s · pixels + p` of a buffer of f32 bits.
-pub struct WordCells<'a> {
-    pub words: &'a mut [u32],
-    pub pixels: u32,
+/// The GPU's layout: slot `s` of pixel `p` at word `s · pixels + p` of a buffer of f32 bits. A
+/// newtype of the slice alone, as `splat::GpuWords`, and never stored in another struct: a struct
+/// holding the slice beside other fields, or a sink holding a reference to it across the sample
+/// loop, put a pointer type inside a struct, which naga rejects ("Type '*mut [u32]' is invalid").
+pub struct WordCells<'a>(pub &'a mut [u32]);
+
+/// Word of slot `slot` of pixel `pixel` in the GPU's layout.
+#[inline]
+fn word(params: &FrameParams, pixel: u32, slot: u32) -> usize {
+    (slot * (params.width * params.height) + pixel) as usize
 }
 
 impl CellReader for WordCells<'_> {
     #[inline]
-    fn get(&self, pixel: u32, slot: u32) -> f32 {
-        f32::from_bits(self.words[(slot * self.pixels + pixel) as usize])
+    fn get(&self, params: &FrameParams, pixel: u32, slot: u32) -> f32 {
+        f32::from_bits(self.0[word(params, pixel, slot)])
     }
 }
 
 impl FilmCells for WordCells<'_> {
     #[inline]
-    fn set(&mut self, pixel: u32, slot: u32, value: f32) {
-        self.words[(slot * self.pixels + pixel) as usize] = value.to_bits();
+    fn set(&mut self, params: &FrameParams, pixel: u32, slot: u32, value: f32) {
+        self.0[word(params, pixel, slot)] = value.to_bits();
     }
 }
 
-/// Adds a pixel's camera samples to the cells it owns: cleared when it is made, one `add` per
-/// sample.
-pub struct CellSink<'a, C: FilmCells> {
-    cells: &'a mut C,
-    /// The pixel (row-major in the rendered window) and its column and row.
+/// Clears the cells `pixel` owns (they still hold the last pass's sums).
+pub fn clear<C: FilmCells>(cells: &mut C, params: &FrameParams, pixel: u32) {
+    let mut slot = 0;
+    while slot <= invalid_slot(params) {
+        cells.set(params, pixel, slot, 0.0);
+        slot += 1;
+    }
+}
+
+/// Counts `n` of `pixel`'s samples that gave no finite estimate (or were cut short) as black.
+pub fn add_invalid<C: FilmCells>(cells: &mut C, params: &FrameParams, pixel: u32, n: u32) {
+    accumulate(cells, params, pixel, invalid_slot(params), n as f32);
+}
+
+/// Adds estimate `l` of one of `pixel`'s samples, which landed at `film` (`film::sample_position`),
+/// with the filter's weight to each pixel of the rendered window that it reaches, in the cells
+/// `pixel` owns.
+pub fn add<C: FilmCells>(
+    cells: &mut C,
+    tables: &[f32],
+    params: &FrameParams,
     pixel: u32,
-    px: u32,
-    py: u32,
+    film: FilmSample,
+    l: Rgb,
+) {
+    if !is_finite3(l) {
+        add_invalid(cells, params, pixel, 1);
+        return;
+    }
+    let (px, py) = (pixel % params.width, pixel / params.width);
+    // The sample's place in its pixel, recovered from its film position (to within 2⁻¹² of a
+    // pixel at 4096 pixels, where the filter's table has bins of 1/16 pixel).
+    let ox = film.pos.x * params.full_width as f32 - (params.crop_x + px) as f32;
+    let oy = film.pos.y * params.full_height as f32 - (params.crop_y + py) as f32;
+    let r = params.film_reach as i32;
+    let side = 2 * r + 1;
+    // The weights along x, once per column (zero for a column outside the window): evaluated
+    // per cell instead, the filter's table lookups took 10% of `direct`'s time on the CPU.
+    let mut wx = [0.0f32; (2 * MAX_REACH + 1) as usize];
+    let mut i = -r;
+    while i <= r {
+        let x = px as i32 + i;
+        if x >= 0 && x < params.width as i32 {
+            wx[(i + r) as usize] = filter_weight(tables, params, i as f32 + 0.5 - ox);
+        }
+        i += 1;
+    }
+    let mut j = -r;
+    while j <= r {
+        let y = py as i32 + j;
+        let wy = filter_weight(tables, params, j as f32 + 0.5 - oy);
+        if y >= 0 && y < params.height as i32 && wy != 0.0 {
+            let mut i = -r;
+            while i <= r {
+                let w = wy * wx[(i + r) as usize];
+                if w != 0.0 {
+                    let base = 4 * ((j + r) * side + (i + r)) as u32;
+                    accumulate(cells, params, pixel, base, l.x * w);
+                    accumulate(cells, params, pixel, base + 1, l.y * w);
+                    accumulate(cells, params, pixel, base + 2, l.z * w);
+                    accumulate(cells, params, pixel, base + 3, w);
+                }
+                i += 1;
+            }
+        }
+        j += 1;
+    }
 }
 
-impl<'a, C: FilmCells> CellSink<'a, C> {
-    /// The sink of `pixel`, its cells cleared (they still hold the last pass's sums).
-    pub fn new(cells: &'a mut C, params: &FrameParams, pixel: u32) -> Self {
-        let mut slot = 0;
-        while slot <= invalid_slot(params) {
-            cells.set(pixel, slot, 0.0);
-            slot += 1;
-        }
-        CellSink { cells, pixel, px: pixel % params.width, py: pixel / params.width }
-    }
-
-    /// Counts `n` samples that gave no finite estimate (or were cut short) as black.
-    pub fn add_invalid(&mut self, params: &FrameParams, n: u32) {
-        let slot = invalid_slot(params);
-        let v = self.cells.get(self.pixel, slot);
-        self.cells.set(self.pixel, slot, v + n as f32);
-    }
-
-    /// Adds estimate `l` of a sample at `film` (`film::sample_position`) with the filter's weight to
-    /// each pixel of the rendered window that it reaches.
-    pub fn add(&mut self, tables: &[f32], params: &FrameParams, film: FilmSample, l: Rgb) {
-        if !is_finite3(l) {
-            self.add_invalid(params, 1);
-            return;
-        }
-        // The sample's place in its pixel, recovered from its film position (to within 2⁻¹² of a
-        // pixel at 4096 pixels, where the filter's table has bins of 1/16 pixel).
-        let ox = film.pos.x * params.full_width as f32 - (params.crop_x + self.px) as f32;
-        let oy = film.pos.y * params.full_height as f32 - (params.crop_y + self.py) as f32;
-        let r = params.film_reach as i32;
-        let side = 2 * r + 1;
-        // The weights along x, once per column (zero for a column outside the window): evaluated
-        // per cell instead, the filter's table lookups took 10% of `direct`'s time on the CPU.
-        let mut wx = [0.0f32; (2 * MAX_REACH + 1) as usize];
-        let mut i = -r;
-        while i <= r {
-            let x = self.px as i32 + i;
-            if x >= 0 && x < params.width as i32 {
-                wx[(i + r) as usize] = filter_weight(tables, params, i as f32 + 0.5 - ox);
-            }
-            i += 1;
-        }
-        let mut j = -r;
-        while j <= r {
-            let y = self.py as i32 + j;
-            let wy = filter_weight(tables, params, j as f32 + 0.5 - oy);
-            if y >= 0 && y < params.height as i32 && wy != 0.0 {
-                let mut i = -r;
-                while i <= r {
-                    let w = wy * wx[(i + r) as usize];
-                    if w != 0.0 {
-                        let base = 4 * ((j + r) * side + (i + r)) as u32;
-                        self.accumulate(base, l.x * w);
-                        self.accumulate(base + 1, l.y * w);
-                        self.accumulate(base + 2, l.z * w);
-                        self.accumulate(base + 3, w);
-                    }
-                    i += 1;
-                }
-            }
-            j += 1;
-        }
-    }
-
-    #[inline]
-    fn accumulate(&mut self, slot: u32, value: f32) {
-        let v = self.cells.get(self.pixel, slot);
-        self.cells.set(self.pixel, slot, v + value);
-    }
+#[inline]
+fn accumulate<C: FilmCells>(cells: &mut C, params: &FrameParams, pixel: u32, slot: u32, value: f32) {
+    let v = cells.get(params, pixel, slot);
+    cells.set(params, pixel, slot, v + value);
 }
 
 /// What a pass's camera samples gave pixel (`px`, `py`): Σw·L, Σw and the invalid count, gathered
@@ -205,18 +205,18 @@ pub fn gather<C: CellReader>(cells: &C, params: &FrameParams, px: u32, py: u32) 
                     let owner = y as u32 * params.width + x as u32;
                     let base = 4 * ((j + r) * side + (i + r)) as u32;
                     g.sum += Rgb::new(
-                        cells.get(owner, base),
-                        cells.get(owner, base + 1),
-                        cells.get(owner, base + 2),
+                        cells.get(params, owner, base),
+                        cells.get(params, owner, base + 1),
+                        cells.get(params, owner, base + 2),
                     );
-                    g.weight += cells.get(owner, base + 3);
+                    g.weight += cells.get(params, owner, base + 3);
                 }
                 i += 1;
             }
         }
         j += 1;
     }
-    g.invalid = cells.get(py * params.width + px, invalid_slot(params));
+    g.invalid = cells.get(params, py * params.width + px, invalid_slot(params));
     g
 }
 

@@ -3,7 +3,7 @@
 //! the scene's own in the same buffers), and a BVH over instances (the TLAS, from node 0) has
 //! `PRIM_INSTANCE` leaves that name a BLAS root and their transforms in `tables`
 //! (`layout::Primitive`); the scene's own shapes are one more BLAS, placed without a transform, so
-//! that the intersection code is inlined once (`host/src/instance_buffers.rs` lays them out).
+//! that the intersection code is inlined once (the host's `instance_buffers` lays them out).
 //! At an instance, the ray moves into the group's space and the BLAS is walked; the direction is
 //! transformed but not renormalized, so that `t` means the same point in both spaces (also under a
 //! non-uniform scale) and hits compare with the world's directly. Hits in an instance carry its

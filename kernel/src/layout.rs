@@ -1,7 +1,7 @@
 //! The one definition of every buffer the host and the kernel share (kajiya's `rust-shaders-shared`):
 //! `#[repr(C)]` structs of 32-bit scalars with explicit padding, uploaded as storage buffers by the GPU
 //! backend and borrowed as slices by the CPU runner. (The host's `scene` module is something else: the
-//! renderer-neutral description the loaders produce, which `host/src/buffers.rs` packs into these.)
+//! renderer-neutral description the loaders produce, which the host's `buffers` module packs into these.)
 //! Polymorphic records are tagged structs (a `kind` word), since rust-gpu lays out data-carrying enums
 //! in buffers differently from Rust.
 
@@ -325,7 +325,7 @@ pub struct Texture {
 
 /// One pixel's running sums in the accumulation buffer (32 bytes): what every pass adds to
 /// (`integrator::accumulated`) and what the host folds into its f64 totals every few thousand
-/// samples (`host/src/film.rs`, `Accumulation::fold`), then clears.
+/// samples (the host's `film::Accumulation::fold`), then clears.
 #[repr(C)]
 #[derive(Clone, Copy, Default)]
 #[cfg_attr(not(target_arch = "spirv"), derive(bytemuck::Pod, bytemuck::Zeroable, Debug, PartialEq))]

@@ -18,8 +18,8 @@ pub fn back_plus_one(m: &Material) -> u32 {
 /// The index of the record that shades material `front` at `sp` for a ray arriving along `dir`: the
 /// back's where `front` is a two-sided pair seen from behind, else `front`. An index rather than the
 /// record: returning one of two 160-byte records by a runtime test cost scenes without pairs 5–10% on
-/// the H100 (the spot light and gold, session 10: the record was then copied whole instead of read
-/// field by field where used).
+/// the H100 (the spot light and gold; BENCHMARKS.md, "The path loop chosen per scene": the record was
+/// then copied whole instead of read field by field where used).
 #[inline]
 pub fn seen(scene: &SceneView, front: u32, sp: &SurfacePoint, dir: Vec3) -> u32 {
     let flags = scene.materials[front as usize].flags;

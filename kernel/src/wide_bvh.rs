@@ -4,15 +4,16 @@
 //! record describes one child by its box: a leaf (`prim_count > 0`: primitives `first .. first +
 //! prim_count`), an inner child (`prim_count == 0`: its own children are group `first`), or an empty
 //! slot (`prim_count == 0`, `first == NONE`). The host collapses its BVH2 into this layout
-//! (`host/src/wide_bvh.rs`) for the CPU backend, which sets `SceneView::wide_bvh`.
+//! (the host's `wide_bvh` module) for the CPU backend, which sets `SceneView::wide_bvh`.
 //!
-//! Why on the CPU: the scalar BVH2 walk was 71% of glass's time on one core (`perf`, session 18,
+//! Why on the CPU: the scalar BVH2 walk was 71% of glass's time on one core (`perf` at 793e298,
 //! `Accel::trace` and the triangle test). A group tests four boxes as the lanes of `Vec4`s (one SSE
 //! instruction where BVH2 spent four scalar ones) and takes half the levels of BVH2's walk. Closest
 //! hits pop children nearest first and skip those beyond the closest hit so far. On one core of the
 //! 2-core developer machine, glass rendered 1.49× as fast as with BVH2, copper 1.35× (BENCHMARKS.md,
-//! session 20). The GPU keeps BVH2: its layouts were measured on the H100 (sessions 6, 16 and 18);
-//! this one has not been yet (the entry points pass `wide_bvh: false`).
+//! "A 4-wide BVH on the CPU"). The GPU keeps BVH2: its layouts were measured on the H100
+//! (BENCHMARKS.md, "Three traversal and scheduling changes" and "All 23 scenes against Mitsuba, a
+//! BVH layout that lost"); this one has not been yet (the entry points pass `wide_bvh: false`).
 //!
 //! The hits are BVH2's, with two exceptions, both measure-zero (`tests/tests/wide_bvh.rs`): of two
 //! primitives at one distance, or at distances within the triangle test's rounding (coplanar
@@ -83,7 +84,7 @@ pub(crate) fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Optio
     loop {
         // The group's four boxes at once.
         let base = 4 * group as usize;
-        // SAFETY: every group a slot names lies inside `nodes` (`host/src/wide_bvh.rs` builds them so).
+        // SAFETY: every group a slot names lies inside `nodes` (the host's `wide_bvh` builds them so).
         let (a, b, c, d) = unsafe {
             (
                 accel.nodes.index_unchecked(base),

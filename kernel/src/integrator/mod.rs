@@ -9,7 +9,7 @@ use crate::bsdf::perturb::{self, Perturbation, Shading};
 use crate::camera::{Ray, CAMERA_IRRADIANCE_METER};
 use crate::features;
 use crate::film;
-use crate::film_splat::{CellSink, FilmCells};
+use crate::film_splat::{self, FilmCells};
 use crate::frame::Frame;
 use crate::glam::{Vec2, Vec3};
 use crate::irradiance_meter;
@@ -84,71 +84,64 @@ fn primary_ray(
     params.camera.generate_ray(film, u_lens)
 }
 
-/// Where a pixel's camera samples go: its own sums (`PixelSums`, filter importance sampling) or the
-/// cells of the splatting film (`film_splat::CellSink`).
-pub trait SampleSink {
-    /// One sample's estimate `l` (finite or not), which landed at `film`.
-    fn sample(&mut self, scene: &SceneView, params: &FrameParams, film: film::FilmSample, l: Rgb);
-    /// `n` samples the driver cut short (`render_samples`), counted as invalid.
-    fn cut_short(&mut self, params: &FrameParams, n: u32);
-}
-
-impl SampleSink for PixelSums {
-    #[inline]
-    fn sample(&mut self, scene: &SceneView, params: &FrameParams, film: film::FilmSample, l: Rgb) {
-        add_sample(self, scene, params, l, film.weight);
-    }
-    #[inline]
-    fn cut_short(&mut self, _: &FrameParams, n: u32) {
-        self.invalid += n;
-    }
-}
-
-impl<C: FilmCells> SampleSink for CellSink<'_, C> {
-    #[inline]
-    fn sample(&mut self, scene: &SceneView, params: &FrameParams, film: film::FilmSample, l: Rgb) {
-        // (The host splats neither an irradiance meter's samples nor a signed weight: `film_reach` is
-        // 0 for the meter, and splatted samples carry weight 1.)
-        self.add(scene.tables, params, film, l);
-    }
-    #[inline]
-    fn cut_short(&mut self, params: &FrameParams, n: u32) {
-        self.add_invalid(params, n);
+/// Where one of `pixel`'s camera samples goes: its own sums (filter importance sampling,
+/// `film_reach` 0) or the cells of the splatting film that it owns (`film_splat`), chosen at run
+/// time, so that the GPU's `render` instantiates `render_samples` once (a sink type for each made the
+/// SPIR-V module 34 MB instead of 18 and `spirv-opt -O` ran past 80 CPU-minutes). The sums and the
+/// cells are passed separately, never wrapped in a struct: naga rejected a struct holding the cells'
+/// slice ("Type '*mut [u32]' is invalid", `film_splat::WordCells`) and one nesting `PixelSums`
+/// before another field (naga lays the vec3 members out to 32 bytes, against the struct's 28).
+#[inline]
+#[allow(clippy::too_many_arguments)]
+fn take_sample<C: FilmCells>(
+    sums: &mut PixelSums,
+    cells: &mut C,
+    scene: &SceneView,
+    params: &FrameParams,
+    pixel: u32,
+    film: film::FilmSample,
+    l: Rgb,
+) {
+    if params.film_reach != 0 {
+        // (The host splats neither an irradiance meter's samples nor a signed weight: `film_reach`
+        // is 0 for the meter, and splatted samples carry weight 1.)
+        film_splat::add(cells, scene.tables, params, pixel, film, l);
+    } else {
+        add_sample(sums, scene, params, l, film.weight);
     }
 }
 
-/// Renders `params.sample_count` samples of one pixel (row-major index) into its own sums.
-pub fn render_pixel(scene: &SceneView, params: &FrameParams, pixel: u32, regenerate: bool) -> PixelSums {
-    let mut sums = PixelSums { sum: Rgb::ZERO, sum_sq: Rgb::ZERO, invalid: 0 };
-    render_samples(scene, params, pixel, regenerate, &mut sums);
-    sums
-}
-
-/// Renders `params.sample_count` samples of one pixel into the splatting film's cells it owns
-/// (`film_splat`; `cells` is cleared first).
-pub fn splat_pixel<C: FilmCells>(
+/// Renders `params.sample_count` samples of one pixel (row-major index): under filter importance
+/// sampling into the sums it returns, for the splatting film into the cells the pixel owns (cleared
+/// first; the sums it returns are then zero).
+pub fn render_pixel<C: FilmCells>(
     scene: &SceneView,
     params: &FrameParams,
     pixel: u32,
     regenerate: bool,
     cells: &mut C,
-) {
-    let mut sink = CellSink::new(cells, params, pixel);
-    render_samples(scene, params, pixel, regenerate, &mut sink);
+) -> PixelSums {
+    if params.film_reach != 0 {
+        film_splat::clear(cells, params, pixel);
+    }
+    let mut sums = PixelSums { sum: Rgb::ZERO, sum_sq: Rgb::ZERO, invalid: 0 };
+    render_samples(scene, params, pixel, regenerate, &mut sums, cells);
+    sums
 }
 
-/// Renders `params.sample_count` samples of one pixel (row-major index) into `sink`: the path tracer
-/// one path after the other, or, with `regenerate`, as one loop of bounces over all the samples (a
-/// path that ends hands its lane the next sample at once: `path::CameraPath`). Each sample draws the
-/// same random numbers either way and the sums add in the same order, so the two give the same image
-/// to the bit; which runs faster depends on the scene, and the GPU backend measures it (`host`'s
-/// `backend::path_loop`). `direct` has one loop.
-pub fn render_samples<S: SampleSink>(
+/// Renders `params.sample_count` samples of one pixel (row-major index) into `sums` or `cells`: the
+/// path tracer one path after the other, or, with `regenerate`, as one loop of bounces over all the
+/// samples (a path that ends hands its lane the next sample at once: `path::CameraPath`). Each sample
+/// draws the same random numbers either way and the sums add in the same order, so the two give the
+/// same image to the bit; which runs faster depends on the scene, and the GPU backend measures it
+/// (`host`'s `backend::path_loop`). `direct` has one loop.
+fn render_samples<C: FilmCells>(
     scene: &SceneView,
     params: &FrameParams,
     pixel: u32,
     regenerate: bool,
-    sink: &mut S,
+    sums: &mut PixelSums,
+    cells: &mut C,
 ) {
     let mut s = 0;
     // The bit, not `params.integrator`: it is set exactly for `direct` (`features::DIRECT_INTEGRATOR`).
@@ -161,7 +154,7 @@ pub fn render_samples<S: SampleSink>(
             } else {
                 path::li(scene, params, ray, &mut sampler, 1.0)
             };
-            sink.sample(scene, params, film_sample, l);
+            take_sample(sums, cells, scene, params, pixel, film_sample, l);
             s += 1;
         }
     } else if params.sample_count > 0 {
@@ -169,7 +162,7 @@ pub fn render_samples<S: SampleSink>(
         let mut path = path::CameraPath::new(ray, 1.0);
         loop {
             if !path.bounce(scene, params, &mut sampler) {
-                sink.sample(scene, params, film_sample, path.result);
+                take_sample(sums, cells, scene, params, pixel, film_sample, path.result);
                 s += 1;
                 if s >= params.sample_count {
                     break;
@@ -185,7 +178,12 @@ pub fn render_samples<S: SampleSink>(
     // and a pass of 128 samples through the facing mirrors of `stiff.rs` lost up to half of some
     // pixels' samples that way without a trace. Counted as invalid they are reported; the GPU backend
     // splits passes on software adapters so that it rarely happens.
-    sink.cut_short(params, params.sample_count - s);
+    let cut = params.sample_count - s;
+    if params.film_reach != 0 {
+        film_splat::add_invalid(cells, params, pixel, cut);
+    } else {
+        sums.invalid += cut;
+    }
 }
 
 /// Adds one sample's estimate (an irradiance meter's times its weight, any under a signed filter

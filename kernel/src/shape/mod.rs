@@ -164,7 +164,7 @@ pub fn tangents(
 /// (Mitsuba 1.0000) came out 0.9982 without the absolute part, 0.9971 at 64 · 2⁻²⁴ of |p|, and 0.9970
 /// at 1500 · 2⁻²⁴ of the triangle's longest edge plus 64 · 2⁻²⁴ of |p|. Where a shape's size comes
 /// near the offset at its distance from the origin, the host warns at load time
-/// (`host/src/precision.rs`).
+/// (the host's `precision` module).
 pub const RAY_EPSILON: f32 = 1500.0 / 16_777_216.0;
 
 /// The size whose rounding errors a point `p` on a primitive of coordinates up to `error_scale`

@@ -48,9 +48,10 @@ impl Shear {
 }
 
 /// A ray's `Shear` through one traversal. The CPU computes it once per ray (two divisions and the
-/// axis choice per triangle were 7% of glass on this 2-core machine, BENCHMARKS.md session 19);
-/// the GPU again per triangle, where six more values live through the traversal cost registers
-/// (session 6: hoisting it with the visited node lost 12–16% on the H100's mesh scenes).
+/// axis choice per triangle were 7% of glass on the 2-core developer machine: BENCHMARKS.md, "The
+/// trial times whole passes"); the GPU again per triangle, where six more values live through the
+/// traversal cost registers (hoisting it with the visited node lost 12–16% on the H100's mesh
+/// scenes: BENCHMARKS.md, "Three traversal and scheduling changes").
 #[derive(Clone, Copy)]
 pub struct RayShear {
     #[cfg(not(target_arch = "spirv"))]
