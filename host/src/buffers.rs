@@ -267,7 +267,7 @@ fn bounds(p: &Primitive) -> Aabb {
 /// obvhs's medium preset with more reinsertion work and a collapse cost that keeps leaves small.
 /// Measured on the H100 (2026-11-22) against the plain preset: cbox 175 → 239 Msamples/s, material
 /// previews +20% (glass 59 → 72, diffuse 113 → 136), the PLY bunny 131 → 165; the build of a
-/// 62k-triangle mesh takes ~0.1 s. Session 17 (one H100 call, each setting interleaved) moved the
+/// 62k-triangle mesh takes ~0.1 s. One H100 call on 2026-11-27 (each setting interleaved) moved the
 /// collapse cost from 1 to 0.5 and the reinsertion ratio from 0.2 to 0.6: glass +6.0%, the diamond
 /// +5.8%, cbox +4.1%, copper +4.1%, diffuse +2.5%, the bunny +1.6%; the build takes about twice as
 /// long, so scenes past `MORE_REINSERTION_UP_TO` primitives keep 0.2. obvhs builds on rayon's threads

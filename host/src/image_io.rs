@@ -396,6 +396,7 @@ mod tests {
             invalid_samples: 0,
             comment: None,
             aovs: Vec::new(),
+            sum_variance_factor: 1.0,
         };
         film.save(&path).unwrap();
         assert!(load_linear_rgb(&path, false).is_ok());

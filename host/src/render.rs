@@ -15,7 +15,7 @@ use std::time::{Duration, Instant};
 /// for a small part of it, short enough that no dispatch nears a watchdog (Windows' default is 2 s).
 /// Every pass waits for its longest paths: in the diamond (`bsdf_dielectric_diamond`), where total
 /// internal reflection keeps some paths bouncing for hundreds of vertices, 150 ms passes (1 spp
-/// each) ran at 7.35 Msamples/s and 1 s passes at 9.47 on the H100 (session 9, same run); the
+/// each) ran at 7.35 Msamples/s and 1 s passes at 9.47 on the H100 (2026-11-24, same run); the
 /// other scenes gained 0–1%. (On software adapters the GPU backend splits a pass into dispatches of
 /// a few samples: llvmpipe cuts long-running invocations short, `backend::gpu`.)
 pub const TARGET_PASS: Duration = Duration::from_millis(1000);

@@ -7,9 +7,9 @@ use caustic::backend::BackendChoice;
 use caustic::film::Film;
 use caustic::scene::FilmMode;
 use caustic_kernel::film::{filter_weight, FilmSample};
-use caustic_kernel::film_splat::{gather, reach_for_radius, resolved, CellReader, CellSink, FilmCells};
+use caustic_kernel::film_splat::{add, clear, gather, reach_for_radius, resolved, CellReader, FilmCells};
 use caustic_kernel::glam::{Vec2, Vec3};
-use caustic_kernel::layout::PixelAccum;
+use caustic_kernel::layout::{FrameParams, PixelAccum};
 use caustic_tests::*;
 
 #[test]
@@ -28,13 +28,13 @@ struct Cells {
 }
 
 impl CellReader for Cells {
-    fn get(&self, pixel: u32, slot: u32) -> f32 {
+    fn get(&self, _: &FrameParams, pixel: u32, slot: u32) -> f32 {
         self.values[pixel as usize * self.stride + slot as usize]
     }
 }
 
 impl FilmCells for Cells {
-    fn set(&mut self, pixel: u32, slot: u32, value: f32) {
+    fn set(&mut self, _: &FrameParams, pixel: u32, slot: u32, value: f32) {
         self.values[pixel as usize * self.stride + slot as usize] = value;
     }
 }
@@ -62,13 +62,13 @@ fn one_sample_reaches_each_pixel_with_the_filters_weight() {
         let mut cells = Cells { values: vec![f32::NAN; 42 * stride], stride };
         for pixel in 0..42 {
             // (Clears the pixel's cells: they start as NaN here.)
-            CellSink::new(&mut cells, &params, pixel);
+            clear(&mut cells, &params, pixel);
         }
         let pixel = py * 7 + px;
         let pos = Vec2::new((px as f32 + o.x) / 7.0, (py as f32 + o.y) / 6.0);
-        let mut sink = CellSink::new(&mut cells, &params, pixel);
-        sink.add(&buffers.tables, &params, FilmSample { pos, weight: 1.0 }, l);
-        sink.add(&buffers.tables, &params, FilmSample { pos, weight: 1.0 }, Vec3::new(f32::NAN, 0.0, 0.0));
+        add(&mut cells, &buffers.tables, &params, pixel, FilmSample { pos, weight: 1.0 }, l);
+        let nan = Vec3::new(f32::NAN, 0.0, 0.0);
+        add(&mut cells, &buffers.tables, &params, pixel, FilmSample { pos, weight: 1.0 }, nan);
         for (qx, qy) in (0..6u32).flat_map(|y| (0..7u32).map(move |x| (x, y))) {
             let g = gather(&cells, &params, qx, qy);
             let dx = qx as f32 + 0.5 - (px as f32 + o.x);

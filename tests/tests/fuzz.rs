@@ -185,6 +185,7 @@ fn writers_never_overwrite_an_input_or_leave_half_a_file() {
         invalid_samples: 0,
         comment: None,
         aovs: Vec::new(),
+        sum_variance_factor: 1.0,
     };
     let point = ConvergencePoint { spp: 4, seconds: 0.5, rmse: 0.1, rel_mse: 0.01, luminance_ratio: 1.0 };
     let mut rng = Rng(seed | 1);

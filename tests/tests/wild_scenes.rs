@@ -1,6 +1,6 @@
 //! Forms that Mitsuba 3 scenes from outside `../shared` use and that caustic refused while Mitsuba
 //! 3.9.1 loads them (found by loading 174 scenes of public repositories: Mitsuba's own data and
-//! tutorials, Blender exports, Bitterli's scenes converted; session 14's closing note lists them):
+//! tutorials, Blender exports, Bitterli's scenes converted; commit b6b8e1f's message lists them):
 //! a medium bound to a shape, capitalised booleans, Mitsuba's constant textures, principled weights
 //! given as colours, and Radiance files signed `#?RGBE`. (Coincident triangles, which made the BVH
 //! too deep, are in stiff.rs; `prb`, in integrators.rs.)

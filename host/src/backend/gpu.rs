@@ -309,7 +309,7 @@ impl GpuBackend {
 impl Backend for GpuBackend {
     fn describe(&self) -> String {
         // Always the pipeline that runs, and why it: a kept decision builds it alone, so without
-        // this a render's log could not tell which loop a figure timed (session 18: the diamond's
+        // this a render's log could not tell which loop a figure timed (2026-11-27: the diamond's
         // tables timed its plain loop at 12.0 Msamples/s, its regenerating loop ran 16.9).
         let name =
             |v: &Variant| format!("{} loop in {}x{}", v.path_loop.name(), v.workgroup[0], v.workgroup[1]);

@@ -3,7 +3,7 @@
 //! NVIDIA. `caustic kernel-stats` prints them for a scene's pruned kernel.
 //!
 //! Why: wgpu does not expose these, and NVIDIA's `ncu` profiles CUDA only (it reports no kernels for
-//! wgpu's Vulkan dispatches, session 6). Three traversal changes lost on the H100 by adding state that
+//! wgpu's Vulkan dispatches, 2026-11-24). Three traversal changes lost on the H100 by adding state that
 //! stays live across loops (BENCHMARKS.md); the register count is the figure that explains such a
 //! loss without a timing run. The pipeline here is built with `ash` directly, from the same module and
 //! binding layout as `backend::gpu`'s, but with the statistics flag that wgpu never sets.

@@ -6,7 +6,7 @@
 //! (path regeneration). Which is faster depends on the scene: on the H100 regeneration ran the
 //! diamond 1.42× faster (total internal reflection keeps a few paths bouncing for hundreds of
 //! vertices while their warps idle) and cost the fast scenes 8–19% (the sphere light 0.81×: there
-//! the regeneration branch runs the camera-sample code at almost every bounce; session 9). No rule
+//! the regeneration branch runs the camera-sample code at almost every bounce; 2026-11-24). No rule
 //! read off the scene separated the two groups (rough plastic gained in one scene and lost in
 //! another), so the GPU backend builds both and times them on the render's own first passes: after
 //! a first stretch of the plain loop alone, each pass runs part of its samples with each loop, and

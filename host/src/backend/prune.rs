@@ -3,17 +3,18 @@
 //! (the optimiser rust-gpu itself uses), before the driver sees it.
 //!
 //! Why: the specialization constant alone lets the driver fold unused paths away, and with the
-//! 4.2 MB kernel of session 7 that reached a pruned kernel's speed. The kernel has grown since
-//! (blends, normal maps, three more models), and on the H100 the driver no longer folds it as well:
-//! the same scene ran 15–33% slower specialised than pruned (`bsdf_diffuse_plain` 120 against
-//! 164 Msamples/s, `shape_rectangle` 187 against 254; BENCHMARKS.md, session 8). Pruning returns
-//! every scene to the speed of a kernel that never had the paths it does not use.
+//! earlier 4.2 MB kernel (BENCHMARKS.md, "Specialised against pruned") that reached a pruned kernel's
+//! speed. The kernel has grown since (blends, normal maps, three more models), and on the H100 the
+//! driver no longer folds it as well: the same scene ran 15–33% slower specialised than pruned
+//! (`bsdf_diffuse_plain` 120 against 164 Msamples/s, `shape_rectangle` 187 against 254; BENCHMARKS.md,
+//! "What blends cost scenes without them, and the pruned kernel"). Pruning returns every scene to the
+//! speed of a kernel that never had the paths it does not use.
 //!
 //! On a software adapter (lavapipe) it buys compile time rather than speed: Mesa translates and
 //! inlines the whole 13.7 MB module before its spec constants fold anything, about 40 s per pipeline
 //! on a 2-core machine, every time; the pruned module (1.8 MB for a plastic sphere) compiles in
-//! about 9 s once and then comes from Mesa's own shader cache, 0.4 s for the whole render (session
-//! 11; a 16×16 render at 4 spp). That is what keeps the test suite within CI's time.
+//! about 9 s once and then comes from Mesa's own shader cache, 0.4 s for the whole render
+//! (2026-11-24, a 16×16 render at 4 spp). That is what keeps the test suite within CI's time.
 //!
 //! When: wherever `spirv-opt` is on the `PATH` (Debian's `spirv-tools`), unless `CAUSTIC_PRUNE=0`
 //! (the tests set it to check that the unpruned kernel renders the same image). The pruned module is
@@ -25,7 +26,7 @@ use std::process::Command;
 
 /// spirv-opt's passes: freeze the mask, fold what depends on it, drop the dead branches and the
 /// functions only they called. (The `-O` recipe was measured 5–20% slower than this on 21 of the 23
-/// shared scenes, session 7.)
+/// shared scenes, 2026-11-24.)
 const PASSES: &[&str] = &[
     "--freeze-spec-const",
     "--fold-spec-const-op-composite",
@@ -46,7 +47,7 @@ pub fn wanted() -> bool {
 /// dead paths removed, from the cache or from `spirv-opt`; `None` (with the reason on stderr) where
 /// neither can give it. `validated`: the module is known valid (the built-in kernel: rust-gpu's build
 /// validates it), so spirv-opt skips validating its input, which took 17 of its 27 s on the 14 MB
-/// kernel (2-core machine, session 11; the output is the same to the byte).
+/// kernel (2-core machine, 2026-11-24; the output is the same to the byte).
 pub fn pruned(words: &[u32], mask: u32, path_loop: u32, validated: bool) -> Option<Vec<u32>> {
     let bytes: &[u8] = bytemuck::cast_slice(words);
     let cached = cache_dir().map(|dir| dir.join(format!("{:016x}-{mask:08x}-{path_loop}.spv", key(bytes))));

@@ -4,7 +4,7 @@
 //! Why the workgroup size: NVIDIA's Vulkan compiler budgets registers by it. The same pruned kernel
 //! gets 128 registers per thread (162–168 with microfacets) in 8×8 workgroups, 128 in 16×16 and 32×16,
 //! 96 in 32×20, 80 in 32×24 and 64 in 32×32 (`caustic kernel-stats`), trading spills for occupancy,
-//! and the warps take other pixels (8×4 against 32×1). No size is best everywhere (H200, session 15,
+//! and the warps take other pixels (8×4 against 32×1). No size is best everywhere (H200, 2026-11-27,
 //! BENCHMARKS.md): `integrator_direct_both` ran 1.19× faster in 32×16 workgroups, glass 1.08× in
 //! 32×24, rough plastic 1.13× in 32×32, while the Cornell box lost 22% in 32×24 and the sphere light
 //! 34% in 32×32. So, as for the path loop, the backend builds the candidates and measures (the first
@@ -14,7 +14,7 @@
 //! (a short render cannot pay for a trial), then whole passes in turn, each to the candidate measured
 //! least so far, until each has run `DECIDE_AFTER` in long passes; the fastest per sample wins.
 //! Whole passes, not shares of one: a share is a short dispatch, and a dispatch waits for its
-//! longest path, which weighs the candidates differently. On the H100 (session 19), the diamond's
+//! longest path, which weighs the candidates differently. On the H100 (2026-11-28), the diamond's
 //! regenerating loop in 8×8 measured 56 ms per sample per pixel in shares of three samples and 41
 //! in whole renders, its plain loop 63 against 58; glass's regenerating loop in 32×24 7.39 against
 //! 6.86 and its plain loop in 8×8 7.28 against 7.06, so the shares chose plain loops for glass,
@@ -168,7 +168,7 @@ impl Decisions {
 /// frame parameters, image size and camera included, less what changes from pass to pass and the
 /// seed), its materials and lights, and the size and bounds of its geometry. Two scenes that share a
 /// feature mask and an image size (the shared set's diffuse scenes, say) keep a choice each: in
-/// session 15's first table they shared one.
+/// the 22-scene table of 2026-11-27 (BENCHMARKS.md) they shared one.
 pub fn scene_fingerprint(buffers: &crate::buffers::SceneBuffers) -> u64 {
     use std::hash::{Hash, Hasher};
     let mut params = buffers.params;
