@@ -11,13 +11,20 @@ closing line reports it; loading excluded on both sides). Since the error of an 
 as 1/time, the time either renderer needs to reach the other's error scales as error x seconds: the
 last column, (Mitsuba's relative MSE x seconds) / (caustic's), is how many times faster caustic
 reaches equal error (its samples per second times its error per sample, both against Mitsuba's). The reference's
-own noise adds the same small amount to both errors.
+own noise adds the same small amount to both errors. The column before it, Mitsuba's seconds over caustic's
+at equal spp, is the throughput ratio alone (a diagnostic: what the error per sample makes of it is the
+last column).
+
+`--film splat,fis` renders caustic with each film in the same run, against the same Mitsuba renders.
+`--reference-spp N` has Mitsuba render each reference at N spp in the run (seed 1000000, cached in
+--scratch), so that none needs carrying to the machine that runs this.
 
 Usage (from the repository root, after `cargo build --release`):
     python3 scripts/time-to-error.py --variant cuda_ad_rgb --backend gpu             # a CUDA GPU
     DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1 \\
         python3 scripts/time-to-error.py --variant llvm_ad_rgb --backend cpu --spp 16
     python3 scripts/time-to-error.py --scenes cbox,shape_ply_bunny --film fis        # caustic's other film
+    python3 scripts/time-to-error.py --film splat,fis --reference-spp 2048             # both, own references
     python3 scripts/time-to-error.py --scenes cbox --peer-curve /tmp/curves          # Mitsuba's curve for
         caustic convergence SCENE REF.exr --peer /tmp/curves/cbox/mitsuba.csv --plot cbox.svg
 
@@ -93,6 +100,20 @@ def mitsuba_curve(mi, dr, path, max_spp, folder):
         f.write("\n".join(rows) + "\n")
 
 
+def reference_image(mi, dr, path, name, args):
+    """The scene's reference: ../shared's, or with --reference-spp Mitsuba's own render at that spp,
+    made once and kept in the scratch folder."""
+    if not args.reference_spp:
+        return load_exr(mi, os.path.join(args.shared, "refs/mitsuba", name + ".exr"))
+    cached = os.path.join(args.scratch, f"reference-{name}-{args.reference_spp}.exr")
+    if not os.path.exists(cached):
+        scene = mi.load_file(path, spp=args.reference_spp)
+        image = mi.render(scene, spp=args.reference_spp, seed=1_000_000)
+        dr.eval(image)
+        mi.Bitmap(image).write(cached)
+    return load_exr(mi, cached)
+
+
 def caustic_render(binary, backend, film, path, spp, seed, out):
     cmd = [binary, "render", path, "--backend", backend, "--film", film, "--spp", str(spp),
            "--seed", str(seed), "-o", out, "-q"]
@@ -132,7 +153,8 @@ def main():
     parser.add_argument("--binary", default="target/release/caustic")
     parser.add_argument("--variant", default="cuda_ad_rgb")
     parser.add_argument("--backend", default="gpu", choices=["gpu", "cpu", "auto"])
-    parser.add_argument("--film", default="splat", choices=["splat", "fis"])
+    parser.add_argument("--film", default="splat", help="caustic's film: splat, fis, or both (splat,fis)")
+    parser.add_argument("--reference-spp", type=int, help="render each reference with Mitsuba at this spp")
     parser.add_argument("--shared", default=os.path.join(os.path.dirname(__file__), "../../shared"))
     parser.add_argument("--scenes", help="comma-separated scene names (default: all of SCENES.txt)")
     parser.add_argument("--spp", type=int, default=64)
@@ -150,37 +172,44 @@ def main():
     os.makedirs(args.scratch, exist_ok=True)
     seeds = list(range(1, args.seeds + 1))
     names = args.scenes.split(",") if args.scenes else None
-    header = ("scene", "spp", "caustic MSE", "Mitsuba MSE", "MSE ratio", "caustic relMSE", "Mitsuba relMSE",
-              "caustic s", "Mitsuba s", "time to equal error, Mitsuba / caustic")
+    films = args.film.split(",")
+    if any(f not in ("splat", "fis") for f in films):
+        parser.error(f"--film: splat, fis or splat,fis, not {args.film}")
+    header = ("scene", "film", "spp", "caustic MSE", "Mitsuba MSE", "MSE ratio", "caustic relMSE", "Mitsuba relMSE",
+              "caustic s", "Mitsuba s", "throughput, Mitsuba s / caustic s", "time to equal error, Mitsuba / caustic")
     rows = []
+    reference_note = f"references by Mitsuba at {args.reference_spp} spp" if args.reference_spp else "shared references"
     print(f"# caustic {args.backend} ({args.film} film) against Mitsuba {mi.__version__} {args.variant}, "
-          f"{args.spp} spp, seeds {seeds}", flush=True)
+          f"{args.spp} spp, seeds {seeds}, {reference_note}", flush=True)
     print(" | ".join(header), flush=True)
     for name, relative in scene_list(args.shared, names):
         path = os.path.join(args.shared, "scenes/mitsuba", relative)
-        reference_path = os.path.join(args.shared, "refs/mitsuba", name + ".exr")
         try:
-            reference = load_exr(mi, reference_path)
+            reference = reference_image(mi, dr, path, name, args)
             m = mitsuba_side(mi, dr, path, args.spp, seeds, reference)
-            c, backend = caustic_side(mi, args.binary, args.backend, args.film, path, args.spp, seeds, reference,
-                                      args.scratch, max(args.warm_spp, args.spp))
+            sides = [(film,) + caustic_side(mi, args.binary, args.backend, film, path, args.spp, seeds, reference,
+                                            args.scratch, max(args.warm_spp, args.spp)) for film in films]
             if args.peer_curve:
                 mitsuba_curve(mi, dr, path, args.spp, os.path.join(args.peer_curve, name))
         except Exception as e:  # a scene one side cannot render is reported, the rest go on
             print(f"{name} | failed: {e}", flush=True)
             continue
-        c_s, c_mse, c_rel = (mean([r[i] for r in c]) for i in range(3))
         m_s, m_mse, m_rel = (mean([r[i] for r in m]) for i in range(3))
-        # Time to equal relative MSE: error x time is constant for each renderer.
-        speedup = (m_rel * m_s) / (c_rel * c_s)
-        row = (name, args.spp, c_mse, m_mse, c_mse / m_mse, c_rel, m_rel, c_s, m_s, speedup)
-        rows.append(row)
-        print(f"{name} | {args.spp} | {c_mse:.3e} | {m_mse:.3e} | {c_mse / m_mse:.2f} | {c_rel:.3e} | "
-              f"{m_rel:.3e} | {c_s:.3f} | {m_s:.3f} | {speedup:.2f}   ({backend})", flush=True)
-    if rows:
-        geo = lambda i: math.exp(mean([math.log(r[i]) for r in rows]))
-        print(f"geometric mean over {len(rows)} scenes: MSE ratio (caustic / Mitsuba, equal spp) {geo(4):.2f}, "
-              f"time to equal error (Mitsuba / caustic) {geo(9):.2f}", flush=True)
+        for film, c, backend in sides:
+            c_s, c_mse, c_rel = (mean([r[i] for r in c]) for i in range(3))
+            # Time to equal relative MSE: error x time is constant for each renderer.
+            speedup = (m_rel * m_s) / (c_rel * c_s)
+            row = (name, film, args.spp, c_mse, m_mse, c_mse / m_mse, c_rel, m_rel, c_s, m_s, m_s / c_s, speedup)
+            rows.append(row)
+            print(f"{name} | {film} | {args.spp} | {c_mse:.3e} | {m_mse:.3e} | {c_mse / m_mse:.2f} | {c_rel:.3e} | "
+                  f"{m_rel:.3e} | {c_s:.3f} | {m_s:.3f} | {m_s / c_s:.2f} | {speedup:.2f}   ({backend})", flush=True)
+    for film in films:
+        mine = [r for r in rows if r[1] == film]
+        if mine:
+            geo = lambda i: math.exp(mean([math.log(r[i]) for r in mine]))
+            print(f"{film} film, geometric mean over {len(mine)} scenes: MSE ratio (caustic / Mitsuba, equal spp) "
+                  f"{geo(5):.2f}, throughput (Mitsuba s / caustic s) {geo(10):.2f}, time to equal error "
+                  f"(Mitsuba / caustic) {geo(11):.2f}", flush=True)
     if args.csv:
         with open(args.csv, "w") as f:
             f.write(",".join(header) + "\n")
