@@ -38,6 +38,16 @@ fn luminance(c: [f32; 3]) -> f64 {
     caustic_kernel::spectrum::luminance(Vec3::from(c)) as f64
 }
 
+/// The `samples_ratio` of `compare` for a render and a reference of these samples per pixel: 0 (the
+/// reference's noise ignored) unless both are known (non-zero).
+pub fn samples_ratio(image_spp: u32, reference_spp: u32) -> f64 {
+    if image_spp > 0 && reference_spp > 0 {
+        image_spp as f64 / reference_spp as f64
+    } else {
+        0.0
+    }
+}
+
 /// Compares `image` with `reference`. `samples_ratio` = render spp / reference spp estimates the
 /// reference's own variance from the render's (0 ignores it).
 pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Comparison> {

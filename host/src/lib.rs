@@ -37,6 +37,22 @@ pub mod wide_bvh;
 use anyhow::Result;
 use std::path::Path;
 
+/// An error and its causes, `: `-separated as anyhow's `{:#}`, leaving out a cause whose message
+/// the text already holds (an OS error was printed twice: the exr and image crates put their
+/// source's message into their own). What the command line prints and the Python module raises.
+pub fn error_chain(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain() {
+        let message = cause.to_string();
+        if text.is_empty() {
+            text = message;
+        } else if !text.contains(&message) {
+            text = format!("{text}: {message}");
+        }
+    }
+    text
+}
+
 /// How a scene file is read.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct LoadOptions {

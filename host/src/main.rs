@@ -4,7 +4,7 @@ use caustic::backend::{self, BackendChoice, GpuSelection};
 use caustic::film::{variance_path, Film};
 use caustic::scene::{FilmMode, IntegratorChoice};
 use caustic::session::{self, RenderJob};
-use caustic::{buffers, compare, render, LoadOptions};
+use caustic::{buffers, compare, error_chain, render, LoadOptions};
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -262,22 +262,6 @@ fn main() {
     }
 }
 
-/// The error and its causes, `: `-separated as anyhow's `{:#}`, leaving out a cause whose message
-/// the text already holds (an OS error was printed twice: the exr and image crates put their
-/// source's message into their own).
-fn error_chain(e: &anyhow::Error) -> String {
-    let mut text = String::new();
-    for cause in e.chain() {
-        let message = cause.to_string();
-        if text.is_empty() {
-            text = message;
-        } else if !text.contains(&message) {
-            text = format!("{text}: {message}");
-        }
-    }
-    text
-}
-
 /// A render's summary line: backend, size, samples (partial or resumed ones said so), time,
 /// throughput and the image written.
 fn summary(r: &session::RenderReport, output: &Path) -> String {
@@ -370,8 +354,7 @@ fn cmd_compare(
     }
     compare::check_finite(&a, image)?;
     compare::check_finite(&b, reference)?;
-    let ratio =
-        if image_spp > 0 && reference_spp > 0 { image_spp as f64 / reference_spp as f64 } else { 0.0 };
+    let ratio = compare::samples_ratio(image_spp, reference_spp);
     let c = compare::compare(&a, &b, ratio)
         .with_context(|| format!("{} against {}", image.display(), reference.display()))?;
     say!("RMSE                 {:.6}", c.rmse);
@@ -628,7 +611,7 @@ fn cmd_bench(
         say!("warm-up: {}", backend.describe());
         // The timed render runs in a backend of its own, which builds the kept choice alone, after a
         // one-sample render there: its pipeline's first dispatch is not timed either (Mitsuba's side
-        // of `scripts/speed-vs-mitsuba.py` times a render after one of the same scene). In session 16
+        // of `scripts/speed-vs-mitsuba.py` times a render after one of the same scene). On 2026-11-27
         // a 0.24 s render timed without it ran at half the speed of the same scene's other renders,
         // once (BENCHMARKS.md).
         let mut backend = backend::create_on(choice, gpus, &buffers)?;

@@ -6,7 +6,7 @@ use crate::backend::{self, Backend, BackendChoice, GpuSelection};
 use crate::checkpoint::{self, Checkpoint};
 use crate::film::{self, Film};
 use crate::ranks::{self, Ranks};
-use crate::scene::IntegratorChoice;
+use crate::scene::{FilmMode, IntegratorChoice, Scene};
 use crate::{buffers, render, tev};
 use anyhow::{bail, Context, Result};
 use std::cell::Cell;
@@ -149,11 +149,10 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
     // A signal stopped the render before its end (the image says so; the checkpoint is kept).
     let interrupted = crate::interrupt::requested().filter(|_| done_at.get() < spp);
     let spp_done = if interrupted.is_some() { done_at.get() } else { spp };
-    let mut film = Film::develop(&buffers, &accum);
     if buffers.aovs.is_some() && job.progress_bar {
         eprintln!("tracing the AOVs ({spp_done} spp, on the CPU)");
     }
-    crate::aov::add_to(&mut film, &buffers, spp_done, seed);
+    let mut film = develop(&buffers, &accum, spp_done, seed);
     if interrupted.is_some() {
         film.comment = Some(format!("caustic: partial render, {spp_done} of {spp} spp (interrupted)"));
     }
@@ -191,22 +190,51 @@ pub(crate) fn check_outputs(job: &RenderJob) -> Result<()> {
 /// Loads the scene with the job's overrides and builds its buffers; the samples per pixel to render.
 pub(crate) fn prepare_scene(job: &RenderJob) -> Result<(buffers::SceneBuffers, u32)> {
     let options = crate::LoadOptions { strict: job.strict };
-    let mut scene = crate::load_scene_with(&job.scene, &job.defines, options)?;
-    if let Some(choice) = job.integrator {
-        scene.integrator = scene.integrator.overridden(choice);
-    }
-    scene.sensor.film = job.film;
-    let spp = job.spp.unwrap_or(scene.sensor.spp);
-    if spp == 0 {
-        bail!("--spp must be at least 1");
-    }
-    let buffers =
-        buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", job.scene.display()))?;
+    let scene = crate::load_scene_with(&job.scene, &job.defines, options)?;
+    let spp = samples_per_pixel(&scene, job.spp)?;
+    let buffers = build_scene(scene, &job.scene, job.integrator, job.film)?;
     Ok((buffers, spp))
 }
 
+/// The samples per pixel to render: `spp`, or the scene's sampler's count; at least one.
+pub fn samples_per_pixel(scene: &Scene, spp: Option<u32>) -> Result<u32> {
+    let spp = spp.unwrap_or(scene.sensor.spp);
+    if spp == 0 {
+        bail!("--spp must be at least 1");
+    }
+    Ok(spp)
+}
+
+/// Builds the buffers of a loaded scene (read from `path`, which errors name) for a render with
+/// `integrator` in place of the scene's own and `film` (`--integrator`, `--film`).
+pub fn build_scene(
+    mut scene: Scene,
+    path: &Path,
+    integrator: Option<IntegratorChoice>,
+    film: FilmMode,
+) -> Result<buffers::SceneBuffers> {
+    if let Some(choice) = integrator {
+        scene.integrator = scene.integrator.overridden(choice);
+    }
+    scene.sensor.film = film;
+    buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", path.display()))
+}
+
+/// The image of an accumulation of samples `[0, spp_done)` rendered with `seed`, with the scene's
+/// AOVs (traced on the CPU: `aov::add_to`) where it has any.
+pub fn develop(
+    buffers: &buffers::SceneBuffers,
+    accum: &film::Accumulation,
+    spp_done: u32,
+    seed: u32,
+) -> Film {
+    let mut film = Film::develop(buffers, accum);
+    crate::aov::add_to(&mut film, buffers, spp_done, seed);
+    film
+}
+
 /// The progress bar (hidden unless `show`), counting samples per pixel to `len` from `position`.
-pub(crate) fn progress_bar(show: bool, len: u32, position: u32) -> indicatif::ProgressBar {
+pub fn progress_bar(show: bool, len: u32, position: u32) -> indicatif::ProgressBar {
     let bar = if show { indicatif::ProgressBar::new(len as u64) } else { indicatif::ProgressBar::hidden() };
     bar.set_style(
         indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} spp ({eta} left)")
@@ -404,7 +432,7 @@ pub(crate) fn resume(path: &Path, backend: &mut dyn Backend, fingerprint: u64, s
 }
 
 /// Guarantees a finite image. The kernel already drops non-finite samples; report them.
-pub(crate) fn sanitize(film: &mut Film) {
+pub fn sanitize(film: &mut Film) {
     if film.invalid_samples > 0 {
         eprintln!(
             "warning: {} samples were not finite or were cut short by the GPU driver (a software \
