@@ -531,15 +531,25 @@ impl PipelineFactory {
 pub(crate) struct LoopModules(Vec<(PathLoop, Vec<u32>, bool)>);
 
 impl LoopModules {
+    /// Each candidate loop's module, pruned on a thread of its own: a new scene's first render waits
+    /// for the slowest prune instead of their sum (spirv-opt is single-threaded, 25–30 s a module on
+    /// the H200's host; BENCHMARKS.md, "First render of a new scene").
     pub(crate) fn of(words: &[u32], built_in: bool, features: u32, candidates: &[Variant]) -> Self {
         let prune = super::prune::wanted();
-        let mut loops: Vec<(PathLoop, Vec<u32>, bool)> = Vec::new();
+        let mut wanted: Vec<PathLoop> = Vec::new();
         for c in candidates {
-            if !loops.iter().any(|l| l.0 == c.path_loop) {
-                let (module, open) = scene_module(words, built_in, prune, features, c.path_loop);
-                loops.push((c.path_loop, module, open));
+            if !wanted.contains(&c.path_loop) {
+                wanted.push(c.path_loop);
             }
         }
+        let loops = std::thread::scope(|threads| {
+            let handles: Vec<_> = wanted
+                .iter()
+                .map(|&l| threads.spawn(move || scene_module(words, built_in, prune, features, l)))
+                .collect();
+            let modules = handles.into_iter().map(|h| h.join().expect("pruning a loop's module panicked"));
+            wanted.iter().zip(modules).map(|(&l, (module, open))| (l, module, open)).collect()
+        });
         LoopModules(loops)
     }
 
