@@ -3,16 +3,16 @@
 Mitsuba 3 scenes in, numpy arrays out::
 
     import caustic
-    scene = caustic.load_file("cbox.xml", res=256)
+    scene = caustic.load_file("cbox.xml", res=256)   # or caustic.load_dict({"type": "scene", ...})
     image = scene.render(spp=64)          # float32, (height, width, 3), linear RGB
 
 Everything here calls the library functions the `caustic` command line calls: the same loader,
-backends, pass loop, image writers and statistics.
+backends, pass loop, image writers, statistics and convergence curves.
 """
 
 import os
 import pathlib
-from typing import Dict, Literal, Optional, Sequence, Tuple, TypedDict, Union, overload
+from typing import Any, Dict, Literal, Optional, Sequence, Tuple, TypedDict, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -32,14 +32,26 @@ class CausticError(RuntimeError):
     a backend that cannot start, an image that cannot be read or written. The message is the
     command line's, causes included."""
 
+class Convergence(TypedDict):
+    """Scene.convergence's curve: one entry per point of the arrays, at 1, 2, 4, … samples per
+    pixel and at the budget."""
+
+    spp: npt.NDArray[np.int64]
+    seconds: npt.NDArray[np.float64]
+    rmse: npt.NDArray[np.float64]
+    rel_mse: npt.NDArray[np.float64]
+    luminance_ratio: npt.NDArray[np.float64]
+    backend: str
+    log_log_slope: Optional[float]
+
 class Scene:
-    """A loaded scene (`load_file`). It keeps the backend of its last render, so that the next
-    render with the same backend, gpus, integrator and film pays no loading, building or pipeline
-    compilation."""
+    """A loaded scene (`load_file`, `load_dict`). It keeps the backend of its last render, so that
+    the next render with the same backend, gpus, integrator and film pays no loading, building or
+    pipeline compilation."""
 
     @property
-    def path(self) -> pathlib.Path:
-        """The scene file, as given to load_file."""
+    def path(self) -> Optional[pathlib.Path]:
+        """The scene file, as given to load_file; None for a scene of load_dict."""
     @property
     def width(self) -> int:
         """Width of the rendered image in pixels (the crop window's, where the film has one)."""
@@ -125,6 +137,26 @@ class Scene:
         variance: Literal[True],
         aovs: Literal[True],
     ) -> Tuple[_Image, _Variance, Dict[str, npt.NDArray[np.float32]]]: ...
+    def convergence(
+        self,
+        reference: Union[npt.ArrayLike, _Path],
+        spp: Optional[int] = None,
+        seed: int = 0,
+        backend: _Backend = "auto",
+        integrator: Optional[_Integrator] = None,
+        film: _Film = "splat",
+        gpus: Optional[_Gpus] = None,
+    ) -> Convergence:
+        """The command line's `convergence`: one progressive render up to `spp` (default: the
+        scene's), its error against `reference` (an (height, width, 3) array or an EXR file of the
+        render's size) measured at 1, 2, 4, … samples per pixel and at `spp`.
+
+        seed, backend, integrator, film, gpus: as render's. The sampler is the independent one; as
+        the command line, an untimed one-sample render on a backend of its own comes first, and
+        seconds count the passes only. Returns arrays spp (int64), seconds, rmse, rel_mse and
+        luminance_ratio (float64), the backend's description and log_log_slope (of rel_mse against
+        seconds after the first point; about -1 for an unbiased estimator). The GIL is released;
+        Ctrl-C takes effect when it returns. Raises CausticError."""
     def __repr__(self) -> str: ...
 
 def load_file(path: _Path, strict: bool = False, **params: Union[str, int, float, bool]) -> Scene:
@@ -132,6 +164,27 @@ def load_file(path: _Path, strict: bool = False, **params: Union[str, int, float
     parameters, as the command line's `-D name=value` (`load_file("cbox.xml", res=64)`).
     strict=True refuses a scene that would not render as written instead of warning. Raises
     CausticError naming the file and line of what is wrong."""
+
+def load_dict(d: Dict[str, Any], strict: bool = False) -> Scene:
+    """Loads a scene in Mitsuba 3's dictionary form, as `mitsuba.load_dict`:
+    `{"type": "scene", "sensor": {"type": "perspective", ...}, "box": {"type": "ply", ...}}`. The
+    dictionary is written as the Mitsuba XML it stands for (`dict_to_xml`), which load_file's loader
+    reads: the scene is the one that XML gives.
+
+    A nested dict is a child object (its key the property's name; at the scene level, the object's
+    id, unless it has an "id"), or {"type": "rgb", "value": [r, g, b]}, {"type": "spectrum",
+    "value": v or [(wavelength, v), ...]} or {"type": "ref", "id": key_or_id}. bool, int, float and
+    str values are <boolean>, <integer>, <float> and <string>; three numbers a <vector>; a 4x4
+    matrix (nested lists, a numpy array or a mitsuba.ScalarTransform4f) a <transform> such as
+    to_world. Relative file names resolve against the current directory. strict: as load_file's.
+
+    Raises ValueError naming the key path (`scene.box.bsdf.reflectance: ...`) of what cannot be
+    written as XML, and CausticError for what the loader refuses: `<dict>:LINE (key path): ...`,
+    LINE a line of dict_to_xml's text."""
+
+def dict_to_xml(d: Dict[str, Any]) -> str:
+    """The Mitsuba 3 XML that load_dict reads for a scene dictionary: to read, or to save and
+    render with the command line. Raises ValueError as load_dict does."""
 
 def write(path: _Path, image: npt.ArrayLike) -> None:
     """Writes an (height, width, 3) image: .exr (linear float), .png or .ppm (sRGB, 8 bits). The

@@ -2,7 +2,7 @@
 //! compared with a reference after each. Render time counts the passes only (each synchronised with
 //! the device), not the read-backs and comparisons in between, so the curve is what a render of that
 //! length would have cost.
-use crate::backend::Backend;
+use crate::backend::{self, Backend, BackendChoice, GpuSelection};
 use crate::buffers::SceneBuffers;
 use crate::compare::compare;
 use crate::film::Film;
@@ -61,6 +61,45 @@ pub fn measure(
     };
     render_observed(backend, &buffers, 0, max_spp, seed, &stops, &mut curve)?;
     Ok(curve.points)
+}
+
+/// Refuses a reference (the file `reference_name`) of another size than the render of `buffers`
+/// (the scene `scene_name`), before any backend starts.
+pub fn check_reference_size(
+    reference: &Film,
+    reference_name: &Path,
+    buffers: &SceneBuffers,
+    scene_name: &Path,
+) -> Result<()> {
+    let (width, height) = (buffers.params.width, buffers.params.height);
+    if (reference.width, reference.height) != (width, height) {
+        bail!(
+            "{} is {}×{} but {} renders {width}×{height}",
+            reference_name.display(),
+            reference.width,
+            reference.height,
+            scene_name.display()
+        );
+    }
+    Ok(())
+}
+
+/// One curve as `caustic convergence` measures it: a one-sample warm-up (pipeline compilation,
+/// caches) on a backend of its own, untimed, then `measure` on a new backend. Returns that
+/// backend's description and the points.
+pub fn measure_warmed_up(
+    choice: BackendChoice,
+    gpus: &GpuSelection,
+    buffers: &SceneBuffers,
+    reference: &Film,
+    max_spp: u32,
+    seed: u32,
+) -> Result<(String, Vec<ConvergencePoint>)> {
+    let mut warm_up = backend::create_on(choice, gpus, buffers)?;
+    crate::render::render(warm_up.as_mut(), buffers, 1, seed.wrapping_add(1), |_| {})?;
+    let mut backend = backend::create_on(choice, gpus, buffers)?;
+    let points = measure(backend.as_mut(), buffers, reference, max_spp, seed)?;
+    Ok((backend.describe(), points))
 }
 
 /// Compares the image with the reference at each stop.

@@ -73,11 +73,30 @@ pub fn load_scene_with(
     defines: &[(String, String)],
     options: LoadOptions,
 ) -> Result<scene::Scene> {
-    let mut scene = load_scene_unchecked(path, defines, options)?;
+    let scene = load_scene_unchecked(path, defines, options)?;
+    Ok(precision_checked(scene, path))
+}
+
+/// As `load_scene_with`, for a Mitsuba 3 scene given as XML text rather than a file (the Python
+/// module's `load_dict` writes one): `name` stands for the file in messages, and relative file
+/// names resolve against `dir`.
+pub fn load_scene_from_text(
+    name: &Path,
+    text: &str,
+    dir: &Path,
+    defines: &[(String, String)],
+    options: LoadOptions,
+) -> Result<scene::Scene> {
+    let scene = mitsuba::load_text_with(name, text, dir, defines, options)?;
+    Ok(precision_checked(scene, name))
+}
+
+/// `scene` (loaded from `path`), warned about where f32 precision ends for it (`precision`).
+fn precision_checked(mut scene: scene::Scene, path: &Path) -> scene::Scene {
     if let Some(message) = precision::warning(&scene) {
         scene::warn(&mut scene.warnings, format!("{}: {message}", path.display()));
     }
-    Ok(scene)
+    scene
 }
 
 /// `load_scene_with` without the precision check (`precision`).

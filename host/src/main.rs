@@ -409,27 +409,10 @@ fn cmd_convergence(
         let spp = spp.unwrap_or(scene.sensor.spp);
         let buffers = buffers::build(&scene)
             .with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
-        let (width, height) = (buffers.params.width, buffers.params.height);
-        if (reference_film.width, reference_film.height) != (width, height) {
-            bail!(
-                "{} is {}×{} but {} renders {width}×{height}",
-                reference.display(),
-                reference_film.width,
-                reference_film.height,
-                scene_path.display()
-            );
-        }
-        let mut backend = backend::create_on(choice, gpus, &buffers)?;
-        // A one-sample warm-up (pipeline compilation, caches) on a backend of its own, untimed.
-        render::render(backend.as_mut(), &buffers, 1, seed.wrapping_add(1), |_| {})?;
-        let mut backend = backend::create_on(choice, gpus, &buffers)?;
-        let points = convergence::measure(backend.as_mut(), &buffers, &reference_film, spp, seed)?;
-        say!(
-            "{name} | {} | {}x{} | independent sampler",
-            backend.describe(),
-            buffers.params.width,
-            buffers.params.height
-        );
+        convergence::check_reference_size(&reference_film, reference, &buffers, scene_path)?;
+        let (backend, points) =
+            convergence::measure_warmed_up(choice, gpus, &buffers, &reference_film, spp, seed)?;
+        say!("{name} | {backend} | {}x{} | independent sampler", buffers.params.width, buffers.params.height);
         say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
         say!("|---|---|---|---|---|");
         for p in &points {
@@ -447,11 +430,8 @@ fn cmd_convergence(
                 "log-log slope of relative MSE against seconds: {slope:.3} (−1: unbiased at constant throughput)"
             );
         }
-        let label = format!(
-            "{} {name} ({})",
-            scene_path.file_stem().unwrap_or_default().to_string_lossy(),
-            backend.describe()
-        );
+        let label =
+            format!("{} {name} ({backend})", scene_path.file_stem().unwrap_or_default().to_string_lossy());
         curves.push((label, name, points));
     }
     let peer_names: Vec<String> =

@@ -1,15 +1,18 @@
 //! `import caustic`: Mitsuba 3 scenes in, numpy arrays out, through the same library functions the
 //! command line calls (`caustic::load_scene_with`, `session::build_scene`, `backend::create_on`,
-//! `render::render_observed`, `session::develop`, `Film::save`, `compare::compare`). Nothing here
-//! loads, builds, renders or compares by itself: it converts arguments and arrays, keeps a scene's
-//! backend between renders, releases the GIL while the host works and turns its errors into Python
-//! exceptions.
+//! `render::render_observed`, `session::develop`, `Film::save`, `compare::compare`,
+//! `convergence::measure_warmed_up`). Nothing here loads, builds, renders or compares by itself: it
+//! converts arguments and arrays (a scene dictionary into the XML the loader reads: `dict`), keeps a
+//! scene's backend between renders, releases the GIL while the host works and turns its errors into
+//! Python exceptions.
+mod dict;
+
 use anyhow::Context;
 use caustic::backend::{self, Backend, BackendChoice, GpuSelection};
 use caustic::buffers::SceneBuffers;
 use caustic::film::{self, Accumulation, Film};
 use caustic::scene::{FilmMode, IntegratorChoice};
-use caustic::{render, session, LoadOptions};
+use caustic::{convergence, render, session, LoadOptions};
 use clap::ValueEnum;
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray3, PyArrayMethods, PyUntypedArrayMethods};
@@ -83,11 +86,14 @@ struct Kept {
     backend: Box<dyn Backend + Send>,
 }
 
-/// A loaded scene (`load_file`). It keeps the backend of its last render, so that the next render
-/// with the same backend, integrator and film starts at once.
+/// A loaded scene (`load_file`, `load_dict`). It keeps the backend of its last render, so that the
+/// next render with the same backend, integrator and film starts at once.
 #[pyclass(frozen, module = "caustic")]
 struct Scene {
+    /// The scene file, or what stands for it in messages (`dict::NAME`).
     path: PathBuf,
+    /// Whether `path` is a file (not a dictionary's stand-in).
+    from_file: bool,
     scene: caustic::scene::Scene,
     /// Locked for a whole render: a second thread's render of this scene waits for the first.
     kept: Mutex<Option<Kept>>,
@@ -262,10 +268,10 @@ impl Scene {
         Ok(PyTuple::new(py, parts)?.into_any())
     }
 
-    /// The scene file, as given to load_file.
+    /// The scene file, as given to load_file; None for a scene of load_dict.
     #[getter]
-    fn path(&self) -> PathBuf {
-        self.path.clone()
+    fn path(&self) -> Option<PathBuf> {
+        self.from_file.then(|| self.path.clone())
     }
 
     /// Width of the rendered image in pixels (the crop window's, where the film has one).
@@ -308,6 +314,64 @@ impl Scene {
         })
     }
 
+    /// The command line's `convergence` for this scene: one progressive render up to `spp`, its
+    /// error against `reference` measured at 1, 2, 4, … samples per pixel and at `spp`.
+    ///
+    /// reference: an array of shape (height, width, 3) or the path of an EXR file, of the render's
+    /// size. spp: the largest sample count (default: the scene's). seed, backend, integrator, film,
+    /// gpus: as render's. The sampler is the independent one, whatever the scene's; as the command
+    /// line, a one-sample render on a backend of its own comes first (pipeline compilation, caches),
+    /// untimed, and the curve is measured on a new backend; seconds count the passes only, not the
+    /// read-backs and comparisons between them.
+    ///
+    /// Returns a dict of numpy arrays, one entry per point: spp (int64), seconds, rmse, rel_mse
+    /// (relative MSE) and luminance_ratio (mean luminance of the image over the reference's), all
+    /// float64; and backend (the backend's description) and log_log_slope (the least-squares slope
+    /// of log rel_mse against log seconds after the first point, about -1 for an unbiased
+    /// estimator at constant throughput; None with fewer than two points). The GIL is released
+    /// meanwhile; Ctrl-C takes effect when it returns. Raises CausticError.
+    #[pyo3(signature = (reference, spp=None, seed=0, backend="auto", integrator=None, film="splat", gpus=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn convergence<'py>(
+        &self,
+        py: Python<'py>,
+        reference: &Bound<'py, PyAny>,
+        spp: Option<u32>,
+        seed: u32,
+        backend: &str,
+        integrator: Option<&str>,
+        film: &str,
+        gpus: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let backend_choice: BackendChoice = choice("backend", backend)?;
+        let gpus = gpus.map(gpu_selection).transpose()?.unwrap_or_default();
+        let integrator: Option<IntegratorChoice> =
+            integrator.map(|name| choice("integrator", name)).transpose()?;
+        let film: FilmMode = choice("film", film)?;
+        let (reference, reference_name) = film_or_file(py, reference, "reference", Film::load_exr)?;
+        let (backend, points) = py
+            .detach(|| {
+                caustic::compare::check_finite(&reference, &reference_name)?;
+                let spp = spp.unwrap_or(self.scene.sensor.spp);
+                let buffers = session::build_scene(self.scene.clone(), &self.path, integrator, film)?;
+                convergence::check_reference_size(&reference, &reference_name, &buffers, &self.path)?;
+                convergence::measure_warmed_up(backend_choice, &gpus, &buffers, &reference, spp, seed)
+            })
+            .map_err(host_error)?;
+        let column =
+            |f: fn(&convergence::ConvergencePoint) -> f64| points.iter().map(f).collect::<Vec<f64>>();
+        let curve = PyDict::new(py);
+        let spps: Vec<i64> = points.iter().map(|p| p.spp as i64).collect();
+        curve.set_item("spp", spps.into_pyarray(py))?;
+        curve.set_item("seconds", column(|p| p.seconds).into_pyarray(py))?;
+        curve.set_item("rmse", column(|p| p.rmse).into_pyarray(py))?;
+        curve.set_item("rel_mse", column(|p| p.rel_mse).into_pyarray(py))?;
+        curve.set_item("luminance_ratio", column(|p| p.luminance_ratio).into_pyarray(py))?;
+        curve.set_item("backend", backend)?;
+        curve.set_item("log_log_slope", convergence::log_log_slope(&points))?;
+        Ok(curve)
+    }
+
     fn __repr__(&self) -> String {
         let (w, h) = self.size();
         format!("caustic.Scene('{}', {w}x{h}, {} spp)", self.path.display(), self.scene.sensor.spp)
@@ -339,7 +403,44 @@ fn load_file(
     let scene = py
         .detach(|| caustic::load_scene_with(&path, &defines, LoadOptions { strict }))
         .map_err(host_error)?;
-    Ok(Scene { path, scene, kept: Mutex::new(None) })
+    Ok(Scene { path, from_file: true, scene, kept: Mutex::new(None) })
+}
+
+/// Loads a scene given in Mitsuba 3's dictionary form, as `mitsuba.load_dict`:
+/// `{"type": "scene", "sensor": {"type": "perspective", …}, "box": {"type": "ply", …}, …}`. The
+/// dictionary is written out as the Mitsuba XML it stands for (`dict_to_xml`), which the loader of
+/// `load_file` reads: the scene is the one that XML gives.
+///
+/// A nested dict is a child object (its key the property name; at the scene level, its id), or
+/// `{"type": "rgb", "value": [r, g, b]}`, `{"type": "spectrum", "value": v or [(λ, v), …]}` or
+/// `{"type": "ref", "id": key_or_id}`. bool, int, float and str values are `<boolean>`,
+/// `<integer>`, `<float>` and `<string>`; three numbers a `<vector>`; a 4×4 matrix (nested lists, a
+/// numpy array, or a `mitsuba.ScalarTransform4f`) a `<transform>` such as `to_world`. Relative
+/// file names resolve against the current directory. strict: as load_file's.
+///
+/// Raises ValueError naming the key path (`scene.box.bsdf.reflectance: …`) for what cannot be
+/// written as XML, and CausticError for what the loader refuses: its message names `<dict>:LINE`,
+/// a line of dict_to_xml's text, followed by the key path written there.
+#[pyfunction]
+#[pyo3(signature = (d, strict=false))]
+fn load_dict(py: Python<'_>, d: &Bound<'_, PyDict>, strict: bool) -> PyResult<Scene> {
+    let xml = dict::to_xml(d)?;
+    let path = PathBuf::from(dict::NAME);
+    let scene = py
+        .detach(|| {
+            let dir =
+                std::env::current_dir().context("the current directory, which file names are relative to")?;
+            caustic::load_scene_from_text(&path, &xml.text, &dir, &[], LoadOptions { strict })
+        })
+        .map_err(|e| CausticError::new_err(xml.annotate(&caustic::error_chain(&e))))?;
+    Ok(Scene { path, from_file: false, scene, kept: Mutex::new(None) })
+}
+
+/// The Mitsuba 3 XML that load_dict reads for a scene dictionary: to read, or to save and render
+/// with the command line. Raises ValueError as load_dict does.
+#[pyfunction]
+fn dict_to_xml(d: &Bound<'_, PyDict>) -> PyResult<String> {
+    Ok(dict::to_xml(d)?.text)
 }
 
 /// An (height, width, 3) float32 array of `rgb`.
@@ -487,8 +588,8 @@ fn compare<'py>(
 }
 
 /// caustic: a physically based renderer whose one kernel runs on the GPU and the CPU. Mitsuba 3
-/// scenes in (`load_file`), numpy arrays out (`Scene.render`); `write`, `read` and `compare` as the
-/// command line's. See docs/python.md.
+/// scenes in (`load_file`, `load_dict`), numpy arrays out (`Scene.render`); `write`, `read`,
+/// `compare` and `Scene.convergence` as the command line's. See docs/python.md.
 #[pymodule]
 #[pyo3(name = "caustic")]
 fn caustic_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -500,6 +601,8 @@ fn caustic_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("CausticError", m.py().get_type::<CausticError>())?;
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(load_file, m)?)?;
+    m.add_function(wrap_pyfunction!(load_dict, m)?)?;
+    m.add_function(wrap_pyfunction!(dict_to_xml, m)?)?;
     m.add_function(wrap_pyfunction!(write, m)?)?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
     m.add_function(wrap_pyfunction!(compare, m)?)?;

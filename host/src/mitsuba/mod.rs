@@ -103,7 +103,29 @@ pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
 
 /// As `load`; with `options.strict`, any substitution or ignored property is an error.
 pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions) -> Result<Scene> {
-    let mut loader = Loader {
+    let mut loader = new_loader(defines);
+    loader.load_file(path)?;
+    finish(loader, path, options)
+}
+
+/// As `load_with`, for a scene given as XML text rather than a file (the Python module's
+/// `load_dict` writes one): `name` stands for the file in messages (`name:line: …`), and relative
+/// file names resolve against `dir`. The same loader as a file's, `<include>`s and all.
+pub fn load_text_with(
+    name: &Path,
+    text: &str,
+    dir: &Path,
+    defines: &[(String, String)],
+    options: LoadOptions,
+) -> Result<Scene> {
+    let mut loader = new_loader(defines);
+    loader.load_text(name, text, dir)?;
+    finish(loader, name, options)
+}
+
+/// A loader with nothing loaded yet; `defines` are `-D name=value` overrides.
+fn new_loader(defines: &[(String, String)]) -> Loader {
+    Loader {
         params: defines.iter().cloned().collect(),
         search_paths: Vec::new(),
         named_bsdfs: HashMap::new(),
@@ -130,8 +152,11 @@ pub fn load_with(path: &Path, defines: &[(String, String)], options: LoadOptions
         ids: HashMap::new(),
         integrator_loc: None,
         attribute_requests: Vec::new(),
-    };
-    loader.load_file(path)?;
+    }
+}
+
+/// The scene of what `loader` loaded (from `path`, which messages name).
+fn finish(mut loader: Loader, path: &Path, options: LoadOptions) -> Result<Scene> {
     loader.check_attribute_uses()?;
     let sensor = match loader.sensor.take() {
         Some(s) => s,
@@ -188,15 +213,21 @@ impl Loader {
 
     fn load_file(&mut self, path: &Path) -> Result<()> {
         let text = crate::files::read_to_string(path, "scene file")?;
-        let src = Source::parse(path, &text)?;
+        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        self.load_text(path, &text, &dir)
+    }
+
+    /// Loads the scene document `text`: the file `path`, or what stands for one in messages, whose
+    /// relative file names resolve against `dir`.
+    fn load_text(&mut self, path: &Path, text: &str, dir: &Path) -> Result<()> {
+        let src = Source::parse(path, text)?;
         let root = src.doc.root_element();
         let loc = src.loc(root);
         if root.tag_name().name() != "scene" {
             bail!("{loc}: expected a <scene> root element, found <{}>", root.tag_name().name());
         }
         self.check_ids(&src)?;
-        let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        self.search_paths.insert(0, dir);
+        self.search_paths.insert(0, dir.to_path_buf());
         let result = self.load_scene_children(&src, root);
         self.search_paths.remove(0);
         result
