@@ -6,6 +6,11 @@ once to compile its kernels, then twice timed; caustic's `bench` (which warms up
 loop alone) runs twice; each side keeps its best. The table gives both throughputs in Msamples/s and
 caustic's ratio; the last line the geometric mean. Only the render loops are timed, not loading.
 
+Samples per second are a diagnostic: a user waits for an image of a given error, and caustic's and
+Mitsuba's samples need not be worth the same. `scripts/time-to-error.py` measures what a speed claim
+rests on, time to equal error against one reference, with this ratio beside it (its throughput
+column), side by side in one run.
+
 Usage (from the repository root, after `cargo build --release`):
     python3 scripts/speed-vs-mitsuba.py --variant cuda_ad_rgb --backend gpu      # a CUDA GPU
     python3 scripts/speed-vs-mitsuba.py --variant llvm_ad_rgb --backend cpu      # CPU against CPU
@@ -135,7 +140,8 @@ def main():
             row += f" {b:.2f} | {b / m:.2f} | {pipeline} |"
         print(row, flush=True)
     geo = lambda rs: math.exp(sum(math.log(r) for r in rs) / len(rs))
-    print(f"geometric mean of caustic / Mitsuba over {len(ratios)} scenes: {geo(ratios):.2f}")
+    print(f"geometric mean of caustic / Mitsuba over {len(ratios)} scenes: {geo(ratios):.2f} "
+          "(samples per second; time to equal error: scripts/time-to-error.py)")
     if baseline:
         print(f"geometric mean with {args.baseline_env}: {geo(baseline_ratios):.2f}")
 
