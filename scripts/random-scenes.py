@@ -2,7 +2,7 @@
 """Differential test against Mitsuba 3: random small scenes rendered by both, compared statistically.
 
 Each integer seed deterministically makes one small Mitsuba 3 scene out of plugins and parameters
-that README.md's plugin table marks supported or partial, keeping clear of the divergences it
+that docs/mitsuba.md's plugin table marks supported or partial, keeping clear of the divergences it
 documents (no anisotropic roughness, no textured `alpha` on `roughplastic`, no `mask`/`null`, no
 dispersion, no blend of a Dirac lobe and a smooth one, no `twosided` on interpolated normals;
 `direct` with one emitter and one BSDF sample): a `perspective`, `thinlens` or `orthographic`

@@ -1,4 +1,4 @@
-//! README's table of Mitsuba 3 plugins against the loader: the table names every plugin of Mitsuba
+//! docs/mitsuba.md's table of Mitsuba 3 plugins against the loader: the table names every plugin of Mitsuba
 //! 3.9.1 (`tests/data/mitsuba_plugins.txt`) exactly once; each plugin it calls not supported is
 //! refused by `--strict` in a one-element scene (naming file and line); each it calls supported or
 //! partial loads under `--strict` in a one-element scene of its defaults (plugins that need a file
@@ -7,7 +7,7 @@ use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 fn readme_rows() -> Vec<(String, String, String)> {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/mitsuba.md")).unwrap();
     readme
         .lines()
         .filter_map(|line| {
@@ -122,7 +122,10 @@ fn readme_lists_every_mitsuba_plugin_and_strict_agrees() {
     assert_eq!(listed.len(), rows.len(), "a plugin is listed twice");
     let missing: Vec<_> = mitsuba.difference(&listed).collect();
     let extra: Vec<_> = listed.difference(&mitsuba).collect();
-    assert!(missing.is_empty() && extra.is_empty(), "README lacks {missing:?}; lists unknown {extra:?}");
+    assert!(
+        missing.is_empty() && extra.is_empty(),
+        "docs/mitsuba.md lacks {missing:?}; lists unknown {extra:?}"
+    );
 
     let dir: PathBuf = std::env::temp_dir().join(format!("caustic-readme-plugins-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -144,5 +147,9 @@ fn readme_lists_every_mitsuba_plugin_and_strict_agrees() {
         }
     }
     std::fs::remove_dir_all(&dir).ok();
-    assert!(failures.is_empty(), "README's plugin table disagrees with the loader:\n{}", failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "docs/mitsuba.md's plugin table disagrees with the loader:\n{}",
+        failures.join("\n")
+    );
 }

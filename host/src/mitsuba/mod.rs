@@ -1,4 +1,4 @@
-//! Mitsuba 3 XML scenes (a documented subset; see the README's table).
+//! Mitsuba 3 XML scenes (a documented subset; see the table in docs/mitsuba.md).
 //!
 //! One file per family of scene elements, as Mitsuba splits its plugins: `shapes`, `bsdfs` (with
 //! `blend`, `pplastic` and `bsdf_maps`, normal and bump maps, beside it), `emitters`, `sensors`
