@@ -169,6 +169,20 @@ impl Folding {
 }
 
 impl Film {
+    /// An image of `rgb` (row-major, `width` × `height`) and nothing else: no variance, no AOVs.
+    pub fn from_rgb(width: u32, height: u32, rgb: Vec<[f32; 3]>) -> Film {
+        Film {
+            width,
+            height,
+            rgb,
+            variance: None,
+            invalid_samples: 0,
+            comment: None,
+            sum_variance_factor: 1.0,
+            aovs: Vec::new(),
+        }
+    }
+
     pub fn from_accum(width: u32, height: u32, accum: &Accumulation) -> Film {
         let mut rgb = Vec::with_capacity((width * height) as usize);
         let mut variance = Vec::with_capacity(rgb.capacity());
@@ -307,16 +321,7 @@ impl Film {
             .with_context(|| format!("cannot read EXR image {}", path.display()))?;
         let size = image.layer_data.size;
         let (_, rgb) = image.layer_data.channel_data.pixels;
-        Ok(Film {
-            width: size.width() as u32,
-            height: size.height() as u32,
-            rgb,
-            variance: None,
-            invalid_samples: 0,
-            comment: None,
-            sum_variance_factor: 1.0,
-            aovs: Vec::new(),
-        })
+        Ok(Film::from_rgb(size.width() as u32, size.height() as u32, rgb))
     }
 
     /// Loads an image's sibling variance file written by `render --variance`, if present.

@@ -374,6 +374,22 @@ fn cmd_compare(
     Ok(())
 }
 
+/// A convergence curve as the table `convergence` prints.
+fn say_points(points: &[caustic::convergence::ConvergencePoint]) {
+    say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
+    say!("|---|---|---|---|---|");
+    for p in points {
+        say!(
+            "| {} | {:.4} | {:.6} | {:.6e} | {:.5} |",
+            p.spp,
+            p.seconds,
+            p.rmse,
+            p.rel_mse,
+            p.luminance_ratio
+        );
+    }
+}
+
 fn cmd_convergence(
     scene_path: &Path,
     run: &RunArgs,
@@ -413,18 +429,7 @@ fn cmd_convergence(
         let (backend, points) =
             convergence::measure_warmed_up(choice, gpus, &buffers, &reference_film, spp, seed)?;
         say!("{name} | {backend} | {}x{} | independent sampler", buffers.params.width, buffers.params.height);
-        say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
-        say!("|---|---|---|---|---|");
-        for p in &points {
-            say!(
-                "| {} | {:.4} | {:.6} | {:.6e} | {:.5} |",
-                p.spp,
-                p.seconds,
-                p.rmse,
-                p.rel_mse,
-                p.luminance_ratio
-            );
-        }
+        say_points(&points);
         if let Some(slope) = convergence::log_log_slope(&points) {
             say!(
                 "log-log slope of relative MSE against seconds: {slope:.3} (−1: unbiased at constant throughput)"
@@ -439,18 +444,7 @@ fn cmd_convergence(
     for (path, name) in peers.iter().zip(&peer_names) {
         let points = convergence::peer_curve(path, &reference_film)?;
         say!("{name} | {} | renders listed there", path.display());
-        say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
-        say!("|---|---|---|---|---|");
-        for p in &points {
-            say!(
-                "| {} | {:.4} | {:.6} | {:.6e} | {:.5} |",
-                p.spp,
-                p.seconds,
-                p.rmse,
-                p.rel_mse,
-                p.luminance_ratio
-            );
-        }
+        say_points(&points);
         curves.push((name.clone(), name.as_str(), points));
     }
     if let Some(path) = csv {

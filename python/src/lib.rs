@@ -481,16 +481,7 @@ fn pixels<'py, T: numpy::Element + Copy>(
 /// A film of an RGB array, without variance.
 fn film_of(value: &Bound<'_, PyAny>, what: &str) -> PyResult<Film> {
     let (width, height, rgb) = pixels::<f32>(value, what, "float32")?;
-    Ok(Film {
-        width,
-        height,
-        rgb,
-        variance: None,
-        invalid_samples: 0,
-        comment: None,
-        sum_variance_factor: 1.0,
-        aovs: Vec::new(),
-    })
+    Ok(Film::from_rgb(width, height, rgb))
 }
 
 /// An array, or a path to read: the film and a name for messages (the path, or `what`).
