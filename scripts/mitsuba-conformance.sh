@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Renders every scene of Mitsuba's test set at its reference's spp and compares it with the reference;
-# prints the table BENCHMARKS.md records. Usage:
+# prints the table BENCHMARKS.md records ("Agreement with Mitsuba's references"). Usage:
 #   scripts/mitsuba-conformance.sh [CAUSTIC_BINARY] [SHARED_DIR]   (ONLY=name,name to select scenes)
 # Defaults: target/release/caustic and ../shared. Needs python3 to read refs.json.
 set -u

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# The per-scene specialization table (BENCHMARKS.md): for each scene, in one run, interleaved, the
-# GPU throughput of the kernel with every path compiled in (CAUSTIC_SPECIALIZE=0), specialised to the
-# scene's feature mask by the driver (spec constant 0, the default), and "pruned": the same SPIR-V with
-# the mask frozen and every unused path deleted by spirv-opt's dead-code passes (a hand-pruned kernel
-# without the hand), run through CAUSTIC_KERNEL_SPV.
+# The per-scene specialization table (BENCHMARKS.md, "Specialised against pruned"): for each scene,
+# in one run, interleaved, the GPU throughput of the kernel with every path compiled in
+# (CAUSTIC_SPECIALIZE=0), specialised to the scene's feature mask by the driver (spec constant 0,
+# the default), and "pruned": the same SPIR-V with the mask frozen and every unused path deleted by
+# spirv-opt's dead-code passes (a hand-pruned kernel without the hand), run through
+# CAUSTIC_KERNEL_SPV.
 #
 #   scripts/specialization.sh prepare CAUSTIC SCENES_DIR WORK   # needs spirv-opt (Debian spirv-tools)
 #   scripts/specialization.sh run CAUSTIC SCENES_DIR WORK       # on the GPU machine; prints the table

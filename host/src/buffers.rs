@@ -98,7 +98,7 @@ impl LightList {
     /// Next-event estimation takes `uniform_share` 1, as Mitsuba's `path` and `direct` do (every
     /// emitter equally likely): the half-and-half mixture light tracing uses gave
     /// `emitter_spot_no_texture` (two spot lights beside a sky) 2.3x Mitsuba's MSE at equal spp, each
-    /// spot being chosen a sixth of the time instead of a third (BENCHMARKS, "The splatting film").
+    /// spot being chosen a sixth of the time instead of a third (BENCHMARKS.md, "The 23 shared scenes").
     fn selection_weights(&self, uniform_share: f64) -> Vec<f64> {
         let total: f64 = self.powers.iter().map(|&p| p as f64).sum();
         let mut per_emitter = vec![0.0f64; self.emitter_count as usize];
@@ -272,7 +272,7 @@ fn bounds(p: &Primitive) -> Aabb {
 /// +5.8%, cbox +4.1%, copper +4.1%, diffuse +2.5%, the bunny +1.6%; the build takes about twice as
 /// long, so scenes past `MORE_REINSERTION_UP_TO` primitives keep 0.2. obvhs builds on rayon's threads
 /// (its `parallel` feature, same tree): on the H100 machine's 16 cores a 10M-triangle scene's
-/// buffers and BVH took 41.4 s single-threaded and 7.6 s so (BENCHMARKS.md).
+/// buffers and BVH took 41.4 s single-threaded and 7.6 s so (BENCHMARKS.md, "Large scenes").
 fn bvh_build_params(primitives: usize) -> obvhs::BvhBuildParams {
     obvhs::BvhBuildParams {
         reinsertion_batch_ratio: if primitives <= MORE_REINSERTION_UP_TO { 0.6 } else { 0.2 },

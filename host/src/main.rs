@@ -587,7 +587,7 @@ fn cmd_bench(
         // one-sample render there: its pipeline's first dispatch is not timed either (Mitsuba's side
         // of `scripts/speed-vs-mitsuba.py` times a render after one of the same scene). On 2026-11-27
         // a 0.24 s render timed without it ran at half the speed of the same scene's other renders,
-        // once (BENCHMARKS.md).
+        // once (BENCHMARKS.md, "All 23 scenes against Mitsuba, a BVH layout that lost").
         let mut backend = backend::create_on(choice, gpus, &buffers)?;
         render::render(backend.as_mut(), &buffers, 1, 1, |_| {})?;
         let (film, stats) = render::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;

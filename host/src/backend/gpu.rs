@@ -1,8 +1,9 @@
 //! The GPU backend: the kernel's SPIR-V run as a wgpu compute pipeline.
 //!
 //! The module is consumed through naga with runtime bounds checks off (`create_shader_module_trusted`
-//! with unchecked runtime checks): measured fastest on the H100 (see ../shared/notes and
-//! BENCHMARKS.md), and safe because the kernel's own indexing is bounds-checked Rust.
+//! with unchecked runtime checks): measured fastest on the H100 (../shared/notes/rust-gpu-0.11.md;
+//! BENCHMARKS.md, "How the kernel's design was chosen"), and safe because the kernel's own indexing
+//! is bounds-checked Rust.
 use super::path_loop::PathLoop;
 use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
 use super::Backend;

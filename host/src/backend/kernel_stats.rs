@@ -2,11 +2,12 @@
 //! pipeline (`VK_KHR_pipeline_executable_properties`), e.g. registers per thread and spilled bytes on
 //! NVIDIA. `caustic kernel-stats` prints them for a scene's pruned kernel.
 //!
-//! Why: wgpu does not expose these, and NVIDIA's `ncu` profiles CUDA only (it reports no kernels for
-//! wgpu's Vulkan dispatches, 2026-11-24). Three traversal changes lost on the H100 by adding state that
-//! stays live across loops (BENCHMARKS.md); the register count is the figure that explains such a
-//! loss without a timing run. The pipeline here is built with `ash` directly, from the same module and
-//! binding layout as `backend::gpu`'s, but with the statistics flag that wgpu never sets.
+//! Why: wgpu does not expose these, and NVIDIA's `ncu` profiles CUDA only (it reports no kernels
+//! for wgpu's Vulkan dispatches, 2026-11-24). Three traversal changes lost on the H100 by adding
+//! state that stays live across loops (BENCHMARKS.md, "Three traversal and scheduling changes");
+//! the register count is the figure that explains such a loss without a timing run. The pipeline
+//! here is built with `ash` directly, from the same module and binding layout as `backend::gpu`'s,
+//! but with the statistics flag that wgpu never sets.
 use super::gpu::BINDINGS;
 use super::variant::{self, Variant, DEFAULT_WORKGROUP};
 use anyhow::{anyhow, bail, Context, Result};

@@ -4,11 +4,12 @@
 //! Why the workgroup size: NVIDIA's Vulkan compiler budgets registers by it. The same pruned kernel
 //! gets 128 registers per thread (162–168 with microfacets) in 8×8 workgroups, 128 in 16×16 and 32×16,
 //! 96 in 32×20, 80 in 32×24 and 64 in 32×32 (`caustic kernel-stats`), trading spills for occupancy,
-//! and the warps take other pixels (8×4 against 32×1). No size is best everywhere (H200, 2026-11-27,
-//! BENCHMARKS.md): `integrator_direct_both` ran 1.19× faster in 32×16 workgroups, glass 1.08× in
-//! 32×24, rough plastic 1.13× in 32×32, while the Cornell box lost 22% in 32×24 and the sphere light
-//! 34% in 32×32. So, as for the path loop, the backend builds the candidates and measures (the first
-//! at once, the others when the trial begins: `backend::gpu`).
+//! and the warps take other pixels (8×4 against 32×1). No size is best everywhere (H200,
+//! 2026-11-27, BENCHMARKS.md, "Registers and workgroup sizes"): `integrator_direct_both` ran 1.19×
+//! faster in 32×16 workgroups, glass 1.08× in 32×24, rough plastic 1.13× in 32×32, while the
+//! Cornell box lost 22% in 32×24 and the sphere light 34% in 32×32. So, as for the path loop, the
+//! backend builds the candidates and measures (the first at once, the others when the trial begins:
+//! `backend::gpu`).
 //!
 //! The trial: the first candidate alone until its long passes (`LONG_PASS`) add up to `FIRST_ALONE`
 //! (a short render cannot pay for a trial), then whole passes in turn, each to the candidate measured
@@ -168,7 +169,8 @@ impl Decisions {
 /// frame parameters, image size and camera included, less what changes from pass to pass and the
 /// seed), its materials and lights, and the size and bounds of its geometry. Two scenes that share a
 /// feature mask and an image size (the shared set's diffuse scenes, say) keep a choice each: in
-/// the 22-scene table of 2026-11-27 (BENCHMARKS.md) they shared one.
+/// c6f7d47's 22-scene table of 2026-11-27 they shared one (BENCHMARKS.md, "Registers and workgroup
+/// sizes").
 pub fn scene_fingerprint(buffers: &crate::buffers::SceneBuffers) -> u64 {
     use std::hash::{Hash, Hasher};
     let mut params = buffers.params;
