@@ -388,16 +388,7 @@ mod tests {
     #[test]
     fn an_exr_header_claiming_more_than_memory_is_refused() {
         let path = scratch_file("claims.exr");
-        let film = crate::film::Film {
-            width: 1,
-            height: 1,
-            rgb: vec![[0.5; 3]],
-            variance: None,
-            invalid_samples: 0,
-            comment: None,
-            aovs: Vec::new(),
-            sum_variance_factor: 1.0,
-        };
+        let film = crate::film::Film::from_rgb(1, 1, vec![[0.5; 3]]);
         film.save(&path).unwrap();
         assert!(load_linear_rgb(&path, false).is_ok());
         let mut bytes = std::fs::read(&path).unwrap();

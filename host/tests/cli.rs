@@ -379,16 +379,7 @@ fn compare_refuses_non_finite_pixels() {
         if let Some((at, v)) = bad {
             rgb[at][1] = v;
         }
-        Film {
-            width: 4,
-            height: 3,
-            rgb,
-            variance: None,
-            invalid_samples: 0,
-            comment: None,
-            sum_variance_factor: 1.0,
-            aovs: Vec::new(),
-        }
+        Film::from_rgb(4, 3, rgb)
     };
     let (good, nan, inf) = (dir.join("good.exr"), dir.join("nan.exr"), dir.join("inf.exr"));
     film(None).save(&good).unwrap();

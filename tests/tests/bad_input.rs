@@ -412,16 +412,7 @@ fn hostile_numbers_in_files_are_refused_naming_where() {
     let texels = |name: &str, at: usize, value: f32| {
         let mut rgb = vec![[0.5f32; 3]; 4 * 3];
         rgb[at][1] = value;
-        let film = caustic::film::Film {
-            width: 4,
-            height: 3,
-            rgb,
-            variance: None,
-            invalid_samples: 0,
-            comment: None,
-            sum_variance_factor: 1.0,
-            aovs: Vec::new(),
-        };
+        let film = caustic::film::Film::from_rgb(4, 3, rgb);
         film.save(&write_scene(name, "").with_file_name(name)).unwrap();
     };
     texels("inf.exr", 4 + 2, f32::INFINITY);
