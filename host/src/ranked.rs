@@ -80,7 +80,8 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
     let bar = session::progress_bar(job.progress_bar && rank == 0, spp, start);
     let summed = Arc::new(Mutex::new(Summed { accum: resumed, done: start }));
     if rank == 0 {
-        let out = Out { job: job.clone(), spp, size: (width, height) };
+        let sum_variance_factor = crate::film::splat_sum_variance_factor(&buffers.params, &buffers.tables);
+        let out = Out { job: job.clone(), spp, size: (width, height), sum_variance_factor };
         let summed = summed.clone();
         ranks.dispatch(Plan {
             start,
@@ -158,8 +159,7 @@ pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<Render
     let seconds = clock.elapsed().as_secs_f64();
     let shares: Vec<String> = ranks.shares().iter().map(u64::to_string).collect();
     show(&accum);
-    let mut film = Film::develop(&buffers, &accum);
-    crate::aov::add_to(&mut film, &buffers, spp, job.seed);
+    let mut film = session::develop(&buffers, &accum, spp, job.seed);
     session::save_film(&mut film, job)?;
     if let Some((path, _)) = &job.checkpoint {
         // The image is safe on disk: the checkpoint has served.
@@ -205,6 +205,8 @@ struct Out {
     job: RenderJob,
     spp: u32,
     size: (u32, u32),
+    /// The film's `Film::sum_variance_factor`, which the partial image's variance file carries.
+    sum_variance_factor: f64,
 }
 
 impl Out {
@@ -219,6 +221,7 @@ impl Out {
             return;
         };
         let mut film = Film::from_accum(self.size.0, self.size.1, accum);
+        film.sum_variance_factor = self.sum_variance_factor;
         film.comment =
             Some(format!("caustic: partial render, {} of {} spp (a rank was lost)", s.done, self.spp));
         let saved = session::save_film(&mut film, &self.job).map(|()| output.clone());

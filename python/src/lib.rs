@@ -77,6 +77,23 @@ struct Setup {
     film: FilmMode,
 }
 
+impl Setup {
+    /// The render arguments `render` and `convergence` share, by their command-line names.
+    fn parse(
+        backend: &str,
+        gpus: Option<&Bound<'_, PyAny>>,
+        integrator: Option<&str>,
+        film: &str,
+    ) -> PyResult<Setup> {
+        Ok(Setup {
+            backend: choice("backend", backend)?,
+            gpus: gpus.map(gpu_selection).transpose()?.unwrap_or_default(),
+            integrator: integrator.map(|name| choice("integrator", name)).transpose()?,
+            film: choice("film", film)?,
+        })
+    }
+}
+
 /// A scene's buffers and the backend made for them, kept for the next render of the same setup: a
 /// GPU backend holds the compiled pipelines and the scene's device buffers, so a second render
 /// pays for neither.
@@ -235,12 +252,7 @@ impl Scene {
         variance: bool,
         aovs: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let setup = Setup {
-            backend: choice("backend", backend)?,
-            gpus: gpus.map(gpu_selection).transpose()?.unwrap_or_default(),
-            integrator: integrator.map(|name| choice("integrator", name)).transpose()?,
-            film: choice("film", film)?,
-        };
+        let setup = Setup::parse(backend, gpus, integrator, film)?;
         let film = py.detach(|| self.render_detached(setup, spp, seed, progress, variance))?;
         let image = rgb_array(py, film.width, film.height, &film.rgb)?;
         if !variance && !aovs {
@@ -343,19 +355,16 @@ impl Scene {
         film: &str,
         gpus: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let backend_choice: BackendChoice = choice("backend", backend)?;
-        let gpus = gpus.map(gpu_selection).transpose()?.unwrap_or_default();
-        let integrator: Option<IntegratorChoice> =
-            integrator.map(|name| choice("integrator", name)).transpose()?;
-        let film: FilmMode = choice("film", film)?;
+        let setup = Setup::parse(backend, gpus, integrator, film)?;
         let (reference, reference_name) = film_or_file(py, reference, "reference", Film::load_exr)?;
         let (backend, points) = py
             .detach(|| {
                 caustic::compare::check_finite(&reference, &reference_name)?;
-                let spp = spp.unwrap_or(self.scene.sensor.spp);
-                let buffers = session::build_scene(self.scene.clone(), &self.path, integrator, film)?;
+                let spp = session::samples_per_pixel(&self.scene, spp)?;
+                let buffers =
+                    session::build_scene(self.scene.clone(), &self.path, setup.integrator, setup.film)?;
                 convergence::check_reference_size(&reference, &reference_name, &buffers, &self.path)?;
-                convergence::measure_warmed_up(backend_choice, &gpus, &buffers, &reference, spp, seed)
+                convergence::measure_warmed_up(setup.backend, &setup.gpus, &buffers, &reference, spp, seed)
             })
             .map_err(host_error)?;
         let column =
