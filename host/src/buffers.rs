@@ -329,7 +329,7 @@ fn build_bvh_reordering(
 }
 
 /// Checks that every child index and leaf range of `nodes` lies inside the node and primitive
-/// buffers: the kernel's traversal reads them without bounds checks (`Accel::trace`).
+/// buffers: the kernel's traversals read them without bounds checks (`Accel::trace`).
 fn inside_buffers(nodes: &[BvhNode], prims: usize) -> Result<()> {
     for (i, n) in nodes.iter().enumerate() {
         let (first, count) = (n.first as usize, n.prim_count as usize);
@@ -650,6 +650,10 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     // (`crate::instance_buffers`).
     let instanced =
         crate::instance_buffers::two_level(&mut nodes, &mut prims, &mut attributes, scene, &mut blocks)?;
+    if instanced {
+        // The groups' leaves too are read without bounds checks (`bvh::intersect_leaf`).
+        inside_buffers(&nodes, prims.len())?;
+    }
     let has_prims = !prims.is_empty();
     // The ray offset's absolute part (`caustic_kernel::shape::offset_origin`): Mitsuba's 1, or the
     // scene's half-diagonal where smaller, so that a scene scaled down keeps its image.
@@ -878,13 +882,26 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     if materials.iter().any(caustic_kernel::wavelength::disperses) {
         f |= features::DISPERSION;
     }
-    if materials.iter().any(|m| m.flags & MATERIAL_MASK != 0) {
+    if materials.iter().any(|m| m.flags & MATERIAL_MASK != 0 || m.kind == BSDF_THIN_DIELECTRIC) {
         f |= features::MASK;
     }
-    if materials.iter().any(|m| m.perturb != 0) {
-        f |= features::NORMAL_MAPPING;
+    if materials.iter().any(|m| m.perturb != 0 || anisotropic(m)) {
+        f |= features::TANGENT_FRAMES;
     }
     f
+}
+
+/// Whether `m`'s microfacet roughness differs along dp/du and dp/dv (numbers that differ, or a texture
+/// on either that is not the other's): its shading frame must then follow dp/du, as Mitsuba's.
+/// The principled models' `anisotropic` weight is their `alpha_v` (0: isotropic).
+fn anisotropic(m: &Material) -> bool {
+    match m.kind {
+        BSDF_ROUGH_CONDUCTOR | BSDF_ROUGH_DIELECTRIC | BSDF_PPLASTIC => {
+            m.alpha_u != m.alpha_v || m.alpha_u_texture != m.alpha_v_texture
+        }
+        BSDF_PRINCIPLED | BSDF_PRINCIPLED_THIN => m.alpha_v != 0.0 || m.alpha_v_texture != NONE,
+        _ => false,
+    }
 }
 
 /// How far the splatting film spreads a camera sample (`FrameParams::film_reach`), or 0 for filter

@@ -1,9 +1,12 @@
-//! BVH2 traversal with a fixed-size stack (no recursion on the GPU).
+//! The scene's BVH as the kernel reads it (`Accel`), the slab test, the one loop over a leaf's
+//! primitives that every walk shares (`intersect_leaf`), and the BVH2 walk with a fixed-size stack
+//! (no recursion on the GPU). Which walk a ray takes is `traverse`'s choice.
 
 use crate::camera::Ray;
 use crate::glam::{Vec2, Vec3};
 use crate::layout::{BvhNode, Primitive, SceneView, NONE};
 use crate::math::vec3;
+use crate::shape::triangle::RayShear;
 use crate::shape::{self, Hit};
 use spirv_std::arch::IndexUnchecked;
 
@@ -31,7 +34,8 @@ pub(crate) fn intersect_aabb(node: &BvhNode, origin: Vec3, inv_dir: Vec3, t_min:
 }
 
 /// The BVH and primitive buffers of a scene, with the instances' transforms (in `tables`) and the
-/// scene's feature bits (`features::INSTANCING` picks the two-level traversal).
+/// scene's feature bits (`features::INSTANCING` picks the two-level traversal). Its ray queries,
+/// `trace` and `occluded`, are `traverse`'s.
 #[derive(Clone, Copy)]
 pub struct Accel<'a> {
     pub nodes: &'a [BvhNode],
@@ -53,109 +57,111 @@ impl<'a> Accel<'a> {
             wide: scene.wide_bvh,
         }
     }
+}
 
-    /// Closest hit along the ray, or `None`. With `any_hit`, returns the first hit found (shadow rays).
-    /// Primitive `skip` (or none, with `NONE`) is ignored. Scenes with instances take
-    /// `instancing::trace`; a wide BVH, `wide_bvh::trace`; the rest, this one-level walk.
-    ///
-    /// The walk reads the buffers without bounds checks: every child index and leaf range of a BVH
-    /// lies inside its buffers (the host's `buffers` module checks each tree it builds), and the stack is
-    /// pushed only below `STACK_SIZE`. (A check is a compare and a branch per read, five reads per
-    /// inner node, in the loop where the GPU spends most of its time.)
-    pub fn trace(&self, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> {
-        if crate::features::has(self.features, crate::features::INSTANCING) {
-            return crate::instancing::trace(self, ray, any_hit, skip);
-        }
-        if self.wide {
-            return crate::wide_bvh::trace(self, ray, any_hit, skip);
-        }
-        let inv_dir = Vec3::ONE / ray.dir;
-        let shear = shape::triangle::RayShear::of(ray);
-        let mut stack = [0u32; STACK_SIZE];
-        let mut top = 0usize;
-        let mut node_index = 0u32;
-        let mut best_t = ray.t_max;
-        let mut best_prim = u32::MAX;
-        let mut best_uv = Vec2::ZERO;
-        // Not `is_empty()`: in rust-gpu 0.11 it grew the SPIR-V by 220 KB (measured).
-        #[allow(clippy::len_zero)]
-        if self.nodes.len() == 0
-            || intersect_aabb(&self.nodes[0], ray.origin, inv_dir, ray.t_min, best_t) == MISS
-        {
-            return None;
-        }
-        loop {
-            // SAFETY: node indices are the root and children, inside `nodes` (see above).
-            let node = unsafe { *self.nodes.index_unchecked(node_index as usize) };
-            if node.prim_count > 0 {
-                let mut i = node.first;
-                let end = node.first + node.prim_count;
-                while i < end {
-                    if i == skip {
-                        i += 1;
-                        continue;
-                    }
-                    // SAFETY: leaf ranges lie inside `prims` (see above).
-                    let prim = unsafe { self.prims.index_unchecked(i as usize) };
-                    if let Some((t, uv)) = shape::intersect(prim, ray, &shear, best_t) {
-                        best_t = t;
-                        best_prim = i;
-                        best_uv = uv;
-                        if any_hit {
-                            return Some(Hit { t, prim: i, uv, instance: NONE });
-                        }
-                    }
-                    i += 1;
-                }
-            } else {
-                let left = node.first;
-                let right = node.first + 1;
-                // SAFETY: children lie inside `nodes` (see above).
-                let (left_node, right_node) = unsafe {
-                    (self.nodes.index_unchecked(left as usize), self.nodes.index_unchecked(right as usize))
-                };
-                let t_left = intersect_aabb(left_node, ray.origin, inv_dir, ray.t_min, best_t);
-                let t_right = intersect_aabb(right_node, ray.origin, inv_dir, ray.t_min, best_t);
-                let hit_left = t_left != MISS;
-                let hit_right = t_right != MISS;
-                if hit_left && hit_right {
-                    // Visit the nearer child first; the farther one waits on the stack.
-                    let (first, second) = if t_left <= t_right { (left, right) } else { (right, left) };
-                    if top < STACK_SIZE {
-                        // SAFETY: `top < STACK_SIZE`.
-                        unsafe { *stack.index_unchecked_mut(top) = second };
-                        top += 1;
-                    }
-                    node_index = first;
-                    continue;
-                } else if hit_left {
-                    node_index = left;
-                    continue;
-                } else if hit_right {
-                    node_index = right;
-                    continue;
-                }
+/// The BVH2 walk from node `root` (a scene's BVH at 0, an instanced group's at its root) for the
+/// closest hit nearer than `t_max` (the first found, with `any_hit`), primitive `skip` ignored:
+/// `Accel::trace` without instances or a wide BVH, and each instance's walk of its group.
+///
+/// The walk reads the buffers without bounds checks: every child index and leaf range of a BVH
+/// lies inside its buffers (the host's `buffers` module checks each tree it builds, instanced
+/// groups included), and the stack is pushed only below `STACK_SIZE`. (A check is a compare and a
+/// branch per read, five reads per inner node, in the loop where the GPU spends most of its time.)
+#[inline]
+pub(crate) fn walk(accel: &Accel, root: u32, ray: &Ray, any_hit: bool, skip: u32, t_max: f32) -> Option<Hit> {
+    let inv_dir = Vec3::ONE / ray.dir;
+    let shear = shape::triangle::RayShear::of(ray);
+    let mut stack = [0u32; STACK_SIZE];
+    let mut top = 0usize;
+    let mut node_index = root;
+    let mut best = Hit { t: t_max, prim: NONE, uv: Vec2::ZERO, instance: NONE };
+    // Not `is_empty()`: in rust-gpu 0.11 it grew the SPIR-V by 220 KB (measured).
+    #[allow(clippy::len_zero)]
+    if accel.nodes.len() == 0
+        || intersect_aabb(&accel.nodes[root as usize], ray.origin, inv_dir, ray.t_min, best.t) == MISS
+    {
+        return None;
+    }
+    loop {
+        // SAFETY: node indices are the root and children, inside `nodes` (see above).
+        let node = unsafe { *accel.nodes.index_unchecked(node_index as usize) };
+        if node.prim_count > 0 {
+            if intersect_leaf(accel.prims, node.first, node.prim_count, ray, &shear, skip, any_hit, &mut best)
+            {
+                return Some(best);
             }
-            if top == 0 {
-                break;
-            }
-            top -= 1;
-            // SAFETY: `top` was pushed, so below `STACK_SIZE`.
-            node_index = unsafe { *stack.index_unchecked(top) };
-        }
-        if best_prim == u32::MAX {
-            None
         } else {
-            Some(Hit { t: best_t, prim: best_prim, uv: best_uv, instance: NONE })
+            let left = node.first;
+            let right = node.first + 1;
+            // SAFETY: children lie inside `nodes` (see above).
+            let (left_node, right_node) = unsafe {
+                (accel.nodes.index_unchecked(left as usize), accel.nodes.index_unchecked(right as usize))
+            };
+            let t_left = intersect_aabb(left_node, ray.origin, inv_dir, ray.t_min, best.t);
+            let t_right = intersect_aabb(right_node, ray.origin, inv_dir, ray.t_min, best.t);
+            let hit_left = t_left != MISS;
+            let hit_right = t_right != MISS;
+            if hit_left && hit_right {
+                // Visit the nearer child first; the farther one waits on the stack.
+                let (first, second) = if t_left <= t_right { (left, right) } else { (right, left) };
+                if top < STACK_SIZE {
+                    // SAFETY: `top < STACK_SIZE`.
+                    unsafe { *stack.index_unchecked_mut(top) = second };
+                    top += 1;
+                }
+                node_index = first;
+                continue;
+            } else if hit_left {
+                node_index = left;
+                continue;
+            } else if hit_right {
+                node_index = right;
+                continue;
+            }
         }
+        if top == 0 {
+            break;
+        }
+        top -= 1;
+        // SAFETY: `top` was pushed, so below `STACK_SIZE`.
+        node_index = unsafe { *stack.index_unchecked(top) };
     }
+    if best.prim == NONE {
+        None
+    } else {
+        Some(best)
+    }
+}
 
-    /// Whether anything but primitive `target` (the emitter a shadow ray aims at, or `NONE`) blocks the
-    /// open segment of the ray. Ignoring the target makes the test independent of how exactly the
-    /// sampled distance to it was computed: near-tangent rays to a sphere light, say, are
-    /// ill-conditioned in distance, and a shortened segment could still reach the light itself.
-    #[inline]
-    pub fn occluded(&self, ray: &Ray, target: u32) -> bool {
-        self.trace(ray, true, target).is_some()
+/// Intersects `ray` with the leaf's primitives `first .. first + count` (but `skip`), narrowing
+/// `best` to each hit nearer than its `t`; true as soon as one is found with `any_hit` (`best` is
+/// then that hit). The one leaf loop of every walk: BVH2's, the wide BVH's and instanced groups'.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn intersect_leaf(
+    prims: &[Primitive],
+    first: u32,
+    count: u32,
+    ray: &Ray,
+    shear: &RayShear,
+    skip: u32,
+    any_hit: bool,
+    best: &mut Hit,
+) -> bool {
+    let mut i = first;
+    let end = first + count;
+    while i < end {
+        if i != skip {
+            // SAFETY: leaf ranges lie inside `prims` (the host checks every tree it builds).
+            let prim = unsafe { prims.index_unchecked(i as usize) };
+            if let Some((t, uv)) = shape::intersect(prim, ray, shear, best.t) {
+                *best = Hit { t, prim: i, uv, instance: NONE };
+                if any_hit {
+                    return true;
+                }
+            }
+        }
+        i += 1;
     }
+    false
 }

@@ -47,13 +47,16 @@ pub const DIRECT_INTEGRATOR: u32 = 1 << 21;
 pub const LIGHT_TRACER: u32 = 1 << 22;
 /// Dispersive dielectrics: paths carry a wavelength (`wavelength`).
 pub const DISPERSION: u32 = 1 << 23;
-/// `mask` materials: paths and shadow rays pass through surfaces (`mask`).
+/// Null interfaces, `mask` materials and thin dielectrics: paths and shadow rays cross surfaces
+/// (`mask`).
 pub const MASK: u32 = 1 << 24;
-/// Normal and bump maps (`normalmap`, `bumpmap`): shading frames follow dp/du and the BSDF is
-/// evaluated in a perturbed frame (`bsdf::perturb`).
-pub const NORMAL_MAPPING: u32 = 1 << 25;
+/// Shading frames follow dp/du: for normal and bump maps (`normalmap`, `bumpmap`: the BSDF is then
+/// evaluated in a perturbed frame, `bsdf::perturb`) and for anisotropic roughness, which Mitsuba
+/// orients along dp/du (`integrator::shading_frame`). Without it the frame's tangent is any one
+/// (`Frame::from_normal`): isotropic models do not see it.
+pub const TANGENT_FRAMES: u32 = 1 << 25;
 /// `blendbsdf` records: a surface's BSDF is a weighted pair of models (`bsdf::blend`). (Bit 25 is
-/// taken by normal maps.)
+/// taken by tangent frames.)
 pub const BLEND: u32 = 1 << 26;
 /// Mitsuba's `pplastic` (`bsdf::pplastic`), whose kind lies past the models' bits.
 pub const PPLASTIC: u32 = 1 << 27;

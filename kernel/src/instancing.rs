@@ -95,57 +95,6 @@ fn descend(accel: &Accel, node: u32, ray: &Ray, inv_dir: Vec3, best_t: f32) -> (
     }
 }
 
-/// The closest hit (or, with `any_hit`, any hit) closer than `t_max` in the BLAS rooted at `root`,
-/// for a ray already in the group's space; primitive `skip` is ignored.
-fn trace_blas(accel: &Accel, root: u32, ray: &Ray, any_hit: bool, skip: u32, t_max: f32) -> Option<Hit> {
-    let inv_dir = Vec3::ONE / ray.dir;
-    let shear = shape::triangle::RayShear::of(ray);
-    let mut stack = [0u32; STACK_SIZE];
-    let mut top = 0usize;
-    let mut best = Hit { t: t_max, prim: NONE, uv: Vec2::ZERO, instance: NONE };
-    if intersect_aabb(&accel.nodes[root as usize], ray.origin, inv_dir, ray.t_min, t_max) == MISS {
-        return None;
-    }
-    let mut node_index = root;
-    loop {
-        let node = accel.nodes[node_index as usize];
-        if node.prim_count > 0 {
-            let mut i = node.first;
-            while i < node.first + node.prim_count {
-                if i != skip {
-                    if let Some((t, uv)) = shape::intersect(&accel.prims[i as usize], ray, &shear, best.t) {
-                        best = Hit { t, prim: i, uv, instance: NONE };
-                        if any_hit {
-                            return Some(best);
-                        }
-                    }
-                }
-                i += 1;
-            }
-        } else {
-            let (next, later) = descend(accel, node_index, ray, inv_dir, best.t);
-            if later != NONE && top < STACK_SIZE {
-                stack[top] = later;
-                top += 1;
-            }
-            if next != NONE {
-                node_index = next;
-                continue;
-            }
-        }
-        if top == 0 {
-            break;
-        }
-        top -= 1;
-        node_index = stack[top];
-    }
-    if best.prim == NONE {
-        None
-    } else {
-        Some(best)
-    }
-}
-
 /// `Accel::trace` in a scene with instances: the TLAS, whose leaves are all `PRIM_INSTANCE`s, each
 /// walked in its group's space (the scene's own shapes' as they are: `flags` is `NONE`).
 pub fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> {
@@ -167,7 +116,7 @@ pub fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> 
                 if instance.flags != NONE {
                     local = ray_to_object(&Transforms::load(accel.tables, instance.flags), ray);
                 }
-                if let Some(h) = trace_blas(accel, instance.material, &local, any_hit, skip, best.t) {
+                if let Some(h) = crate::bvh::walk(accel, instance.material, &local, any_hit, skip, best.t) {
                     best = Hit { instance: instance.flags, ..h };
                     if any_hit {
                         return Some(best);

@@ -31,6 +31,7 @@ pub mod shape;
 pub mod spectrum;
 pub mod splat;
 pub mod texture;
+pub mod traverse;
 pub mod two_sided;
 pub mod wavelength;
 pub mod wide_bvh;

@@ -19,7 +19,7 @@
 //! primitives at one distance, or at distances within the triangle test's rounding (coplanar
 //! surfaces), either may be reported; and a ray parallel to an axis in the plane of a box's face
 //! enters the box, where BVH2 enters it only through its upper face.
-use crate::bvh::Accel;
+use crate::bvh::{intersect_leaf, Accel};
 use crate::camera::Ray;
 use crate::glam::{Vec2, Vec3, Vec4};
 use crate::layout::{BvhNode, NONE};
@@ -77,9 +77,7 @@ pub(crate) fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Optio
     let mut slots = [0u32; WIDE_STACK];
     let mut entry = [0f32; WIDE_STACK];
     let mut top = 0usize;
-    let mut best_t = ray.t_max;
-    let mut best_prim = u32::MAX;
-    let mut best_uv = Vec2::ZERO;
+    let mut best = Hit { t: ray.t_max, prim: NONE, uv: Vec2::ZERO, instance: NONE };
     let mut group = 0u32;
     loop {
         // The group's four boxes at once.
@@ -105,7 +103,7 @@ pub(crate) fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Optio
             greater_or(less_or(z1, z0), greater_or(less_or(y1, y0), greater_or(less_or(x1, x0), t_min)));
         let far = less_or(
             greater_or(z0, z1),
-            less_or(greater_or(y0, y1), less_or(greater_or(x0, x1), Vec4::splat(best_t))),
+            less_or(greater_or(y0, y1), less_or(greater_or(x0, x1), Vec4::splat(best.t))),
         );
         let (near, far) = (near.to_array(), (far * SLACK).to_array());
         // Push the children hit, then order the pushed ones so that the nearest is on top.
@@ -140,16 +138,12 @@ pub(crate) fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Optio
         // Pop until an inner child: leaves are intersected on the way.
         loop {
             if top == 0 {
-                return if best_prim == u32::MAX {
-                    None
-                } else {
-                    Some(Hit { t: best_t, prim: best_prim, uv: best_uv, instance: NONE })
-                };
+                return if best.prim == NONE { None } else { Some(best) };
             }
             top -= 1;
             // SAFETY: `top` was pushed.
             let (t, slot) = unsafe { (*entry.index_unchecked(top), *slots.index_unchecked(top)) };
-            if t > best_t * SLACK {
+            if t > best.t * SLACK {
                 continue;
             }
             // SAFETY: pushed slots lie inside `nodes`.
@@ -158,22 +152,9 @@ pub(crate) fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Optio
                 group = node.first;
                 break;
             }
-            let mut i = node.first;
-            let end = node.first + node.prim_count;
-            while i < end {
-                if i != skip {
-                    // SAFETY: leaf ranges lie inside `prims` (BVH2's, which the host checks).
-                    let prim = unsafe { accel.prims.index_unchecked(i as usize) };
-                    if let Some((t, uv)) = shape::intersect(prim, ray, &shear, best_t) {
-                        best_t = t;
-                        best_prim = i;
-                        best_uv = uv;
-                        if any_hit {
-                            return Some(Hit { t, prim: i, uv, instance: NONE });
-                        }
-                    }
-                }
-                i += 1;
+            if intersect_leaf(accel.prims, node.first, node.prim_count, ray, &shear, skip, any_hit, &mut best)
+            {
+                return Some(best);
             }
         }
     }

@@ -154,7 +154,7 @@ fn shading_normal(
     dir: Vec3,
 ) -> Vec3 {
     let material = &buffers.materials[prim.material as usize];
-    let mapped = features::has(buffers.features, features::NORMAL_MAPPING) && material.perturb != 0;
+    let mapped = features::has(buffers.features, features::TANGENT_FRAMES) && material.perturb != 0;
     let twosided_outside =
         material.flags & MATERIAL_TWO_SIDED != 0 && material.perturb & PERTURB_TWO_SIDED_INSIDE == 0;
     if !mapped || twosided_outside {

@@ -530,10 +530,10 @@ impl<'a> Bsdf<'a> {
         bs
     }
 
-    /// Whether a normal or bump map tilts the frame (never in scenes without `NORMAL_MAPPING`).
+    /// Whether a normal or bump map tilts the frame (never in scenes without `TANGENT_FRAMES`).
     #[inline]
     fn is_perturbed(&self) -> bool {
-        features::has(self.features, features::NORMAL_MAPPING) && self.perturbation.active()
+        features::has(self.features, features::TANGENT_FRAMES) && self.perturbation.active()
     }
 
     /// Whether the scene uses BSDF model `kind` (`features`).

@@ -5,7 +5,7 @@
 //! mirrors a tilted normal that faces away from the viewer about the shading normal, and
 //! `use_shadowing_function` multiplies Estevez et al.'s shadowing term ("A Microfacet-Based Shadowing
 //! Function to Solve the Bump Terminator Problem", Ray Tracing Gems, 2019). Only scenes with the
-//! `NORMAL_MAPPING` feature reach this code.
+//! `TANGENT_FRAMES` feature reach this code.
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 

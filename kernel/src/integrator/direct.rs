@@ -14,6 +14,7 @@ use crate::features;
 use crate::instancing::surface_point;
 use crate::layout::{FrameParams, SceneView, NONE};
 use crate::mask;
+use crate::math::max_component;
 use crate::rng::Sampler;
 use crate::shape::offset_origin;
 use crate::spectrum::Rgb;
@@ -40,9 +41,12 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     let mut ray = camera_ray;
     let mut emitted = Rgb::ZERO;
     let mut passes = 0;
+    // What crossed null interfaces lets through, and whether the last met a pane (`mask::Crossing`).
+    let mut through = Rgb::ONE;
+    let mut reflect_only = false;
     let (hit, prim, sp) = if !masks {
-        // One trace, no loop, where the scene has no masks (the frozen constant leaves this branch
-        // alone in the pruned kernel).
+        // One trace, no loop, where the scene has no null interfaces (the frozen constant leaves this
+        // branch alone in the pruned kernel).
         let hit = match trace_camera(&ray) {
             Some(h) => h,
             None if hidden => return emitted,
@@ -55,23 +59,27 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         }
         (hit, prim, sp)
     } else {
-        // The camera ray passes through masks as `path`'s does (`mask`): straight on, emitters it
+        // The camera ray crosses null interfaces as `path`'s does (`mask`): straight on, emitters it
         // meets on the way counted as seen directly.
         loop {
             let hit = match trace_camera(&ray) {
                 Some(h) => h,
                 None if hidden => return emitted,
-                None => return emitted + environment(scene, params, ray.dir, &camera, counts),
+                None => return emitted + through * environment(scene, params, ray.dir, &camera, counts),
             };
             let prim = scene.prims[hit.prim as usize];
             let sp = surface_point(scene, &prim, &hit, &ray);
             if prim.light != NONE {
-                emitted += area_emission(scene, &prim, &sp, ray.dir, &camera, counts);
+                emitted += through * area_emission(scene, &prim, &sp, ray.dir, &camera, counts);
             }
-            if !mask::passes(scene, &scene.materials[prim.material as usize], &sp, sampler, &mut passes) {
+            let material = &scene.materials[prim.material as usize];
+            let crossing = mask::crossing(scene, material, &sp, ray.dir, sampler, &mut passes);
+            if !crossing.through {
+                reflect_only = crossing.reflect_only;
                 break (hit, prim, sp);
             }
-            if passes >= mask::MAX_PASSES {
+            through *= crossing.weight;
+            if passes >= mask::MAX_PASSES || max_component(through) <= 0.0 {
                 return emitted;
             }
             ray = mask::onward(&sp, ray.dir);
@@ -121,6 +129,8 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
     while i < params.bsdf_samples {
         let u_lobe = sampler.next_1d();
         let u_dir = sampler.next_2d();
+        // At a pane the crossing has chosen reflection already (`mask::Crossing::reflect_only`).
+        let u_lobe = if reflect_only { 0.0 } else { u_lobe };
         i += 1;
         let bs = bsdf.sample(wo, u_lobe, u_dir, TransportMode::Radiance);
         if bs.pdf <= 0.0 {
@@ -141,25 +151,30 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
                 }
             }
         } else {
-            // On through masks as the camera ray (emitters met on the way count, weighted from `sp`).
+            // On across null interfaces as the camera ray (emitters met on the way count, weighted
+            // from `sp`).
             let mut le = Rgb::ZERO;
+            let mut crossed = Rgb::ONE;
             loop {
                 let Some(h) = accel.trace(&ray, false, NONE) else {
-                    le += environment(scene, params, ray.dir, &from, counts);
+                    le += crossed * environment(scene, params, ray.dir, &from, counts);
                     break;
                 };
                 let lit = scene.prims[h.prim as usize];
                 let lit_material = scene.materials[lit.material as usize];
-                if lit.light == NONE && !mask::is_mask(scene, &lit_material) {
+                if lit.light == NONE && !mask::is_null(scene, &lit_material) {
                     break;
                 }
                 let lit_sp = surface_point(scene, &lit, &h, &ray);
                 if lit.light != NONE {
-                    le += area_emission(scene, &lit, &lit_sp, ray.dir, &from, counts);
+                    le += crossed * area_emission(scene, &lit, &lit_sp, ray.dir, &from, counts);
                 }
-                if !mask::passes(scene, &lit_material, &lit_sp, sampler, &mut passes)
-                    || passes >= mask::MAX_PASSES
-                {
+                let crossing = mask::crossing(scene, &lit_material, &lit_sp, ray.dir, sampler, &mut passes);
+                if !crossing.through {
+                    break;
+                }
+                crossed *= crossing.weight;
+                if passes >= mask::MAX_PASSES || max_component(crossed) <= 0.0 {
                     break;
                 }
                 ray = mask::onward(&lit_sp, ray.dir);
@@ -168,5 +183,5 @@ pub fn li(scene: &SceneView, params: &FrameParams, camera_ray: Ray, sampler: &mu
         };
         result += bs.weight * le / counts.bsdf;
     }
-    emitted + dispersion * result
+    emitted + through * dispersion * result
 }

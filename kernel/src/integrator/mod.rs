@@ -281,8 +281,8 @@ pub fn accumulated(a: PixelAccum, sums: &PixelSums, sample_count: u32) -> PixelA
 /// The local shading frame at `sp` for a ray arriving along `dir`, the geometric normal on the same
 /// side as the frame's, the outgoing direction in the frame, and the tilt of a normal or bump map
 /// (`bsdf::perturb`; inactive without one) for `Bsdf::new`, as one `Shading`. Two-sided materials
-/// seen from behind are shaded as if from the front. Where the material has a map, the frame's
-/// tangent follows dp/du.
+/// seen from behind are shaded as if from the front. In scenes with `features::TANGENT_FRAMES` the
+/// frame's tangent follows dp/du.
 pub fn shading_frame(
     scene: &SceneView,
     material: &Material,
@@ -292,17 +292,25 @@ pub fn shading_frame(
     dir: Vec3,
 ) -> Shading {
     let two_sided = material.flags & MATERIAL_TWO_SIDED != 0;
-    if features::has(scene.features, features::NORMAL_MAPPING) && material.perturb != 0 {
+    let tangent_frames = features::has(scene.features, features::TANGENT_FRAMES);
+    let dp_du = if tangent_frames {
         let (dp_du, dp_dv) = crate::instancing::tangents(scene, prim, hit, sp);
-        let map = perturb::MapContext { textures: scene.textures, tables: scene.tables, dp_du, dp_dv };
-        return perturb::shading_frame(material, &map, sp, dir);
-    }
+        if material.perturb != 0 {
+            let map = perturb::MapContext { textures: scene.textures, tables: scene.tables, dp_du, dp_dv };
+            return perturb::shading_frame(material, &map, sp, dir);
+        }
+        dp_du
+    } else {
+        Vec3::ZERO
+    };
     let (mut ns, mut ng) = (sp.ns, sp.ng);
     if two_sided && ng.dot(dir) > 0.0 {
         ns = -ns;
         ng = -ng;
     }
-    let frame = Frame::from_normal(ns);
+    // In a scene with anisotropic roughness every frame's tangent follows dp/du, as Mitsuba's
+    // (`initialize_sh_frame`): the roughness along u is `alpha_u` (isotropic models do not see it).
+    let frame = if tangent_frames { Frame::from_tangent(ns, dp_du) } else { Frame::from_normal(ns) };
     let wo = frame.to_local(-dir);
     Shading::new(frame, ng, wo, Perturbation::NONE)
 }

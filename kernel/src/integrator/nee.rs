@@ -102,7 +102,7 @@ pub fn next_event(
     let dist = to_light.length();
     let shadow = Ray { origin, dir: to_light / dist, t_min: 0.0, t_max: dist * (1.0 - SHADOW_EPSILON) };
     let transmittance = crate::mask::transmittance(scene, accel, &shadow, ls.prim);
-    if transmittance <= 0.0 {
+    if max_component(transmittance) <= 0.0 {
         return Rgb::ZERO;
     }
     let weight = if lt.scale > 0.0 {
@@ -115,7 +115,7 @@ pub fn next_event(
     } else {
         power_heuristic(counts.light * ls.pdf, counts.bsdf * ep.pdf)
     };
-    ep.f * ls.radiance * (transmittance * weight / ls.pdf)
+    ep.f * ls.radiance * transmittance * (weight / ls.pdf)
 }
 
 /// Radiance of the area emitter on `prim` seen along `dir` at `sp`, weighted against light sampling

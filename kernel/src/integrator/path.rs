@@ -134,22 +134,26 @@ impl CameraPath {
             self.result += self.throughput * area_emission(scene, &prim, &sp, ray.dir, &self.prev, ONE_EACH);
         }
 
-        // A mask lets the path through with probability 1 − opacity: straight on, no bounce (`mask`).
+        // A null interface (a mask, a thin dielectric's transmission) lets the path through: straight
+        // on, no bounce (`mask`).
         let mut material =
             scene.materials[crate::two_sided::seen(scene, prim.material, &sp, ray.dir) as usize];
-        if mask::is_mask(scene, &material) {
+        let mut reflect_only = false;
+        if mask::is_null(scene, &material) {
             sampler.set_dimension(DIM_MASK + self.mask_passes);
             let u_mask = sampler.next_1d();
             sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
             self.mask_passes += 1;
-            if u_mask >= mask::opacity(scene, &material, sp.uv) {
-                if self.mask_passes >= mask::MAX_PASSES {
+            let crossing = mask::cross(scene, &material, &sp, ray.dir, u_mask);
+            if crossing.through {
+                self.throughput *= crossing.weight;
+                if self.mask_passes >= mask::MAX_PASSES || magnitude(self.throughput) <= 0.0 {
                     return false;
                 }
-                let origin = offset_origin(&sp, sp.ng, ray.dir);
-                self.ray = Ray { origin, dir: ray.dir, t_min: 0.0, t_max: f32::MAX };
+                self.ray = mask::onward(&sp, ray.dir);
                 return true;
             }
+            reflect_only = crossing.reflect_only;
         }
 
         if params.max_depth != NONE && depth + 1 >= params.max_depth {
@@ -193,6 +197,8 @@ impl CameraPath {
         // BSDF sampling.
         let u_lobe = sampler.next_1d();
         let u_dir = sampler.next_2d();
+        // At a pane the crossing has chosen reflection already (`mask::Crossing::reflect_only`).
+        let u_lobe = if reflect_only { 0.0 } else { u_lobe };
         let bs = bsdf.sample(wo, u_lobe, u_dir, TransportMode::Radiance);
         if bs.pdf <= 0.0 {
             return false;

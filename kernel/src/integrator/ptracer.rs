@@ -125,9 +125,10 @@ fn splat_to_camera<W: AtomicWords>(
     let dist = d.length();
     let shadow = Ray { origin, dir: d / dist, t_min: 0.0, t_max: dist * (1.0 - SHADOW_EPSILON) };
     let transmittance = to_camera(scene, params, accel, &shadow, skip);
-    if transmittance <= 0.0 {
+    if max_component(transmittance) <= 0.0 {
         return;
     }
+    let value = value * transmittance;
     let importance = c.importance * film_scale(params);
     let mut y = y0;
     while y <= y1 {
@@ -143,7 +144,7 @@ fn splat_to_camera<W: AtomicWords>(
                 } else {
                     density
                 };
-                splat(words, pixel, value * (importance * filter * weight * transmittance), u);
+                splat(words, pixel, value * (importance * filter * weight), u);
             }
             x += 1;
         }
@@ -151,40 +152,40 @@ fn splat_to_camera<W: AtomicWords>(
     }
 }
 
-/// The fraction of light that crosses `shadow`, a segment from a light vertex to the camera
-/// (ignoring primitive `skip`): blocked by any surface, attenuated by `1 − opacity` at each mask
-/// (`mask::transmittance`). With `hide_emitters` camera rays pass through emitters (`path`), so the
-/// segment does too: otherwise IBPT's weights would count a light-tracing strategy that cannot happen.
-fn to_camera(scene: &SceneView, params: &FrameParams, accel: &Accel, shadow: &Ray, skip: u32) -> f32 {
+/// The light that crosses `shadow`, a segment from a light vertex to the camera (ignoring primitive
+/// `skip`): blocked by any surface, attenuated at each null interface (`mask::transmittance`). With
+/// `hide_emitters` camera rays pass through emitters (`path`), so the segment does too: otherwise
+/// IBPT's weights would count a light-tracing strategy that cannot happen.
+fn to_camera(scene: &SceneView, params: &FrameParams, accel: &Accel, shadow: &Ray, skip: u32) -> Rgb {
     if params.hide_emitters == 0 {
         return crate::mask::transmittance(scene, accel, shadow, skip);
     }
     if !features::has(scene.features, features::MASK) {
-        return if first_hit_past_emitters(scene, accel, shadow).is_some() { 0.0 } else { 1.0 };
+        return if first_hit_past_emitters(scene, accel, shadow).is_some() { Rgb::ZERO } else { Rgb::ONE };
     }
-    // Surface by surface, nearest first, as the camera ray would meet them: emitters skipped, masks
-    // attenuating, anything else blocking.
+    // Surface by surface, nearest first, as the camera ray would meet them: emitters skipped, null
+    // interfaces attenuating, anything else blocking.
     let mut r = *shadow;
-    let mut t = 1.0f32;
+    let mut t = Rgb::ONE;
     let mut steps = 0;
     while steps < crate::mask::MAX_PASSES {
         let Some(hit) = accel.trace(&r, false, skip) else { return t };
         let prim = scene.prims[hit.prim as usize];
         if prim.light == NONE {
             let m = scene.materials[prim.material as usize];
-            if !crate::mask::is_mask(scene, &m) {
-                return 0.0;
+            if !crate::mask::is_null(scene, &m) {
+                return Rgb::ZERO;
             }
             let sp = surface_point(scene, &prim, &hit, &r);
-            t *= 1.0 - crate::mask::opacity(scene, &m, sp.uv);
-            if t <= 0.0 {
-                return 0.0;
+            t *= crate::mask::null_transmission(scene, &m, &sp, r.dir);
+            if max_component(t) <= 0.0 {
+                return Rgb::ZERO;
             }
         }
         r.t_min = hit.t;
         steps += 1;
     }
-    0.0
+    Rgb::ZERO
 }
 
 /// The aperture point of a thin lens that the emitter's connections reach: a dimension past the
@@ -262,15 +263,19 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         };
         let prim = scene.prims[hit.prim as usize];
         let sp = surface_point(scene, &prim, &hit, &ray);
-        // Through a mask as camera paths go (`mask`): no vertex, so depth and MIS state stay as they are.
-        if crate::mask::passes(
+        // Across a null interface as camera paths go (`mask`): no vertex, so depth and MIS state stay
+        // as they are.
+        let crossing = crate::mask::crossing(
             scene,
             &scene.materials[prim.material as usize],
             &sp,
+            ray.dir,
             sampler,
             &mut mask_passes,
-        ) {
-            if mask_passes >= crate::mask::MAX_PASSES {
+        );
+        if crossing.through {
+            beta *= crossing.weight;
+            if mask_passes >= crate::mask::MAX_PASSES || magnitude(beta) <= 0.0 {
                 break;
             }
             ray = crate::mask::onward(&sp, ray.dir);
@@ -324,6 +329,8 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
 
         let u_lobe = sampler.next_1d();
         let u_dir = sampler.next_2d();
+        // At a pane the crossing has chosen reflection already (`mask::Crossing::reflect_only`).
+        let u_lobe = if crossing.reflect_only { 0.0 } else { u_lobe };
         let bs = bsdf.sample(wo, u_lobe, u_dir, IMPORTANCE);
         if bs.pdf <= 0.0 {
             break;
