@@ -5,7 +5,7 @@
 use crate::backend::Backend;
 use crate::buffers::SceneBuffers;
 use crate::film::Film;
-use crate::schedule::{Lanes, Lost, Samples};
+use crate::schedule::{Event, Lanes, Lost, Samples};
 use anyhow::{bail, Result};
 use caustic_kernel::layout::FrameParams;
 use std::ops::ControlFlow::{self, Continue};
@@ -123,14 +123,14 @@ impl Lanes for One<'_> {
     fn start(&mut self, _: usize, params: &FrameParams) {
         self.pending = Some(*params);
     }
-    fn finish(&mut self) -> (usize, Result<Duration, Lost>) {
+    fn finish(&mut self) -> Event {
         let params = self.pending.take().expect("a pass was started");
         let t = Instant::now();
         match self.backend.pass(&params) {
-            Ok(()) => (0, Ok(t.elapsed())),
+            Ok(()) => Event::Passed(0, t.elapsed()),
             Err(error) => {
                 self.alive = false;
-                (0, Err(Lost { device: self.backend.describe(), error, ranges: Vec::new() }))
+                Event::Lost(0, Lost { device: self.backend.describe(), error, ranges: Vec::new() })
             }
         }
     }
@@ -223,7 +223,7 @@ pub fn render_span(
             checkpoints.iter().copied().filter(|&c| c > samples.prefix()).min().unwrap_or(end).min(end);
         if !resting {
             for lane in 0..n {
-                if running[lane].is_some() || !lanes.is_alive(lane) {
+                if running[lane].is_some() || !lanes.takes_passes(lane) {
                     continue;
                 }
                 let Some((first, count)) = samples.claim(per_pass[lane], stop) else { break };
@@ -236,13 +236,12 @@ pub fn render_span(
                 running[lane] = Some((first, count));
             }
         }
-        if running.iter().all(Option::is_none) {
+        if running.iter().all(Option::is_none) && !lanes.pending() {
             bail!("no pass to run at {} of {end} spp (internal error)", samples.prefix());
         }
-        let (lane, result) = lanes.finish();
-        let range = running[lane].take().expect("the lane was running");
-        match result {
-            Ok(elapsed) => {
+        match lanes.finish() {
+            Event::Passed(lane, elapsed) => {
+                let range = running[lane].take().expect("the lane was running");
                 samples.finish(range);
                 passes += 1;
                 observer.progress(samples.finished_total());
@@ -253,7 +252,10 @@ pub fn render_span(
                     per_pass[lane] = ((range.1 as f64 * ratio.min(2.0)) as u32).clamp(1, max_per_pass);
                 }
             }
-            Err(lost) if (0..n).any(|l| lanes.is_alive(l)) => {
+            // A device built while the others rendered: the next round starts a pass on it.
+            Event::Joined(_) => {}
+            Event::Lost(lane, lost) if (0..n).any(|l| lanes.is_alive(l)) => {
+                running[lane] = None;
                 eprintln!(
                     "warning: {} failed ({:#}); the other devices render its {} unsaved pass(es) again",
                     lost.device,
@@ -262,7 +264,7 @@ pub fn render_span(
                 );
                 samples.give_back(&lost.ranges);
             }
-            Err(lost) => return Err(lost.error.context(format!("{} failed", lost.device))),
+            Event::Lost(_, lost) => return Err(lost.error.context(format!("{} failed", lost.device))),
         }
         let seconds = (clock.elapsed() - untimed).as_secs_f64();
         if n > 1 && !resting && observer.wants_rest(seconds) {

@@ -98,7 +98,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
     }
     let (buffers, spp) = prepare_scene(job)?;
     check_outputs(job)?;
-    let mut backend = backend::create_on(job.backend, &job.gpus, &buffers)
+    let mut backend = backend::create_starting(job.backend, &job.gpus, &buffers)
         .with_context(|| format!("{}: its sensor's film", job.scene.display()))?;
     let seed = job.seed;
     // Hashing every scene buffer is only worth it when there is a checkpoint to match.

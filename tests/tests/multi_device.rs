@@ -3,11 +3,14 @@
 //! union of the devices' passes is the single-device estimator and the sums may differ only by the
 //! order of float additions. Without multi-GPU hardware: two CPU backends, and two logical devices
 //! on one Vulkan adapter (lavapipe in CI).
-use caustic::backend::{cpu::CpuBackend, pool::Pool, Backend, BackendChoice, GpuSelection};
+use caustic::backend::pool::{Device, Pool};
+use caustic::backend::stand_in::StandIn;
+use caustic::backend::{cpu::CpuBackend, Backend, BackendChoice, GpuSelection};
 use caustic::buffers::{self, SceneBuffers};
 use caustic::film::Accumulation;
 use caustic::render::render_with_checkpoints;
 use caustic::scene::IntegratorChoice;
+use caustic::schedule::Lanes;
 use caustic_kernel::layout::FrameParams;
 use caustic_tests::*;
 use std::ops::ControlFlow::Continue;
@@ -186,4 +189,88 @@ fn two_devices_on_one_gpu_give_the_one_device_sums() {
         assert!(shares.iter().all(|&s| s > 0), "{integrator:?}: a device took no pass: {shares:?}");
         assert_same_sums(&format!("{integrator:?} on two GPU devices"), &sums, &one);
     }
+}
+
+/// A CPU device that counts its passes (shared with the test), each made to last at least 20 ms (so
+/// that a build polling the count sees it before the next pass starts).
+struct Counted {
+    inner: Box<dyn Backend + Send>,
+    passes: Arc<AtomicU32>,
+}
+
+impl Backend for Counted {
+    fn describe(&self) -> String {
+        self.inner.describe()
+    }
+    fn pass(&mut self, params: &FrameParams) -> anyhow::Result<()> {
+        self.passes.fetch_add(1, Ordering::SeqCst);
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        self.inner.pass(params)
+    }
+    fn read_accum(&mut self) -> anyhow::Result<Accumulation> {
+        self.inner.read_accum()
+    }
+    fn write_accum(&mut self, accum: &Accumulation) -> anyhow::Result<()> {
+        self.inner.write_accum(accum)
+    }
+}
+
+fn starting_pool(buffers: &SceneBuffers, stand_in: Box<dyn Backend + Send>, device: Device) -> Pool {
+    let pixels = (buffers.params.width * buffers.params.height) as usize;
+    let empty = Accumulation::new(pixels, caustic::film::batch_means(&buffers.params));
+    Pool::starting(stand_in, vec![device], empty).unwrap()
+}
+
+/// A device built while a stand-in renders (a GPU compiling its pipelines): the stand-in renders
+/// until the device joins, then takes no more passes (one may be in flight at the join), and the
+/// sums are the one device's. The build waits for the stand-in's third pass, so both render.
+#[test]
+fn a_device_built_during_the_render_relieves_the_stand_in() {
+    let buffers = cornell_box(IntegratorChoice::Path);
+    let one = render(&mut CpuBackend::new(buffers.clone()), &buffers, 48, &[]);
+    let stand_in_passes = Arc::new(AtomicU32::new(0));
+    let stand_in = Box::new(Counted {
+        inner: Box::new(StandIn::new(buffers.clone()).unwrap()),
+        passes: stand_in_passes.clone(),
+    });
+    let (seen, scene) = (stand_in_passes.clone(), buffers.clone());
+    let build = move || -> anyhow::Result<Box<dyn Backend + Send>> {
+        let t = std::time::Instant::now();
+        while seen.load(Ordering::SeqCst) < 3 && t.elapsed().as_secs() < 60 {
+            std::thread::sleep(std::time::Duration::from_millis(2));
+        }
+        Ok(Box::new(CpuBackend::new(scene)))
+    };
+    let device = Device::Build { name: "built later".into(), build: Box::new(build) };
+    let mut pool = starting_pool(&buffers, stand_in, device);
+    let sums = render(&mut pool, &buffers, 48, &[]);
+    assert_same_sums("stand-in, then the built device", &sums, &one);
+    let shares = pool.shares();
+    let by_stand_in = stand_in_passes.load(Ordering::SeqCst);
+    assert!((3..=4).contains(&by_stand_in), "the stand-in ran {by_stand_in} passes (shares {shares:?})");
+    assert!(shares[1] > 0, "the built device rendered nothing (shares {shares:?})");
+}
+
+/// A device that cannot be built (a GPU that fails to start) leaves the stand-in rendering, and a
+/// render the stand-in completes does not wait for a build still running.
+#[test]
+fn the_stand_in_renders_alone_when_the_device_fails_or_is_late() {
+    let buffers = cornell_box(IntegratorChoice::Path);
+    let one = render(&mut CpuBackend::new(buffers.clone()), &buffers, 16, &[]);
+    let failed =
+        Device::Build { name: "broken".into(), build: Box::new(|| anyhow::bail!("no pipeline (injected)")) };
+    let mut pool = starting_pool(&buffers, cpu(&buffers), failed);
+    assert_same_sums("a failed build", &render(&mut pool, &buffers, 16, &[]), &one);
+    let late = Device::Build {
+        name: "late".into(),
+        build: Box::new(|| {
+            std::thread::sleep(std::time::Duration::from_secs(30));
+            anyhow::bail!("too late")
+        }),
+    };
+    let t = std::time::Instant::now();
+    let mut pool = starting_pool(&buffers, cpu(&buffers), late);
+    assert_same_sums("a late build", &render(&mut pool, &buffers, 16, &[]), &one);
+    drop(pool);
+    assert!(t.elapsed().as_secs() < 20, "the render waited {:?} for the build", t.elapsed());
 }

@@ -8,6 +8,7 @@ pub mod path_loop;
 pub mod pool;
 pub mod prune;
 pub mod runtime_dir;
+pub mod stand_in;
 pub mod variant;
 
 use crate::film::Accumulation;
@@ -39,7 +40,8 @@ pub trait Backend {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum BackendChoice {
-    /// The GPU when a hardware adapter exists, else the CPU.
+    /// The GPU when a hardware adapter exists, else the CPU. A render (`render`, Python's
+    /// `Scene.render`) starts on the CPU while the GPU's pipelines are built (`create_starting`).
     Auto,
     /// wgpu (Vulkan); accepts software adapters such as lavapipe.
     Gpu,
@@ -164,6 +166,54 @@ pub fn create_on(
     let pixels = (buffers.params.width * buffers.params.height) as usize;
     let batched = crate::film::batch_means(&buffers.params);
     Ok(Box::new(pool::Pool::new(devices, Accumulation::new(pixels, batched))?))
+}
+
+/// `create_on` for a render that someone waits on (the `render` command, Python's `Scene.render`):
+/// with `Auto` and a hardware GPU, the GPUs' devices are built on their own threads while a CPU
+/// stand-in renders (`pool::Pool::starting`), so that a scene the GPU has never compiled shows its
+/// first image at the CPU's pace rather than after the build (tens of seconds on an H200: README,
+/// "What a first render costs"); the stand-in stops once a GPU is ready. The image is the same
+/// estimator (samples are a function of their index, whichever device draws them) but not the same
+/// bits from run to run; `--backend gpu` renders on the GPUs alone. Measurements (`bench`,
+/// `convergence`) use `create_on`.
+pub fn create_starting(
+    choice: BackendChoice,
+    gpus: &GpuSelection,
+    buffers: &crate::buffers::SceneBuffers,
+) -> Result<Box<dyn Backend + Send>> {
+    if choice != BackendChoice::Auto || std::env::var_os("CAUSTIC_CPU_START").is_some_and(|v| v == "0") {
+        return create_on(choice, gpus, buffers);
+    }
+    let adapters = gpu::adapter_types();
+    let Ok(indices) = resolve_gpus(gpus, &adapters, true) else {
+        return create_on(choice, gpus, buffers);
+    };
+    let need = crate::memory::render_need(buffers);
+    let (w, h) = (buffers.params.width, buffers.params.height);
+    crate::memory::check(need, crate::memory::available(), &format!("a {w}×{h} render"))?;
+    // The stand-in holds a second copy of the scene: where that would crowd the host's memory, the
+    // GPUs start alone.
+    if crate::memory::available().is_none_or(|a| need.saturating_mul(3) > a) {
+        return create_on(choice, gpus, buffers);
+    }
+    path_loop::requested()?;
+    variant::requested_workgroups()?;
+    cpu::wide_requested()?;
+    let devices = indices
+        .into_iter()
+        .map(|i| {
+            let scene = buffers.clone();
+            let build = move || -> Result<Box<dyn Backend + Send>> {
+                Ok(Box::new(gpu::GpuBackend::on_adapter(&scene, i)?))
+            };
+            let name = adapters.get(i).map_or_else(|| format!("GPU {i}"), |a| a.0.clone());
+            pool::Device::Build { name: format!("{name} (starting)"), build: Box::new(build) }
+        })
+        .collect();
+    let stand_in = Box::new(stand_in::StandIn::new(buffers.clone())?);
+    let pixels = (w * h) as usize;
+    let batched = crate::film::batch_means(&buffers.params);
+    Ok(Box::new(pool::Pool::starting(stand_in, devices, Accumulation::new(pixels, batched))?))
 }
 
 /// `create_on` with every suitable GPU (today's single adapter where there is one).

@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""First image of a scene, whole process, caustic beside Mitsuba 3 in one run: what a user waits for
+between typing the command and having the image file, with every compile cache removed first (cold)
+and again with the caches that run left (warm).
+
+For each scene: caustic `render SCENE --spp N -o out.exr` with the default backend (`auto`: on a
+machine with a GPU, a CPU stand-in renders while the GPU's pipelines are built; `backend::create_starting`)
+and, with --gpu-only, with `--backend gpu` too (the GPU alone, waiting for its build); Mitsuba 3
+(`--variant`, `cuda_ad_rgb` by default) in a fresh Python process that loads the scene, renders N spp
+and writes the EXR. "Cold" removes `~/.cache/caustic` (pruned kernels, pipeline trial decisions),
+`~/.cache/nvidia` and `~/.nv` (the NVIDIA driver's shader cache) before caustic's run and `~/.drjit`
+(Dr.Jit's kernel cache) before Mitsuba's; "warm" runs the same command again at once.
+
+Prints one Markdown table (seconds, and Mitsuba's time over caustic's: above 1, caustic first) and
+checks that every image was written. Usage (from the repository root, on the machine measured):
+    python3 scripts/first-image.py --caustic target/release/caustic --shared ../shared
+    python3 scripts/first-image.py --scenes cbox,bsdf_dielectric_glass --spp 64 --gpu-only
+Scenes are named as in ../shared/refs/mitsuba/refs.json.
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+CAUSTIC_CACHES = ["~/.cache/caustic", "~/.cache/nvidia", "~/.nv"]
+MITSUBA_CACHES = ["~/.drjit"]
+
+MITSUBA_RENDER = """
+import sys, mitsuba as mi
+mi.set_variant(sys.argv[1])
+scene = mi.load_file(sys.argv[2])
+mi.Bitmap(mi.render(scene, spp=int(sys.argv[3]))).write(sys.argv[4])
+"""
+
+
+def clear(paths):
+    for p in paths:
+        shutil.rmtree(os.path.expanduser(p), ignore_errors=True)
+
+
+def timed(command, env=None):
+    """Seconds the whole process took, or None with its last lines printed where it failed."""
+    t = time.perf_counter()
+    run = subprocess.run(command, capture_output=True, text=True, env=env)
+    seconds = time.perf_counter() - t
+    if run.returncode != 0:
+        print(f"failed: {' '.join(command)}\n{(run.stdout + run.stderr)[-800:]}", file=sys.stderr)
+        return None
+    return seconds
+
+
+def fmt(x):
+    return "-" if x is None else f"{x:.1f}"
+
+
+def ratio(m, c):
+    return "-" if m is None or c is None else f"{m / c:.2f}"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--caustic", default="target/release/caustic")
+    ap.add_argument("--shared", default="../shared")
+    ap.add_argument("--scenes", default="cbox,bsdf_dielectric_glass,bsdf_roughconductor_copper,shape_ply_bunny")
+    ap.add_argument("--spp", type=int, default=64)
+    ap.add_argument("--variant", default="cuda_ad_rgb")
+    ap.add_argument("--python", default=sys.executable, help="a Python with mitsuba installed")
+    ap.add_argument("--gpu-only", action="store_true", help="also time caustic with --backend gpu (cold)")
+    args = ap.parse_args()
+    refs = json.load(open(os.path.join(args.shared, "refs/mitsuba/refs.json")))["scenes"]
+    scratch = tempfile.mkdtemp(prefix="first-image-")
+    header = "| scene | Mitsuba cold | caustic cold | Mitsuba / caustic | Mitsuba warm | caustic warm | Mitsuba / caustic |"
+    if args.gpu_only:
+        header += " caustic GPU alone, cold |"
+    rows = [header, "|" + "---|" * (header.count("|") - 1)]
+    for name in args.scenes.split(","):
+        path = os.path.join(args.shared, "scenes/mitsuba", refs[name]["file"])
+        out = os.path.join(scratch, f"{name}.exr")
+        caustic = [args.caustic, "render", path, "--spp", str(args.spp), "-q", "-o", out]
+        mitsuba = [args.python, "-c", MITSUBA_RENDER, args.variant, path, str(args.spp), out]
+        clear(MITSUBA_CACHES)
+        m_cold, m_warm = timed(mitsuba), timed(mitsuba)
+        clear(CAUSTIC_CACHES)
+        c_cold = timed(caustic)
+        c_warm = timed(caustic)
+        row = [name, fmt(m_cold), fmt(c_cold), ratio(m_cold, c_cold), fmt(m_warm), fmt(c_warm), ratio(m_warm, c_warm)]
+        if args.gpu_only:
+            clear(CAUSTIC_CACHES)
+            row.append(fmt(timed(caustic + ["--backend", "gpu"])))
+        rows.append("| " + " | ".join(row) + " |")
+        print(rows[-1], file=sys.stderr, flush=True)
+    shutil.rmtree(scratch, ignore_errors=True)
+    print("\n".join(rows))
+
+
+if __name__ == "__main__":
+    main()
