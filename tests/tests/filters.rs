@@ -3,7 +3,7 @@
 //! everywhere; the references `filters_<name>.exr` are written by `filters.py`), per-pixel z-test and
 //! mean-luminance z-score on the CPU and the GPU backend, with a negative control (the Gaussian
 //! filter's image against the Lanczos reference). The sampling itself is checked in
-//! `caustic::filter_table`'s unit tests; light tracing's signed splats in `ptracer.rs`.
+//! `caustic::prepare::filter_table`'s unit tests; light tracing's signed splats in `ptracer.rs`.
 use caustic::backend::BackendChoice;
 use caustic_tests::*;
 
@@ -61,7 +61,7 @@ fn lanczos_without_lobes_is_refused() {
          <rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"0\"/></rfilter></film></sensor>\n</scene>\n",
     )
     .unwrap();
-    let Err(e) = caustic::load_scene(&path, &[]) else { panic!("lanczos with lobes = 0 loaded") };
+    let Err(e) = caustic::load::load_scene(&path, &[]) else { panic!("lanczos with lobes = 0 loaded") };
     let message = format!("{e:#}");
     std::fs::remove_dir_all(&dir).ok();
     assert!(message.contains("lobes.xml:3") && message.contains("lobes"), "{message}");

@@ -4,9 +4,9 @@
 //! order of float additions. Without multi-GPU hardware: two CPU backends, and two logical devices
 //! on one Vulkan adapter (lavapipe in CI).
 use caustic::backend::{cpu::CpuBackend, pool::Pool, Backend, BackendChoice, GpuSelection};
-use caustic::buffers::{self, SceneBuffers};
-use caustic::film::Accumulation;
-use caustic::render::render_with_checkpoints;
+use caustic::output::film::Accumulation;
+use caustic::prepare::buffers::{self, SceneBuffers};
+use caustic::render::passes::render_with_checkpoints;
 use caustic::scene::IntegratorChoice;
 use caustic_kernel::layout::FrameParams;
 use caustic_tests::*;
@@ -22,7 +22,8 @@ const SUM_TOLERANCE: f64 = 1e-5;
 
 fn cornell_box(integrator: IntegratorChoice) -> SceneBuffers {
     let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml"));
-    let mut scene = caustic::load_scene(path, &defines(&[("res", "12")])).expect("the Cornell box loads");
+    let mut scene =
+        caustic::load::load_scene(path, &defines(&[("res", "12")])).expect("the Cornell box loads");
     scene.integrator = scene.integrator.overridden(integrator);
     buffers::build(&scene).expect("the Cornell box builds")
 }
@@ -67,7 +68,8 @@ fn assert_same_sums(what: &str, a: &Accumulation, b: &Accumulation) {
 
 fn cpu_pool(buffers: &SceneBuffers, devices: Vec<Box<dyn Backend + Send>>) -> Pool {
     let pixels = (buffers.params.width * buffers.params.height) as usize;
-    Pool::new(devices, Accumulation::new(pixels, caustic::film::batch_means(&buffers.params))).unwrap()
+    Pool::new(devices, Accumulation::new(pixels, caustic::output::film::batch_means(&buffers.params)))
+        .unwrap()
 }
 
 fn cpu(buffers: &SceneBuffers) -> Box<dyn Backend + Send> {

@@ -7,8 +7,8 @@
 use super::path_loop::PathLoop;
 use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
 use super::Backend;
-use crate::buffers::SceneBuffers;
-use crate::film::{Accumulation, Folding};
+use crate::output::film::{Accumulation, Folding};
+use crate::prepare::buffers::SceneBuffers;
 use anyhow::{anyhow, bail, Context, Result};
 use caustic_kernel::integrator::{splats, traces_camera_paths};
 use caustic_kernel::layout::{
@@ -182,7 +182,7 @@ impl GpuBackend {
         let light_pipeline =
             splats(integrator).then(|| factory.build(first_loop, DEFAULT_WORKGROUP, LIGHT_ENTRY));
         // (Also the splatting film's gather.)
-        let batched = crate::film::batch_means(&buffers.params);
+        let batched = crate::output::film::batch_means(&buffers.params);
         let resolve_pipeline = batched.then(|| factory.build(first_loop, DEFAULT_WORKGROUP, RESOLVE_ENTRY));
         if let Some(e) = pollster::block_on(scope.pop()) {
             bail!("the GPU rejected the kernel on {}: {e}", info.name);

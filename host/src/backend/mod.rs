@@ -8,10 +8,11 @@ pub mod path_loop;
 pub mod pool;
 pub mod prune;
 pub mod runtime_dir;
+pub mod schedule;
 pub mod variant;
 
-use crate::film::Accumulation;
-use crate::schedule::Lanes;
+use crate::backend::schedule::Lanes;
+use crate::output::film::Accumulation;
 use anyhow::{bail, Result};
 use caustic_kernel::layout::FrameParams;
 
@@ -122,12 +123,12 @@ pub fn resolve_gpus(
 pub fn create_on(
     choice: BackendChoice,
     gpus: &GpuSelection,
-    buffers: &crate::buffers::SceneBuffers,
+    buffers: &crate::prepare::buffers::SceneBuffers,
 ) -> Result<Box<dyn Backend + Send>> {
     let (w, h) = (buffers.params.width, buffers.params.height);
-    crate::memory::check(
-        crate::memory::render_need(buffers),
-        crate::memory::available(),
+    crate::system::memory::check(
+        crate::system::memory::render_need(buffers),
+        crate::system::memory::available(),
         &format!("a {w}×{h} render"),
     )?;
     // (A bad CAUSTIC_PATH_LOOP, CAUSTIC_WORKGROUP or CAUSTIC_CPU_BVH is an error on every backend.)
@@ -162,14 +163,14 @@ pub fn create_on(
         return Ok(devices.pop().expect("one device"));
     }
     let pixels = (buffers.params.width * buffers.params.height) as usize;
-    let batched = crate::film::batch_means(&buffers.params);
+    let batched = crate::output::film::batch_means(&buffers.params);
     Ok(Box::new(pool::Pool::new(devices, Accumulation::new(pixels, batched))?))
 }
 
 /// `create_on` with every suitable GPU (today's single adapter where there is one).
 pub fn create(
     choice: BackendChoice,
-    buffers: &crate::buffers::SceneBuffers,
+    buffers: &crate::prepare::buffers::SceneBuffers,
 ) -> Result<Box<dyn Backend + Send>> {
     create_on(choice, &GpuSelection::All, buffers)
 }

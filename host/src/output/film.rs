@@ -1,0 +1,452 @@
+//! The developed image: per-pixel mean and the variance of that mean, and image files. (The kernel's
+//! `film` module is the other end: where each camera sample lands on the sensor.)
+use anyhow::{bail, Context, Result};
+use caustic_kernel::layout::PixelAccum;
+use std::path::Path;
+
+/// A linear-RGB image with a per-pixel, per-channel variance estimate of each value.
+#[derive(Clone, Debug)]
+pub struct Film {
+    pub width: u32,
+    pub height: u32,
+    /// Row-major RGB means.
+    pub rgb: Vec<[f32; 3]>,
+    /// Variance of each mean (sample variance / n), when known. f64: a lamp of radiance 1e30 gives
+    /// variances near 1e55, past f32's range (3.4e38), and the estimate is computed in f64 anyway.
+    pub variance: Option<Vec<[f64; 3]>>,
+    /// Samples dropped because they were not finite, or because the GPU driver cut them short.
+    pub invalid_samples: u64,
+    /// A note written into EXR files' `comments` attribute (a partial render says so there).
+    pub comment: Option<String>,
+    /// How many times the summed variances of the pixels the variance of their sum is: 1 where each
+    /// camera sample reaches one pixel, more under the splatting film, whose neighbouring pixels
+    /// share samples (`splat_sum_variance_factor`). `compare` scales the mean luminance's standard
+    /// error by its root; the variance file carries it (`SUM_VARIANCE_NOTE`).
+    pub sum_variance_factor: f64,
+    /// Extra EXR channels after R, G, B: the AOVs of Mitsuba's `aov` integrator (`crate::output::aov`),
+    /// empty otherwise. PNG and PPM files and the tev stream show the image only.
+    pub aovs: Vec<AovChannel>,
+}
+
+/// One extra channel of the film: its EXR name, per-pixel values (row-major) and, where known, the
+/// variance of each value (the mean of its samples).
+#[derive(Clone, Debug, PartialEq)]
+pub struct AovChannel {
+    pub name: String,
+    pub values: Vec<f32>,
+    pub variance: Option<Vec<f64>>,
+}
+
+/// One pixel's totals on the host: the device's f32 sums (`PixelAccum`) folded in every
+/// `FOLD_SAMPLES` samples per pixel and at every read-back. A million samples of 0.1 summed in f32
+/// came out 3.8e-5 high (each pass added 25.6 to a sum near 1e5, whose ulp is 0.0078, rounding the
+/// same way every pass); f64 totals keep the device's sums small.
+#[repr(C)]
+#[derive(Clone, Copy, Default, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PixelTotal {
+    pub sum: [f64; 3],
+    pub count: f64,
+    /// Sum of the squared estimates (unscaled: `fold` divides the kernel's square scale out).
+    pub sum_sq: [f64; 3],
+    pub invalid: f64,
+}
+
+/// Samples per pixel after which a backend folds its device's f32 sums into the host's f64 totals
+/// and clears them. The sums then stay below 4096 × the pixel's mean, where the ulp of a pass's add
+/// is 2⁻¹² of the sum's ulp at a million samples; the GPU reads its sums back once per 4096 spp
+/// (once per 16 passes at the largest pass).
+pub const FOLD_SAMPLES: u32 = 4096;
+
+/// A backend's accumulated sums: one `PixelTotal` per pixel, and how their squares were summed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Accumulation {
+    pub pixels: Vec<PixelTotal>,
+    /// `None`: `sum_sq` sums each sample's square (camera paths). `Some(b)`: the sums came in `b`
+    /// batches (passes) whose pixel sums `S` were resolved from splats, `sum_sq` summing `S²/k` for a
+    /// pass of `k` samples, and the film estimates the variance from batch means: a light path adds
+    /// to arbitrary pixels, so no per-sample square exists for a pixel.
+    pub batches: Option<u32>,
+}
+
+/// Whether a render with these parameters estimates each pixel's variance from batch means (its
+/// `Accumulation::batches`): light tracing's splats and the splatting film's gathered sums give a
+/// pixel no per-sample square.
+pub fn batch_means(params: &caustic_kernel::layout::FrameParams) -> bool {
+    caustic_kernel::film_splat::words_per_pixel(params) > 0
+}
+
+impl Accumulation {
+    pub fn new(pixels: usize, splatted: bool) -> Self {
+        Accumulation { pixels: vec![PixelTotal::default(); pixels], batches: splatted.then_some(0) }
+    }
+
+    /// Adds a device's f32 sums (one `PixelAccum` per pixel) whose squares were scaled by
+    /// `2^square_scale_log2` before squaring (`FrameParams::square_scale_log2`).
+    pub fn fold(&mut self, device: &[PixelAccum], square_scale_log2: i32) {
+        assert_eq!(self.pixels.len(), device.len(), "accumulations of different sizes");
+        let unscale = 2f64.powi(-2 * square_scale_log2);
+        for (a, b) in self.pixels.iter_mut().zip(device) {
+            for c in 0..3 {
+                a.sum[c] += b.sum[c] as f64;
+                a.sum_sq[c] += b.sum_sq[c] as f64 * unscale;
+            }
+            a.count += b.count as f64;
+            a.invalid += b.invalid as f64;
+        }
+    }
+
+    /// Adds another device's sums over disjoint samples (several devices, MPI ranks): the sums, counts
+    /// and squares add, and so do the batches (each pass of each device is one batch mean). Both
+    /// must have the same size and kind.
+    pub fn add(&mut self, other: &Accumulation) {
+        assert_eq!(self.pixels.len(), other.pixels.len(), "accumulations of different sizes");
+        assert_eq!(self.batches.is_some(), other.batches.is_some(), "splatted and per-sample sums");
+        for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
+            for c in 0..3 {
+                a.sum[c] += b.sum[c];
+                a.sum_sq[c] += b.sum_sq[c];
+            }
+            a.count += b.count;
+            a.invalid += b.invalid;
+        }
+        if let (Some(a), Some(b)) = (&mut self.batches, other.batches) {
+            *a += b;
+        }
+    }
+
+    /// An empty accumulation of the same size and kind.
+    pub fn empty_like(&self) -> Accumulation {
+        Accumulation::new(self.pixels.len(), self.batches.is_some())
+    }
+}
+
+/// A device's f32 sums and the host's f64 totals they fold into: what both backends keep, so that
+/// both fold on the same schedule (every `FOLD_SAMPLES` samples per pixel, and at every read).
+#[derive(Clone, Debug)]
+pub struct Folding {
+    /// Everything folded so far (and the batch count of splatted sums).
+    pub total: Accumulation,
+    /// Samples per pixel in the device's sums since they were last folded.
+    pub unfolded: u32,
+    pub square_scale_log2: i32,
+}
+
+impl Folding {
+    pub fn new(pixels: usize, splatted: bool, square_scale_log2: i32) -> Self {
+        Folding { total: Accumulation::new(pixels, splatted), unfolded: 0, square_scale_log2 }
+    }
+
+    /// Counts a pass of `samples` per pixel (and a batch, for splatted sums); whether the device's
+    /// sums are due to be folded (`fold` them, then clear them).
+    pub fn passed(&mut self, samples: u32) -> bool {
+        self.unfolded += samples;
+        if let Some(b) = &mut self.total.batches {
+            *b += 1;
+        }
+        self.unfolded >= FOLD_SAMPLES
+    }
+
+    /// Folds the device's sums in (the caller clears them).
+    pub fn fold(&mut self, device: &[PixelAccum]) {
+        self.total.fold(device, self.square_scale_log2);
+        self.unfolded = 0;
+    }
+
+    /// Replaces the totals (resuming from a checkpoint; the caller clears the device's sums).
+    pub fn replace(&mut self, accum: &Accumulation) -> anyhow::Result<()> {
+        anyhow::ensure!(
+            accum.pixels.len() == self.total.pixels.len()
+                && accum.batches.is_some() == self.total.batches.is_some(),
+            "accumulation buffer of {} pixels ({}), expected {}",
+            accum.pixels.len(),
+            if accum.batches.is_some() { "splatted" } else { "per sample" },
+            self.total.pixels.len()
+        );
+        self.total = accum.clone();
+        self.unfolded = 0;
+        Ok(())
+    }
+}
+
+impl Film {
+    /// An image of `rgb` (row-major, `width` × `height`) and nothing else: no variance, no AOVs.
+    pub fn from_rgb(width: u32, height: u32, rgb: Vec<[f32; 3]>) -> Film {
+        Film {
+            width,
+            height,
+            rgb,
+            variance: None,
+            invalid_samples: 0,
+            comment: None,
+            sum_variance_factor: 1.0,
+            aovs: Vec::new(),
+        }
+    }
+
+    pub fn from_accum(width: u32, height: u32, accum: &Accumulation) -> Film {
+        let mut rgb = Vec::with_capacity((width * height) as usize);
+        let mut variance = Vec::with_capacity(rgb.capacity());
+        let mut invalid = 0u64;
+        for px in &accum.pixels {
+            // Samples, or the splatting film's summed filter weights, which may be below one (a
+            // corner pixel at one sample) or, under a negative lobe at a handful of samples, below
+            // zero: Mitsuba's `hdrfilm` divides by them all the same. A pixel nothing reached is black.
+            let n = if px.count != 0.0 { px.count } else { 1.0 };
+            let mean: [f64; 3] = std::array::from_fn(|c| px.sum[c] / n);
+            // Variance of the mean: per sample, (Σx² − n·x̄²) / (n(n−1)); from b batch means weighted
+            // by their sizes (samples, or summed weights), (Σ S²/k − n·x̄²) / (n(b−1)).
+            let dof = match accum.batches {
+                None => (n - 1.0).max(1.0),
+                Some(b) => (b as f64 - 1.0).max(1.0),
+            };
+            let var: [f64; 3] =
+                std::array::from_fn(|c| (px.sum_sq[c] - n * mean[c] * mean[c]).max(0.0) / (n.abs() * dof));
+            rgb.push(mean.map(|m| m as f32));
+            variance.push(var);
+            invalid += px.invalid as u64;
+        }
+        Film {
+            width,
+            height,
+            rgb,
+            variance: Some(variance),
+            invalid_samples: invalid,
+            comment: None,
+            sum_variance_factor: 1.0,
+            aovs: Vec::new(),
+        }
+    }
+
+    /// `from_accum` for a render of `buffers`, with its film's `sum_variance_factor`.
+    pub fn develop(buffers: &crate::prepare::buffers::SceneBuffers, accum: &Accumulation) -> Film {
+        let mut film = Film::from_accum(buffers.params.width, buffers.params.height, accum);
+        film.sum_variance_factor = splat_sum_variance_factor(&buffers.params, &buffers.tables);
+        film
+    }
+
+    /// The window of `width` × `height` pixels starting at (`x`, `y`) (clamped to the image).
+    pub fn crop(&self, x: u32, y: u32, width: u32, height: u32) -> Film {
+        let (x, y) = (x.min(self.width), y.min(self.height));
+        let (w, h) = (width.min(self.width - x), height.min(self.height - y));
+        let rows = (y..y + h).flat_map(|row| (x..x + w).map(move |col| (row * self.width + col) as usize));
+        Film {
+            width: w,
+            height: h,
+            rgb: rows.clone().map(|i| self.rgb[i]).collect(),
+            variance: self.variance.as_ref().map(|v| rows.clone().map(|i| v[i]).collect()),
+            invalid_samples: self.invalid_samples,
+            comment: self.comment.clone(),
+            sum_variance_factor: self.sum_variance_factor,
+            aovs: self
+                .aovs
+                .iter()
+                .map(|c| AovChannel {
+                    name: c.name.clone(),
+                    values: rows.clone().map(|i| c.values[i]).collect(),
+                    variance: c.variance.as_ref().map(|v| rows.clone().map(|i| v[i]).collect()),
+                })
+                .collect(),
+        }
+    }
+
+    /// Writes `.exr` (linear float), `.png` (sRGB, clamped) or `.ppm` (sRGB, clamped, binary).
+    pub fn save(&self, path: &Path) -> Result<()> {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        }
+        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+        match ext.as_str() {
+            "exr" if !self.aovs.is_empty() => crate::output::aov::exr::write(self, path),
+            "exr" => write_exr(path, self.width, self.height, &self.rgb, self.comment.as_deref()),
+            "png" => {
+                let img =
+                    image::RgbImage::from_fn(self.width, self.height, |x, y| image::Rgb(self.srgb8(x, y)));
+                crate::system::files::write(path, &png_bytes(&img)?)
+            }
+            "ppm" => {
+                let mut bytes = format!("P6\n{} {}\n255\n", self.width, self.height).into_bytes();
+                for y in 0..self.height {
+                    for x in 0..self.width {
+                        bytes.extend(self.srgb8(x, y));
+                    }
+                }
+                crate::system::files::write(path, &bytes)
+            }
+            other => bail!("{}: unknown image format '.{other}' (use .exr, .png or .ppm)", path.display()),
+        }
+    }
+
+    /// Writes the variance estimate (of each pixel's mean) as an EXR. EXR holds f32: a variance past
+    /// f32's range (a lamp of radiance above ~1e19) is written as the largest f32, with a warning.
+    pub fn save_variance(&self, path: &Path) -> Result<()> {
+        let Some(v) = &self.variance else { bail!("this image has no variance estimate") };
+        let saturated = v.iter().flatten().filter(|&&x| x > f32::MAX as f64).count();
+        if saturated > 0 {
+            eprintln!(
+                "warning: {}: {saturated} variance value(s) exceed f32's range ({:e}) and are written as it",
+                path.display(),
+                f32::MAX
+            );
+        }
+        let narrow: Vec<[f32; 3]> = v.iter().map(|p| p.map(|x| x.min(f32::MAX as f64) as f32)).collect();
+        let factor = format!("{SUM_VARIANCE_NOTE}{}", self.sum_variance_factor);
+        let comment = match &self.comment {
+            Some(c) => format!("{c}\n{factor}"),
+            None => factor,
+        };
+        write_exr(path, self.width, self.height, &narrow, Some(&comment))
+    }
+
+    fn srgb8(&self, x: u32, y: u32) -> [u8; 3] {
+        self.rgb[(y * self.width + x) as usize].map(|c| (linear_to_srgb(c) * 255.0 + 0.5) as u8)
+    }
+
+    pub fn load_exr(path: &Path) -> Result<Film> {
+        use exr::prelude::*;
+        let bytes = crate::load::image_io::read_exr(path)?;
+        let image = read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .rgba_channels(
+                |resolution, _| {
+                    (resolution.width(), vec![[0.0f32; 3]; resolution.width() * resolution.height()])
+                },
+                |(w, data), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+                    data[pos.y() * *w + pos.x()] = [r, g, b]
+                },
+            )
+            .first_valid_layer()
+            .all_attributes()
+            .from_buffered(std::io::Cursor::new(bytes))
+            .with_context(|| format!("cannot read EXR image {}", path.display()))?;
+        let size = image.layer_data.size;
+        let (_, rgb) = image.layer_data.channel_data.pixels;
+        Ok(Film::from_rgb(size.width() as u32, size.height() as u32, rgb))
+    }
+
+    /// Loads an image's sibling variance file written by `render --variance`, if present.
+    pub fn load_with_variance(path: &Path) -> Result<Film> {
+        let mut film = Film::load_exr(path)?;
+        let var_path = variance_path(path);
+        if var_path.exists() {
+            let v = Film::load_exr(&var_path)?;
+            if v.width != film.width || v.height != film.height {
+                bail!("{}: size differs from {}", var_path.display(), path.display());
+            }
+            film.variance = Some(v.rgb.iter().map(|p| p.map(f64::from)).collect());
+            let comment = exr_comment(&var_path)?.unwrap_or_default();
+            let note = comment.lines().find_map(|l| l.strip_prefix(SUM_VARIANCE_NOTE));
+            if let Some(note) = note {
+                film.sum_variance_factor = match note.trim().parse::<f64>() {
+                    Ok(f) if f.is_finite() && f >= 1.0 => f,
+                    _ => bail!(
+                        "{}: a damaged note in its comments: {SUM_VARIANCE_NOTE}{note}",
+                        var_path.display()
+                    ),
+                };
+            }
+        }
+        Ok(film)
+    }
+}
+
+/// How a variance file's `comments` attribute carries `Film::sum_variance_factor` (a line of its
+/// own, the number after this).
+pub const SUM_VARIANCE_NOTE: &str = "caustic: variance of a sum of pixels / sum of their variances = ";
+
+/// `Film::sum_variance_factor` of the splatting film (1 without it), from the filter as the kernel
+/// tabulates it. Each sample adds w·L to the pixels it reaches, so in an image of locally even noise
+/// the variance of a sum of pixels is E[(Σw)²] / E[Σw²] times their summed variances, over samples
+/// uniform in a pixel; the filter is separable, so that is the square of the same ratio along one
+/// axis. Measured by midpoints over a pixel.
+pub fn splat_sum_variance_factor(params: &caustic_kernel::layout::FrameParams, tables: &[f32]) -> f64 {
+    if params.film_reach == 0 || caustic_kernel::integrator::splats(params.integrator) {
+        return 1.0;
+    }
+    const STEPS: u32 = 1024;
+    let r = params.film_reach as i32;
+    let (mut squared_sum, mut sum_of_squares) = (0.0f64, 0.0f64);
+    for k in 0..STEPS {
+        let u = (k as f32 + 0.5) / STEPS as f32;
+        let w: Vec<f64> = (-r..=r)
+            .map(|i| caustic_kernel::film::filter_weight(tables, params, i as f32 + 0.5 - u) as f64)
+            .collect();
+        squared_sum += w.iter().sum::<f64>().powi(2);
+        sum_of_squares += w.iter().map(|x| x * x).sum::<f64>();
+    }
+    if sum_of_squares > 0.0 {
+        (squared_sum / sum_of_squares).powi(2).max(1.0)
+    } else {
+        1.0
+    }
+}
+
+/// Fails early (before any rendering) on an output name whose format caustic cannot write.
+pub fn check_output_path(path: &Path) -> Result<()> {
+    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some("exr" | "png" | "ppm") => Ok(()),
+        _ => bail!("{}: unknown image format (use .exr, .png or .ppm)", path.display()),
+    }
+}
+
+/// Fails early (before any rendering) if `path` cannot be written, naming it: creates its folder
+/// and opens the file for writing (without truncating one that exists; one created here is
+/// removed again).
+pub fn check_writable(path: &Path) -> Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let existed = path.exists();
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    if !existed {
+        std::fs::remove_file(path).ok();
+    }
+    Ok(())
+}
+
+/// `image.exr` → `image.variance.exr`.
+pub fn variance_path(path: &Path) -> std::path::PathBuf {
+    path.with_extension("variance.exr")
+}
+
+fn write_exr(path: &Path, width: u32, height: u32, data: &[[f32; 3]], comment: Option<&str>) -> Result<()> {
+    use exr::prelude::*;
+    let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
+        let p = data[y * width as usize + x];
+        (p[0], p[1], p[2])
+    });
+    let mut image = Image::from_channels((width as usize, height as usize), channels);
+    image.layer_data.attributes.comments = comment.map(Text::from);
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image.write().to_buffered(&mut bytes).with_context(|| format!("cannot encode {}", path.display()))?;
+    crate::system::files::write(path, bytes.get_ref())
+}
+
+/// A PNG file's bytes (encoded in memory: `files::write` writes them whole or not at all).
+pub fn png_bytes(img: &image::RgbImage) -> Result<Vec<u8>> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut bytes, image::ImageFormat::Png).context("cannot encode a PNG image")?;
+    Ok(bytes.into_inner())
+}
+
+/// The `comments` attribute of an EXR file's first layer, if it has one.
+pub fn exr_comment(path: &Path) -> Result<Option<String>> {
+    let bytes = crate::system::files::read(path, "EXR image")?;
+    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
+        .with_context(|| format!("cannot read EXR header {}", path.display()))?;
+    Ok(meta.headers.first().and_then(|h| h.own_attributes.comments.as_ref()).map(|t| t.to_string()))
+}
+
+/// The sRGB transfer function, clamped to [0, 1].
+pub fn linear_to_srgb(c: f32) -> f32 {
+    let c = if c.is_finite() { c.clamp(0.0, 1.0) } else { 0.0 };
+    if c <= 0.0031308 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}

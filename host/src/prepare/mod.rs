@@ -1,0 +1,11 @@
+//! A `scene::Scene` into the kernel's buffers (`buffers::SceneBuffers`): primitives in BVH order,
+//! the BVH (two-level with instances), per-triangle attributes, materials, textures, lights, the
+//! film's filter tables, the irradiance meter's table, and the wide BVH the CPU walks.
+//!
+//! Uses `scene`, `load` (Mitsuba's spectral tables) and `system`.
+mod attribute_buffers;
+pub mod buffers;
+pub mod filter_table;
+pub mod instance_buffers;
+pub mod irradiance_meter;
+pub mod wide_bvh;

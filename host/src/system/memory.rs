@@ -1,0 +1,71 @@
+//! Host memory: what a render will allocate, checked against what the machine has before anything
+//! is allocated. A 32768×32768 film needs about 290 GiB here; allocating it aborted the process
+//! ("memory allocation failed") instead of refusing with a message.
+use crate::prepare::buffers::SceneBuffers;
+use anyhow::{bail, Result};
+use caustic_kernel::layout::PixelAccum;
+
+/// Host bytes a render of `buffers` needs at its peak: the scene, and per pixel the device's f32
+/// sums (the CPU's own, or the GPU's read-back staging and the copy collected from it), three f64
+/// totals (the backend's, the copy read back and one summing several devices), the finished image's
+/// means and variances, and a pass's splat words for light tracing.
+pub fn render_need(buffers: &SceneBuffers) -> u64 {
+    let pixels = buffers.params.width as u64 * buffers.params.height as u64;
+    let accum = std::mem::size_of::<PixelAccum>() as u64;
+    let total = std::mem::size_of::<crate::output::film::PixelTotal>() as u64;
+    let image = 3 * 4 + 3 * 8;
+    let splat = caustic_kernel::film_splat::words_per_pixel(&buffers.params) as u64 * 4;
+    scene_bytes(buffers) + pixels * (2 * accum + 3 * total + image + splat)
+}
+
+/// Bytes of the scene's own buffers (geometry, BVH, materials, lights, tables), without the film's.
+pub fn scene_bytes(buffers: &SceneBuffers) -> u64 {
+    crate::backend::limits::buffer_sizes(buffers)
+        .into_iter()
+        .filter(|(what, _)| !matches!(*what, "film accumulator" | "splats"))
+        .map(|(_, size)| size)
+        .sum()
+}
+
+/// The memory the kernel says can be allocated without swapping (`MemAvailable` of /proc/meminfo);
+/// `None` where that is not known (another OS, an old kernel).
+pub fn available() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    parse_mem_available(&info)
+}
+
+/// This process's peak resident memory so far (`VmHWM` of /proc/self/status); `None` where that is
+/// not known.
+pub fn peak_resident() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    kib_field(&status, "VmHWM:")
+}
+
+/// `MemAvailable:  22937888 kB` → bytes.
+pub fn parse_mem_available(meminfo: &str) -> Option<u64> {
+    kib_field(meminfo, "MemAvailable:")
+}
+
+/// The `NAME:  1234 kB` line of a /proc file, in bytes.
+fn kib_field(text: &str, name: &str) -> Option<u64> {
+    let line = text.lines().find_map(|l| l.strip_prefix(name))?;
+    let kib: u64 = line.trim().strip_suffix("kB")?.trim().parse().ok()?;
+    kib.checked_mul(1024)
+}
+
+/// Refuses `need` bytes for `what` when more than `available` (unknown: no check).
+pub fn check(need: u64, available: Option<u64>, what: &str) -> Result<()> {
+    match available {
+        Some(have) if need > have => bail!(
+            "{what} needs about {:.1} GiB of memory and this machine has {:.1} GiB available; \
+             render a smaller film (or a crop window)",
+            gib(need),
+            gib(have)
+        ),
+        _ => Ok(()),
+    }
+}
+
+fn gib(bytes: u64) -> f64 {
+    bytes as f64 / (1u64 << 30) as f64
+}
