@@ -495,7 +495,7 @@ fn bench_buffers(
     let loaded = start.elapsed().as_secs_f64();
     let buffers = buffers::build(&scene)?;
     // What a large scene costs before its first sample (the large-scene table in BENCHMARKS.md).
-    let scene_bytes = caustic::system::memory::scene_bytes(&buffers);
+    let scene_bytes = caustic::backend::memory::scene_bytes(&buffers);
     // With instances: the primitives stored (each group's once, and the instances themselves) and
     // the ones the instances place.
     let placed = match buffers.placed_prims {

@@ -8,9 +8,10 @@
 mod dict;
 
 use anyhow::Context;
+use caustic::backend::accumulation::{self, Accumulation};
 use caustic::backend::{self, Backend, BackendChoice, GpuSelection};
 use caustic::load::LoadOptions;
-use caustic::output::film::{self, Accumulation, Film};
+use caustic::output::film::{self, Film};
 use caustic::prepare::buffers::SceneBuffers;
 use caustic::render::{convergence, passes, session};
 use caustic::scene::{FilmMode, IntegratorChoice};
@@ -181,7 +182,7 @@ impl Scene {
             }
         };
         let pixels = (k.buffers.params.width * k.buffers.params.height) as usize;
-        let empty = Accumulation::new(pixels, film::batch_means(&k.buffers.params));
+        let empty = Accumulation::new(pixels, accumulation::batch_means(&k.buffers.params));
         k.backend.write_accum(&empty).map_err(host_error)?;
         let bar = session::progress_bar(progress, spp, 0);
         let mut raised = None;

@@ -363,7 +363,7 @@ fn a_film_over_the_gpu_binding_limit_is_refused() {
     let mut scene = caustic_tests::load_xml(&format!("<scene version=\"3.0.0\">{SENSOR}</scene>"), "limits");
     (scene.sensor.width, scene.sensor.height) = (width, height);
     let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
-    let need = caustic::system::memory::render_need(&buffers);
+    let need = caustic::backend::memory::render_need(&buffers);
     if caustic::system::memory::available().is_some_and(|have| need > have) {
         eprintln!("notice: a {width}×{height} film needs more memory than this machine has; test skipped");
         return;
@@ -385,7 +385,7 @@ fn a_film_larger_than_memory_is_refused() {
     let mut scene = caustic_tests::load_xml(&format!("<scene version=\"3.0.0\">{SENSOR}</scene>"), "memory");
     (scene.sensor.width, scene.sensor.height) = (32768, 32768);
     let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
-    let need = caustic::system::memory::render_need(&buffers);
+    let need = caustic::backend::memory::render_need(&buffers);
     assert!(need > 100 << 30, "a 32768² film needs {need} bytes?");
     let e =
         caustic::system::memory::check(need, Some(64 << 30), "a 32768×32768 render").unwrap_err().to_string();

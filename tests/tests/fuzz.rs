@@ -105,7 +105,7 @@ fn loaders_never_panic_on_mutated_files() {
         seed: 1,
         spp_total: 4,
         spp_done: 2,
-        accum: caustic::output::film::Accumulation::new(2, false),
+        accum: caustic::backend::accumulation::Accumulation::new(2, false),
     }
     .save(&checkpoint)
     .unwrap();
@@ -219,7 +219,7 @@ fn writers_never_overwrite_an_input_or_leave_half_a_file() {
                 seed: 2,
                 spp_total: 8,
                 spp_done: 4,
-                accum: caustic::output::film::Accumulation::new(6, false),
+                accum: caustic::backend::accumulation::Accumulation::new(6, false),
             }
             .save(&target),
             3 => caustic::render::convergence::write_csv(&target, &[("path", &[point][..])]),

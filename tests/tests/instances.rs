@@ -194,7 +194,7 @@ fn instances_store_their_group_once() {
     assert!(thousand.nodes.len() < ten.nodes.len() + 2 * 1000, "{} BVH nodes", thousand.nodes.len());
     // Each instance's two maps, 24 floats.
     assert!(thousand.tables.len() - ten.tables.len() == 990 * 24);
-    let bytes = caustic::system::memory::scene_bytes(&thousand) as f64;
+    let bytes = caustic::backend::memory::scene_bytes(&thousand) as f64;
     let flattened_triangles = 1000.0 * group as f64 * 48.0;
     println!("1000 instances: {:.2} MiB of scene buffers", bytes / (1 << 20) as f64);
     assert!(bytes < 0.01 * flattened_triangles, "{bytes} bytes");

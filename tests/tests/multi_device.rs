@@ -3,8 +3,8 @@
 //! union of the devices' passes is the single-device estimator and the sums may differ only by the
 //! order of float additions. Without multi-GPU hardware: two CPU backends, and two logical devices
 //! on one Vulkan adapter (lavapipe in CI).
+use caustic::backend::accumulation::Accumulation;
 use caustic::backend::{cpu::CpuBackend, pool::Pool, Backend, BackendChoice, GpuSelection};
-use caustic::output::film::Accumulation;
 use caustic::prepare::buffers::{self, SceneBuffers};
 use caustic::render::passes::render_with_checkpoints;
 use caustic::scene::IntegratorChoice;
@@ -68,8 +68,11 @@ fn assert_same_sums(what: &str, a: &Accumulation, b: &Accumulation) {
 
 fn cpu_pool(buffers: &SceneBuffers, devices: Vec<Box<dyn Backend + Send>>) -> Pool {
     let pixels = (buffers.params.width * buffers.params.height) as usize;
-    Pool::new(devices, Accumulation::new(pixels, caustic::output::film::batch_means(&buffers.params)))
-        .unwrap()
+    Pool::new(
+        devices,
+        Accumulation::new(pixels, caustic::backend::accumulation::batch_means(&buffers.params)),
+    )
+    .unwrap()
 }
 
 fn cpu(buffers: &SceneBuffers) -> Box<dyn Backend + Send> {

@@ -458,7 +458,7 @@ fn million_sample_furnace(choice: BackendChoice) {
 /// rounding, here required to be 1e-5 relative. With f32 sums alone: 0.10000376 on the CPU,
 /// 0.10000375 on lavapipe (3.8e-5 relative: each pass of 256 samples added 25.6 to an f32 sum near
 /// 1e5, whose ulp is 0.0078, and the rounding had the same sign pass after pass); the host now folds
-/// the sums into f64 every `film::FOLD_SAMPLES` samples.
+/// the sums into f64 every `accumulation::FOLD_SAMPLES` samples.
 fn million_constant_samples(choice: BackendChoice) {
     let xml = r#"<scene version="3.0.0">
     <sensor type="perspective"><float name="fov" value="20"/>

@@ -1,7 +1,7 @@
 //! The CPU backend: the kernel linked natively, over all cores, into f32 sums that fold into the
-//! host's f64 totals on the GPU's schedule (`film::Folding`).
+//! host's f64 totals on the GPU's schedule (`accumulation::Folding`).
+use super::accumulation::{Accumulation, Folding};
 use super::Backend;
-use crate::output::film::{Accumulation, Folding};
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::Result;
 use caustic_kernel::layout::{FrameParams, PixelAccum, SceneView};
@@ -33,7 +33,7 @@ pub struct CpuBackend {
 impl CpuBackend {
     pub fn new(buffers: SceneBuffers) -> Self {
         let pixels = (buffers.params.width * buffers.params.height) as usize;
-        let batched = crate::output::film::batch_means(&buffers.params);
+        let batched = super::accumulation::batch_means(&buffers.params);
         let folding = Folding::new(pixels, batched, buffers.params.square_scale_log2);
         use super::path_loop::{requested, PathLoop, Request};
         let regenerate = requested().ok() == Some(Request::Fixed(PathLoop::Regenerate));

@@ -1,9 +1,13 @@
 //! Rendering backends: the same kernel on the GPU (wgpu compute) or the CPU (rayon), and several
 //! GPUs as one backend (`pool`).
+//!
+//! Uses `prepare` (the buffers it renders), `load`, `scene` and `system`.
+pub mod accumulation;
 pub mod cpu;
 pub mod gpu;
 pub mod kernel_stats;
 pub mod limits;
+pub mod memory;
 pub mod path_loop;
 pub mod pool;
 pub mod prune;
@@ -11,10 +15,10 @@ pub mod runtime_dir;
 pub mod schedule;
 pub mod variant;
 
-use crate::backend::schedule::Lanes;
-use crate::output::film::Accumulation;
+use accumulation::Accumulation;
 use anyhow::{bail, Result};
 use caustic_kernel::layout::FrameParams;
+use schedule::Lanes;
 
 /// A device that can add samples to an accumulation buffer (one `PixelAccum` per pixel). Light
 /// tracing splats into fixed-point sums that the backend resolves into it after every pass.
@@ -127,7 +131,7 @@ pub fn create_on(
 ) -> Result<Box<dyn Backend + Send>> {
     let (w, h) = (buffers.params.width, buffers.params.height);
     crate::system::memory::check(
-        crate::system::memory::render_need(buffers),
+        memory::render_need(buffers),
         crate::system::memory::available(),
         &format!("a {w}×{h} render"),
     )?;
@@ -163,7 +167,7 @@ pub fn create_on(
         return Ok(devices.pop().expect("one device"));
     }
     let pixels = (buffers.params.width * buffers.params.height) as usize;
-    let batched = crate::output::film::batch_means(&buffers.params);
+    let batched = accumulation::batch_means(&buffers.params);
     Ok(Box::new(pool::Pool::new(devices, Accumulation::new(pixels, batched))?))
 }
 

@@ -2,9 +2,9 @@
 //! accumulation buffer; the pass loop (`render::passes`) hands passes to whichever device is idle and the
 //! accumulations are summed when read. A device that fails loses only the samples since its sums
 //! were last read back (`schedule::Lost`); the others render them again.
+use super::accumulation::Accumulation;
+use super::schedule::{Lanes, Lost, SampleRange};
 use super::Backend;
-use crate::backend::schedule::{Lanes, Lost, SampleRange};
-use crate::output::film::Accumulation;
 use anyhow::{anyhow, bail, Result};
 use caustic_kernel::layout::FrameParams;
 use std::panic::{catch_unwind, AssertUnwindSafe};

@@ -2,7 +2,7 @@
 //! device gave back, and how many samples per pixel the accumulation holds as one unbroken prefix
 //! `[0, done)` (what a checkpoint may claim). Random numbers are a function of (seed, pixel, sample,
 //! dimension), so any partition of `[0, spp)` into passes on any devices sums to the one estimator.
-use crate::output::film::Accumulation;
+use super::accumulation::Accumulation;
 use anyhow::Error;
 use caustic_kernel::layout::FrameParams;
 use std::collections::BTreeMap;
@@ -23,7 +23,7 @@ pub trait Lanes {
     /// Samples per pixel each lane has rendered.
     fn shares(&self) -> Vec<u64>;
     /// The devices as one backend (only read while no pass runs).
-    fn backend(&mut self) -> &mut dyn crate::backend::Backend;
+    fn backend(&mut self) -> &mut dyn super::Backend;
 }
 
 /// A lane that failed: the error, and the sample ranges whose sums died with the device (the pass

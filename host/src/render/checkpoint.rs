@@ -4,14 +4,14 @@
 //! settings. Random numbers are a function of (seed, pixel, sample, dimension): the resumed render
 //! is the image an uninterrupted one would have produced. A CRC-32 of the header and the sums closes
 //! the file, so that a damaged checkpoint is refused instead of resumed into a wrong image.
-use crate::output::film::Accumulation;
-use crate::output::film::PixelTotal;
+use crate::backend::accumulation::Accumulation;
+use crate::backend::accumulation::PixelTotal;
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::{bail, Context, Result};
 use std::hash::{Hash, Hasher};
 use std::path::Path;
 
-/// Version 4: the sums are the host's f64 totals (`film::PixelTotal`). (Version 3 ended the file with
+/// Version 4: the sums are the host's f64 totals (`accumulation::PixelTotal`). (Version 3 ended the file with
 /// a CRC-32 of everything before it; version 2 added the batch count of splatted, light-traced, sums
 /// to the header.)
 const MAGIC: &[u8; 8] = b"CAUSTCK4";

@@ -2,7 +2,7 @@
 //! with the ranks taking chunks of the samples as they become free (`shares.rs` decides, a thread
 //! of rank 0 answers), summed on rank 0 by `MPI_Reduce` at checkpoints and at the end. Also what a
 //! rank's failure or silence turns into: a message naming it, and what rank 0 had summed written out.
-use crate::output::film::Accumulation;
+use crate::backend::accumulation::Accumulation;
 use crate::render::ranks::{Plan, Ranks};
 use crate::render::shares::{Dispatcher, Work};
 use anyhow::{anyhow, bail, Result};

@@ -204,11 +204,12 @@ pub fn render_span(
         &mut one
     };
     let n = lanes.count();
-    let max_per_pass = if crate::output::film::batch_means(&buffers.params) && observer.needs_variance() {
-        (spp / MIN_BATCHES).clamp(1, MAX_SAMPLES_PER_PASS)
-    } else {
-        MAX_SAMPLES_PER_PASS
-    };
+    let max_per_pass =
+        if crate::backend::accumulation::batch_means(&buffers.params) && observer.needs_variance() {
+            (spp / MIN_BATCHES).clamp(1, MAX_SAMPLES_PER_PASS)
+        } else {
+            MAX_SAMPLES_PER_PASS
+        };
     let target = target_pass(observer.pass_target())?;
     let mut samples = Samples::new(start);
     if per_pass.len() != n {

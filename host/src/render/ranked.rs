@@ -9,8 +9,9 @@
 //! telling MPI, when it receives its first chunk after its second checkpoint (a rank that dies;
 //! after the second, so that rank 0 has written the first); `CAUSTIC_MPI_TEST_FAIL=R` makes that
 //! chunk's render fail with an error instead (a rank whose device fails).
+use crate::backend::accumulation::Accumulation;
 use crate::backend::{self, Backend};
-use crate::output::film::{self, Accumulation, Film};
+use crate::output::film::{self, Film};
 use crate::output::tev;
 use crate::render::checkpoint::{self, Checkpoint};
 use crate::render::passes::{self, PassObserver, Span};

@@ -3,7 +3,7 @@
 //! hands out chunks of the sample indices (`shares.rs`) and the accumulations are summed on rank
 //! 0, which writes the image. Random numbers are a function of (seed, pixel, sample, dimension), so
 //! the chunks add up to exactly the one-process estimator, up to the order of the float sums.
-use crate::output::film::Accumulation;
+use crate::backend::accumulation::Accumulation;
 use crate::render::shares::Work;
 use anyhow::Result;
 use std::sync::Arc;

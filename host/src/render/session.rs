@@ -226,7 +226,7 @@ pub fn build_scene(
 /// AOVs (traced on the CPU: `aov::add_to`) where it has any.
 pub fn develop(
     buffers: &buffers::SceneBuffers,
-    accum: &film::Accumulation,
+    accum: &crate::backend::accumulation::Accumulation,
     spp_done: u32,
     seed: u32,
 ) -> Film {
