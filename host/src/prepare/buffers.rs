@@ -33,10 +33,10 @@ pub struct SceneBuffers {
     /// What the scene uses (`caustic_kernel::features`); the kernel skips, and on the GPU compiles
     /// out, everything else.
     pub features: u32,
-    /// The scene's `aov` or `depth` integrator (`crate::output::aov`), rendered beside the image.
-    pub aovs: Option<crate::output::aov::AovSpec>,
+    /// The scene's `aov` or `depth` integrator (`crate::scene::aov`), rendered beside the image.
+    pub aovs: Option<crate::scene::aov::AovSpec>,
     /// Host only, for AOVs (empty without): per primitive (BVH order), Mitsuba's shape index
-    /// (`aov::pass::shape_indices`) and its index within the shape.
+    /// (`shape_indices`) and its index within the shape.
     pub prim_origins: Vec<[u32; 2]>,
     /// Primitives the scene's instances place, each group's counted once per instance (stored once
     /// each, in `prims`; `crate::scene::instancing`). 0 without instances.
@@ -818,7 +818,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
 fn prim_origins(scene: &Scene) -> Vec<[u32; 2]> {
     let is_mesh: Vec<bool> =
         scene.shapes.iter().map(|s| matches!(s.geometry, Geometry::Triangles { .. })).collect();
-    let shape_index = crate::output::aov::pass::shape_indices(&is_mesh);
+    let shape_index = shape_indices(&is_mesh);
     let mut origins = Vec::new();
     for (shape, &index) in scene.shapes.iter().zip(&shape_index) {
         let count = match &shape.geometry {
@@ -828,6 +828,25 @@ fn prim_origins(scene: &Scene) -> Vec<[u32; 2]> {
         origins.extend((0..count).map(|i| [index, i]));
     }
     origins
+}
+
+/// Mitsuba's numbering of the shapes (`shape_index`, from 1), measured on Mitsuba 3.9.1: its parser
+/// merges the meshes into one list after the other shapes, so the analytic shapes (sphere, disk)
+/// come first in file order, then the meshes (every triangle shape: rectangle, cube, OBJ, PLY, …)
+/// in reverse file order (the order of Mitsuba's hash table of meshes, seen with four to twelve
+/// shapes). Meshes that share a BSDF and emitter Mitsuba merges into one shape; caustic does not.
+pub fn shape_indices(is_mesh: &[bool]) -> Vec<u32> {
+    let mut index = vec![0u32; is_mesh.len()];
+    let mut next = 1;
+    for (i, _) in is_mesh.iter().enumerate().filter(|(_, m)| !**m) {
+        index[i] = next;
+        next += 1;
+    }
+    for (i, _) in is_mesh.iter().enumerate().rev().filter(|(_, m)| **m) {
+        index[i] = next;
+        next += 1;
+    }
+    index
 }
 
 /// `FrameParams::square_scale_log2`: the power of two that brings the scene's brightest emission

@@ -4,6 +4,7 @@
 //! its loading gave (`warn`) and where f32 precision ends for it (`precision`).
 //!
 //! Uses no other folder.
+pub mod aov;
 pub mod instancing;
 pub mod mesh;
 pub mod precision;
@@ -365,7 +366,7 @@ pub struct Scene {
     /// here, and `buffers::build` moves the entry into the table buffer.
     pub weight_tables: Vec<[f32; caustic_kernel::bsdf::textured_weights::SLOTS]>,
     /// Mitsuba's `aov` or `depth` integrator: what is rendered beside (or instead of) the image.
-    pub aovs: Option<crate::output::aov::AovSpec>,
+    pub aovs: Option<aov::AovSpec>,
     /// Non-fatal problems found while loading (unsupported elements, clamped values), already printed.
     pub warnings: Vec<String>,
 }

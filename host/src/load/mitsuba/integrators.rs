@@ -1,7 +1,7 @@
 //! Integrator plugins: `path` (and Mitsuba's differentiable `prb`, `prb_basic`, `prb_projective`,
 //! whose images are the path tracer's), `direct`, `ptracer` (light tracing), `ibpt` (caustic's own: path and
 //! light tracing combined by MIS) and `moment` (its nested integrator; caustic always tracks
-//! the variance), and Mitsuba's `aov` and `depth` (`crate::output::aov`: outputs rendered beside the image).
+//! the variance), and Mitsuba's `aov` and `depth` (`crate::scene::aov`: outputs rendered beside the image).
 use super::props::Props;
 use super::Loader;
 use crate::scene::{Integrator, IntegratorKind};
@@ -85,7 +85,7 @@ impl Loader {
             }
             "aov" => self.load_aov(props)?,
             "depth" => {
-                self.aovs = Some(crate::output::aov::depth_integrator());
+                self.aovs = Some(crate::scene::aov::depth_integrator());
                 // The image is the depth (`aov`): the cheapest image integrator renders beside it.
                 Integrator { kind: IntegratorKind::Path, max_depth: 1, rr_depth: 5, hide_emitters: false }
             }
@@ -110,7 +110,7 @@ impl Loader {
         }
         let text = props.string("aovs")?.unwrap_or_default();
         let (aovs, skipped) =
-            crate::output::aov::parse_aovs(&text).map_err(|e| anyhow::anyhow!("{}: {e}", props.loc))?;
+            crate::scene::aov::parse_aovs(&text).map_err(|e| anyhow::anyhow!("{}: {e}", props.loc))?;
         for token in skipped {
             let message =
                 format!("{}: AOV '{token}' is not supported (no ray differentials); left out", props.loc);
@@ -138,7 +138,7 @@ impl Loader {
                 format!("{}: aov with several nested integrators renders only the first", props.loc);
             self.ignored("aov's second integrator".to_string(), &props.loc, message);
         }
-        let spec = crate::output::aov::AovSpec { nested: name, aovs, depth_image: false };
+        let spec = crate::scene::aov::AovSpec { nested: name, aovs, depth_image: false };
         // Found here, not when the EXR is written after the render.
         if let Some(channel) = spec.duplicate_channel() {
             bail!("{}: two output channels would be named '{channel}'", props.loc);

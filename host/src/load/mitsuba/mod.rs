@@ -79,8 +79,8 @@ pub(crate) struct Loader {
     /// The shape (index into `shapes`) carrying an irradiance meter, and where the meter was given.
     meter_shape: Option<(usize, Loc)>,
     integrator: Option<Integrator>,
-    /// The `aov` or `depth` integrator's outputs (`crate::output::aov`).
-    aovs: Option<crate::output::aov::AovSpec>,
+    /// The `aov` or `depth` integrator's outputs (`crate::scene::aov`).
+    aovs: Option<crate::scene::aov::AovSpec>,
     warnings: Vec<String>,
     /// What the scene asks for that the loaded scene does not do (reported or refused at the end).
     deviations: Deviations,

@@ -11,8 +11,8 @@
 //! about 4 CPU-seconds here against 11.7 for its image (path, max_depth 4, CPU backend). It grows
 //! with pixels × spp whatever the backend renders the image on: a GPU entry point is the way to
 //! make it scale with the GPU.
-use super::{AovKind, AovSpec};
 use crate::prepare::buffers::SceneBuffers;
+use crate::scene::aov::{AovKind, AovSpec};
 use caustic_kernel::bsdf::{Bsdf, TransportMode};
 use caustic_kernel::bvh::Accel;
 use caustic_kernel::features;
@@ -204,23 +204,4 @@ fn albedo(
         albedo += value * bsdf.leaf_weight(i);
     }
     albedo
-}
-
-/// Mitsuba's numbering of the shapes (`shape_index`, from 1), measured on Mitsuba 3.9.1: its parser
-/// merges the meshes into one list after the other shapes, so the analytic shapes (sphere, disk)
-/// come first in file order, then the meshes (every triangle shape: rectangle, cube, OBJ, PLY, …)
-/// in reverse file order (the order of Mitsuba's hash table of meshes, seen with four to twelve
-/// shapes). Meshes that share a BSDF and emitter Mitsuba merges into one shape; caustic does not.
-pub fn shape_indices(is_mesh: &[bool]) -> Vec<u32> {
-    let mut index = vec![0u32; is_mesh.len()];
-    let mut next = 1;
-    for (i, _) in is_mesh.iter().enumerate().filter(|(_, m)| !**m) {
-        index[i] = next;
-        next += 1;
-    }
-    for (i, _) in is_mesh.iter().enumerate().rev().filter(|(_, m)| **m) {
-        index[i] = next;
-        next += 1;
-    }
-    index
 }
