@@ -46,7 +46,7 @@ fn worst_steps(got: &[f32], want: &serde_json::Value, encoded: bool) -> f64 {
         .unwrap()
         .iter()
         .flat_map(|t| t.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()));
-    let encode = |v: f32| if encoded { caustic::output::film::linear_to_srgb(v) } else { v };
+    let encode = |v: f32| if encoded { caustic::load::image_io::linear_to_srgb(v) } else { v };
     got.iter()
         .zip(want)
         .map(|(&g, w)| (encode(g) as f64 - encode(w as f32) as f64).abs() * 255.0)

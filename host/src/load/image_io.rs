@@ -1,5 +1,5 @@
 //! Loading texture images as linear RGB floats, the way Mitsuba 3's `bitmap` texture sees them in
-//! its rgb variants.
+//! its rgb variants, and the sRGB transfer curve both ways.
 //!
 //! - 8- and 16-bit images (PNG, JPEG, BMP, TGA) are sRGB-encoded: each texel is decoded with the
 //!   exact sRGB curve, unless `raw` asks for the stored values as they are. Mitsuba assumes sRGB for
@@ -101,6 +101,16 @@ pub fn srgb_to_linear(encoded: f32) -> f32 {
         encoded / 12.92
     } else {
         ((encoded + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// The sRGB transfer function, clamped to [0, 1].
+pub fn linear_to_srgb(c: f32) -> f32 {
+    let c = if c.is_finite() { c.clamp(0.0, 1.0) } else { 0.0 };
+    if c <= 0.0031308 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
     }
 }
 
@@ -390,8 +400,7 @@ mod tests {
     #[test]
     fn an_exr_header_claiming_more_than_memory_is_refused() {
         let path = scratch_file("claims.exr");
-        let film = crate::output::film::Film::from_rgb(1, 1, vec![[0.5; 3]]);
-        film.save(&path).unwrap();
+        exr::prelude::write_rgb_file(&path, 1, 1, |_, _| (0.5f32, 0.5f32, 0.5f32)).unwrap();
         assert!(load_linear_rgb(&path, false).is_ok());
         let mut bytes = std::fs::read(&path).unwrap();
         // `dataWindow` (box2i: xMin, yMin, xMax, yMax) made 65535×32767.

@@ -1,7 +1,7 @@
 //! Rendering an OBJ/MTL file directly: MTL `Kd`/`Ks`/`Ns` become the modified Phong BRDF (`Kd` alone:
 //! Lambert), `Ke` an area emitter; an automatic camera frames the model and a sphere light lights it.
-use crate::prepare::buffers::rgba;
 use crate::scene::mesh;
+use crate::scene::rgba;
 use crate::scene::{
     look_at, warn, FilmMode, Filter, Geometry, Integrator, Projection, SamplerKind, Scene, Sensor, Shape,
 };

@@ -1,6 +1,7 @@
 //! The developed image: per-pixel mean and the variance of that mean, and image files. (The kernel's
 //! `film` module is the other end: where each camera sample lands on the sensor.)
 use crate::backend::accumulation::Accumulation;
+use crate::load::image_io::linear_to_srgb;
 use anyhow::{bail, Context, Result};
 use std::path::Path;
 
@@ -308,14 +309,4 @@ pub fn exr_comment(path: &Path) -> Result<Option<String>> {
     let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
         .with_context(|| format!("cannot read EXR header {}", path.display()))?;
     Ok(meta.headers.first().and_then(|h| h.own_attributes.comments.as_ref()).map(|t| t.to_string()))
-}
-
-/// The sRGB transfer function, clamped to [0, 1].
-pub fn linear_to_srgb(c: f32) -> f32 {
-    let c = if c.is_finite() { c.clamp(0.0, 1.0) } else { 0.0 };
-    if c <= 0.0031308 {
-        12.92 * c
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    }
 }

@@ -1,7 +1,7 @@
 //! Scene description → the kernel's buffers: primitives in BVH order, BVH2 nodes (built by `obvhs`),
 //! per-triangle attributes, materials, textures, lights with power-proportional selection, and the
 //! table buffer (sampling distributions, texels, precomputed BSDF tables).
-use crate::scene::{Emitter, Geometry, IntegratorKind, Projection, SamplerKind, Scene, Shape};
+use crate::scene::{rgba, Emitter, Geometry, IntegratorKind, Projection, SamplerKind, Scene, Shape};
 use anyhow::{bail, Result};
 use caustic_kernel::bvh::STACK_SIZE;
 use caustic_kernel::camera::{
@@ -405,12 +405,6 @@ pub(crate) fn cdf_of(weights: &[f64]) -> Vec<f32> {
         *last = 1.0;
     }
     cdf
-}
-
-/// An RGB colour as the kernel's layout stores it: four floats, the fourth unused. The loaders build
-/// kernel materials with it too.
-pub(crate) fn rgba(c: [f32; 3]) -> [f32; 4] {
-    [c[0], c[1], c[2], 0.0]
 }
 
 fn rows_of(m: Mat3) -> [[f32; 4]; 3] {

@@ -388,3 +388,9 @@ pub fn look_at(origin: Vec3, target: Vec3, up: Vec3) -> Option<Mat4> {
     let new_up = dir.cross(left);
     Some(Mat4::from_cols(left.extend(0.0), new_up.extend(0.0), dir.extend(0.0), origin.extend(1.0)))
 }
+
+/// An RGB colour as the kernel's layout stores it: four floats, the fourth unused. The scene's
+/// materials hold it (the loaders build them), and so do the buffers `prepare` builds.
+pub(crate) fn rgba(c: [f32; 3]) -> [f32; 4] {
+    [c[0], c[1], c[2], 0.0]
+}

@@ -17,7 +17,7 @@
 //! accepted. Its `bitmap` and `data` properties hand over in-memory images from Python or C++; a scene
 //! file cannot give them.
 use super::props::Props;
-use crate::load::image_io::{srgb_to_linear, LinearImage, SampleDepth};
+use crate::load::image_io::{linear_to_srgb, srgb_to_linear, LinearImage, SampleDepth};
 use anyhow::{bail, Result};
 use exr::prelude::f16;
 
@@ -77,11 +77,7 @@ pub fn store(format: StorageFormat, image: &mut LinearImage, raw: bool) -> Resul
         StorageFormat::UInt8 => {
             let encoded = image.depth == SampleDepth::Int16 && !raw;
             for v in &mut image.rgb {
-                *v = if encoded {
-                    srgb_to_linear(to_u8(crate::output::film::linear_to_srgb(*v)))
-                } else {
-                    to_u8(*v)
-                };
+                *v = if encoded { srgb_to_linear(to_u8(linear_to_srgb(*v))) } else { to_u8(*v) };
             }
         }
     }

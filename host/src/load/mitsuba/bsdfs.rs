@@ -6,7 +6,7 @@ use super::props::Props;
 use super::spectrum::SpectrumUse;
 use super::textures::ColorParam;
 use super::Loader;
-use crate::prepare::buffers::rgba;
+use crate::scene::rgba;
 use anyhow::{bail, Result};
 use caustic_kernel::bsdf::principled::{eta_from_specular, PrincipledParams};
 use caustic_kernel::bsdf::principled_thin::ThinParams;

@@ -57,10 +57,8 @@ impl Loader {
             bail!("{}: pplastic's diffuse and specular reflectances are both black", props.loc);
         }
         m.params[PARAM_SPECULAR_WEIGHT] = weight;
-        (m.reflectance, m.reflectance_texture) =
-            (crate::prepare::buffers::rgba(diffuse.rgb), diffuse.texture);
-        (m.specular_reflectance, m.specular_texture) =
-            (crate::prepare::buffers::rgba(specular.rgb), specular.texture);
+        (m.reflectance, m.reflectance_texture) = (crate::scene::rgba(diffuse.rgb), diffuse.texture);
+        (m.specular_reflectance, m.specular_texture) = (crate::scene::rgba(specular.rgb), specular.texture);
         Ok(m)
     }
 }

@@ -7,7 +7,7 @@ use super::props::{Entry, Props};
 use super::spectrum::SpectrumUse;
 use super::spectrum_plugin;
 use super::Loader;
-use crate::prepare::buffers::rgba;
+use crate::scene::rgba;
 use crate::scene::{MeshAttributeRef, SceneTexture};
 use anyhow::{bail, Result};
 use caustic_kernel::layout::*;
