@@ -1,7 +1,8 @@
 //! Rendering backends: the same kernel on the GPU (wgpu compute) or the CPU (rayon), and several
 //! GPUs as one backend (`pool`).
 //!
-//! Uses `prepare` (the buffers it renders), `load`, `scene` and `system`.
+//! Uses `prepare` (the buffers it renders) and `system` (the machine's memory); its tests load
+//! scenes (`load`).
 pub mod accumulation;
 pub mod cpu;
 pub mod gpu;

@@ -2,7 +2,7 @@
 //! the BVH (two-level with instances), per-triangle attributes, materials, textures, lights, the
 //! film's filter tables, the irradiance meter's table, and the wide BVH the CPU walks.
 //!
-//! Uses `scene`, `load` (Mitsuba's spectral tables) and `system`.
+//! Uses `scene` and `load` (the CIE tables of `load::mitsuba::spectrum`).
 mod attribute_buffers;
 pub mod buffers;
 pub mod filter_table;

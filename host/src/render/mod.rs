@@ -2,7 +2,8 @@
 //! loop (`passes`), checkpoints, several processes (`ranks`, `ranked`, `shares`, `mpi`), batches of
 //! scenes (`batch`) and error-against-time curves (`convergence`).
 //!
-//! Uses every other folder.
+//! Uses every other folder, being the last stage: `backend`, `output`, `prepare`, `load`, `scene`
+//! and `system`.
 pub mod batch;
 pub mod checkpoint;
 pub mod convergence;
