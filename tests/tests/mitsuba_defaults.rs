@@ -81,7 +81,7 @@ fn sensor_failures(scene: &Scene, expect: &serde_json::Map<String, Value>) -> Ve
     if expect["filter"] != filter {
         out.push(format!("filter: Mitsuba {}, caustic {filter}", expect["filter"]));
     }
-    let camera = caustic::prepare::buffers::camera(scene);
+    let camera = caustic::prepare::camera::camera(scene);
     for ray in expect["rays"].as_array().unwrap() {
         let p = numbers(&ray["film"]);
         let lens = numbers(&ray["lens"]);

@@ -493,7 +493,7 @@ impl PipelineFactory {
         let (words, specialisable) = self.loops.module(path_loop, size);
         // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are
         // bounds-checked in the source, but for the BVH walk's, whose indices the host checks
-        // when it builds the tree (`buffers::inside_buffers`); dropping naga's runtime checks is
+        // when it builds the tree (`prepare::bvh::inside_buffers`); dropping naga's runtime checks is
         // what makes this path fast.
         let module = unsafe {
             self.device.create_shader_module_trusted(

@@ -6,7 +6,9 @@
 //! intersection code). Buffers: primitives `[scene's | instances' | each group's]`, nodes
 //! `[TLAS | scene's BVH | each group's BVH]`; each instance's world→object and object→world maps in
 //! `tables`. The scene's primitives keep their indices, so lights still name theirs.
-use crate::prepare::buffers::{build_bvh, primitives, LightList};
+use super::bvh::build_bvh;
+use super::lights::LightList;
+use super::primitives::primitives;
 use crate::scene::instancing::Instancing;
 use crate::scene::Scene;
 use anyhow::Result;

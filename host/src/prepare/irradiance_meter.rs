@@ -1,13 +1,13 @@
 //! Mitsuba's `irradiancemeter` on the host: which primitives carry the meter and the table the
 //! kernel samples them from (`caustic_kernel::irradiance_meter`: their count, the CDF of their areas,
 //! their indices in the primitive buffer).
-use crate::prepare::buffers::cdf_of;
+use super::lights::cdf_of;
 use crate::scene::{Geometry, Projection, Scene};
 use anyhow::{bail, Result};
 use caustic_kernel::layout::Primitive;
 use std::f64::consts::PI;
 
-/// The meter's primitives, by their index in scene order (as `buffers::primitives` pushes them), with
+/// The meter's primitives, by their index in scene order (as `primitives::primitives` pushes them), with
 /// their areas; `None` when the sensor is not an irradiance meter.
 pub(crate) fn scene_order_primitives(scene: &Scene) -> Option<Vec<(u32, f64)>> {
     let Projection::IrradianceMeter { shape } = scene.sensor.projection else { return None };

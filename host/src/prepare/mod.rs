@@ -5,7 +5,13 @@
 //! Uses `scene` and `load` (the CIE tables of `load::mitsuba::spectrum`).
 mod attribute_buffers;
 pub mod buffers;
+mod bvh;
+pub mod camera;
+mod features;
 pub mod filter_table;
 pub mod instance_buffers;
 pub mod irradiance_meter;
+mod lights;
+mod materials;
+mod primitives;
 pub mod wide_bvh;

@@ -27,7 +27,7 @@ fn children(nodes: &[BvhNode], n: usize) -> ([usize; 4], usize) {
     (open, len)
 }
 
-/// The wide BVH of `nodes` (a BVH2 of the layout `buffers::build_bvh` makes), or `None` when it
+/// The wide BVH of `nodes` (a BVH2 of the layout `bvh::build_bvh` makes), or `None` when it
 /// would nest deeper than the traversal's stack allows (`WIDE_DEPTH`: a child left unopened goes
 /// down one BVH2 level per group, so a lopsided BVH2 within its own stack may not fit) or `nodes` is
 /// empty.

@@ -27,7 +27,7 @@ pub enum AovKind {
     DpDv,
     /// The triangle's index in its mesh (0 for analytic shapes).
     PrimIndex,
-    /// The shape's index in Mitsuba's shape list, from 1 (`prepare::buffers::shape_indices`).
+    /// The shape's index in Mitsuba's shape list, from 1 (`prepare::primitives::shape_indices`).
     ShapeIndex,
 }
 

@@ -188,7 +188,7 @@ fn finish(mut loader: Loader, path: &Path, options: LoadOptions) -> Result<Scene
         aovs: loader.aovs.take(),
         warnings: loader.warnings,
     };
-    // The AOV pass reads a primitive's shape from the one-level list (`buffers::prim_origins`):
+    // The AOV pass reads a primitive's shape from the one-level list (`prepare::primitives::prim_origins`):
     // with AOVs every instance is flattened.
     let min_placements =
         if scene.aovs.is_some() { usize::MAX } else { crate::scene::instancing::MIN_PLACEMENTS };
