@@ -126,7 +126,7 @@ impl Film {
         }
         let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
         match ext.as_str() {
-            "exr" if !self.aovs.is_empty() => crate::output::aov::exr::write(self, path),
+            "exr" if !self.aovs.is_empty() => self.write_exr_with_aovs(path),
             "exr" => write_exr(path, self.width, self.height, &self.rgb, self.comment.as_deref()),
             "png" => {
                 let img =
@@ -165,6 +165,42 @@ impl Film {
             None => factor,
         };
         write_exr(path, self.width, self.height, &narrow, Some(&comment))
+    }
+
+    /// Writes the image and the AOV channels in one layer, as Mitsuba writes an `aov` render (f32
+    /// samples; EXR keeps channels sorted by name; non-finite values written as 0, as
+    /// `session::sanitize` does for the image) with the comment.
+    fn write_exr_with_aovs(&self, path: &Path) -> Result<()> {
+        use exr::prelude::*;
+        let finite = |v: f32| if v.is_finite() { v } else { 0.0 };
+        let mut list: Vec<AnyChannel<FlatSamples>> = ["R", "G", "B"]
+            .iter()
+            .enumerate()
+            .map(|(c, name)| {
+                AnyChannel::new(*name, FlatSamples::F32(self.rgb.iter().map(|p| finite(p[c])).collect()))
+            })
+            .collect();
+        for channel in &self.aovs {
+            if list.iter().any(|c| c.name.to_string() == channel.name) {
+                bail!("{}: two channels named '{}'", path.display(), channel.name);
+            }
+            let values = channel.values.iter().map(|&v| finite(v)).collect();
+            list.push(AnyChannel::new(channel.name.as_str(), FlatSamples::F32(values)));
+        }
+        let channels = AnyChannels::sort(list.into());
+        let mut layer = Layer::new(
+            (self.width as usize, self.height as usize),
+            LayerAttributes::default(),
+            Encoding::FAST_LOSSLESS,
+            channels,
+        );
+        layer.attributes.comments = self.comment.as_deref().map(Text::from);
+        let mut bytes = std::io::Cursor::new(Vec::new());
+        Image::from_layer(layer)
+            .write()
+            .to_buffered(&mut bytes)
+            .with_context(|| format!("cannot encode {}", path.display()))?;
+        crate::system::files::write(path, bytes.get_ref())
     }
 
     fn srgb8(&self, x: u32, y: u32) -> [u8; 3] {
