@@ -291,7 +291,7 @@ fn summary(r: &session::RenderReport, output: &Path) -> String {
 }
 
 fn cmd_render(ranks: Option<&dyn caustic::render::ranks::Ranks>, job: &RenderJob) -> Result<()> {
-    let Some(r) = session::render_share(job, ranks)? else { return Ok(()) };
+    let Some(r) = caustic::render::ranked::render_share(job, ranks)? else { return Ok(()) };
     say!("{}", summary(&r, &job.output));
     if let Some(signal) = r.interrupted {
         std::process::exit(caustic::system::interrupt::exit_code(signal));

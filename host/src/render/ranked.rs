@@ -65,6 +65,16 @@ fn prepare(job: &RenderJob, rank: usize) -> Result<Prepared> {
     Ok(Prepared { buffers, spp, backend, fingerprint, start, resumed })
 }
 
+/// `session::render_to_file` as one of several processes (`ranks`: MPI): this one renders the
+/// chunks of samples it is handed and rank 0 sums them and writes the image (`Some` report there,
+/// `None` elsewhere). One process renders alone.
+pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option<RenderReport>> {
+    match ranks.filter(|r| r.size() > 1) {
+        Some(ranks) => render_ranked(job, ranks),
+        None => session::render_to_file(job).map(Some),
+    }
+}
+
 /// Renders `job` as one of `ranks` (more than one); rank 0 writes the image and returns `Some`.
 pub fn render_ranked(job: &RenderJob, ranks: &dyn Ranks) -> Result<Option<RenderReport>> {
     let (rank, size) = (ranks.rank(), ranks.size());

@@ -1,14 +1,15 @@
 //! A render session: scene file in, image file out, with everything a long render needs around the
 //! pass loop (progress bar, checkpoints and resuming, streaming to tev, saving the image somewhere
-//! even when its path fails). One function that the command line, a Python binding or an MPI runner
-//! all call; `passes` below it owns only the pass loop.
+//! even when its path fails). One function that the command line and a Python binding call (and
+//! MPI ranks through `ranked`, which shares the helpers here); `passes` below it owns only the pass
+//! loop.
 use crate::backend::{self, Backend, BackendChoice, GpuSelection};
 use crate::output::film::{self, Film};
 use crate::output::tev;
 use crate::prepare::buffers;
 use crate::render::checkpoint::{self, Checkpoint};
 use crate::render::passes;
-use crate::render::ranks::{self, Ranks};
+use crate::render::ranks;
 use crate::scene::{FilmMode, IntegratorChoice, Scene};
 use anyhow::{bail, Context, Result};
 use std::cell::Cell;
@@ -80,18 +81,9 @@ impl RenderReport {
     }
 }
 
-/// Loads the scene, renders it and writes the image (and variance) to `job.output`.
+/// Loads the scene, renders it and writes the image (and variance) to `job.output`. Several
+/// processes share a render through `ranked::render_share`.
 pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
-    Ok(render_share(job, None)?.expect("one process writes the image"))
-}
-
-/// `render_to_file` as one of several processes (`ranks`: MPI, `ranked.rs`): this one renders the
-/// chunks of samples it is handed and rank 0 sums them and writes the image (`Some` report there,
-/// `None` elsewhere).
-pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option<RenderReport>> {
-    if let Some(ranks) = ranks.filter(|r| r.size() > 1) {
-        return crate::render::ranked::render_ranked(job, ranks);
-    }
     let output = job.output.as_path();
     film::check_output_path(output)?;
     film::check_writable(output)?;
@@ -163,7 +155,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         // The image is safe on disk: the checkpoint has served.
         std::fs::remove_file(path).ok();
     }
-    Ok(Some(RenderReport {
+    Ok(RenderReport {
         backend: backend.describe(),
         width,
         height,
@@ -173,7 +165,7 @@ pub fn render_share(job: &RenderJob, ranks: Option<&dyn Ranks>) -> Result<Option
         invalid_samples: film.invalid_samples,
         interrupted,
         spp_done,
-    }))
+    })
 }
 
 /// Refuses, before rendering, any output of `job` that is one of the files its scene was loaded
