@@ -7,7 +7,7 @@
 //! only negative channels are clamped. That is exactly the conversion `spectrum.rs` applies to
 //! emission spectra, so it is reused here.
 use super::props::Props;
-use super::spectrum::{spectrum_to_rgb, SpectrumUse};
+use super::spectrum::{read_spd, spectrum_to_rgb, SpectrumUse};
 use super::xml::Loc;
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
@@ -225,43 +225,6 @@ pub fn spd_file_to_rgb(path: &Path) -> Result<[f32; 3]> {
     let (wavelengths, values) = read_spd(path)?;
     // SpectrumUse::Emission is the unweighted (no D65), lower-clamped-only conversion.
     Ok(spectrum_to_rgb(&wavelengths, &values, SpectrumUse::Emission))
-}
-
-/// Parses an `.spd` file: one `wavelength value` pair (nm) per line, `#` starts a comment.
-/// Wavelengths must increase; at least one pair is needed.
-pub fn read_spd(path: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
-    let text = crate::system::files::read_to_string(path, "spectrum file")?;
-    let mut wavelengths = Vec::new();
-    let mut values = Vec::new();
-    for (index, line) in text.lines().enumerate() {
-        let line_no = index + 1;
-        let data = line.split('#').next().unwrap_or("");
-        let fields: Vec<&str> = data.split_whitespace().collect();
-        if fields.is_empty() {
-            continue;
-        }
-        let [w, v] = fields[..] else {
-            bail!("{}:{line_no}: expected 'wavelength value', found {} fields", path.display(), fields.len());
-        };
-        let number = |s: &str| -> Result<f64> {
-            match s.parse::<f64>() {
-                Ok(x) if x.is_finite() => Ok(x),
-                _ => bail!("{}:{line_no}: '{s}' is not a finite number", path.display()),
-            }
-        };
-        let (w, v) = (number(w)?, number(v)?);
-        if let Some(&last) = wavelengths.last() {
-            if w <= last {
-                bail!("{}:{line_no}: wavelengths must increase ({w} after {last})", path.display());
-            }
-        }
-        wavelengths.push(w);
-        values.push(v);
-    }
-    if wavelengths.is_empty() {
-        bail!("{}: no 'wavelength value' pairs", path.display());
-    }
-    Ok((wavelengths, values))
 }
 
 #[cfg(test)]

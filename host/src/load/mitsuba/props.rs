@@ -250,15 +250,15 @@ fn checked_color(rgb: [f32; 3], name: &str, loc: &Loc) -> Result<[f32; 3]> {
 }
 
 /// `<spectrum filename="…"/>` (Mitsuba's irregular spectrum from a file): the file's `wavelength
-/// value` pairs (`ior::read_spd`, the format of Mitsuba's `.spd` files) as the `value="λ:v, …"` they
-/// stand for, so that both forms are converted alike.
+/// value` pairs (`spectrum::read_spd`, the format of Mitsuba's `.spd` files) as the
+/// `value="λ:v, …"` they stand for, so that both forms are converted alike.
 fn spectrum_file_value(loader: &Loader, file: &str, has_value: bool, loc: &Loc) -> Result<String> {
     if has_value {
         bail!("{loc}: <spectrum> takes a 'value' or a 'filename', not both");
     }
     let path = loader.resolve(file, loc)?;
     let (wavelengths, values) =
-        super::ior::read_spd(&path).with_context(|| format!("{loc}: spectrum file"))?;
+        super::spectrum::read_spd(&path).with_context(|| format!("{loc}: spectrum file"))?;
     let pairs: Vec<String> = wavelengths.iter().zip(&values).map(|(w, v)| format!("{w}:{v}")).collect();
     Ok(pairs.join(", "))
 }

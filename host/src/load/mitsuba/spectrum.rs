@@ -5,7 +5,10 @@
 //! Reflectances are weighted by D65 and clamped to [0, 1]; emission spectra are not weighted
 //! (an equal-energy emitter comes out as XYZ = (1, 1, 1)) and are only clamped at 0. A uniform
 //! `<spectrum value="c"/>` is grey `c` for reflectances, and `c·xyz_to_srgb(1, 1, 1)` for emitters.
+//! Spectra in files (Mitsuba's `.spd` format) are read by `read_spd`.
 use super::cie_tables::{CIE_MAX, CIE_MIN, CIE_SAMPLES, CIE_X, CIE_Y, CIE_Z, D65};
+use anyhow::{bail, Result};
+use std::path::Path;
 
 /// What a spectrum describes; it decides the conversion.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,6 +92,43 @@ pub fn uniform_spectrum_to_rgb(value: f64, usage: SpectrumUse) -> [f32; 3] {
 fn clamp_for(rgb: [f64; 3], usage: SpectrumUse) -> [f32; 3] {
     let hi = if usage == SpectrumUse::Reflectance { 1.0 } else { f64::INFINITY };
     rgb.map(|c| c.clamp(0.0, hi) as f32)
+}
+
+/// Parses an `.spd` file: one `wavelength value` pair (nm) per line, `#` starts a comment.
+/// Wavelengths must increase; at least one pair is needed.
+pub fn read_spd(path: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
+    let text = crate::system::files::read_to_string(path, "spectrum file")?;
+    let mut wavelengths = Vec::new();
+    let mut values = Vec::new();
+    for (index, line) in text.lines().enumerate() {
+        let line_no = index + 1;
+        let data = line.split('#').next().unwrap_or("");
+        let fields: Vec<&str> = data.split_whitespace().collect();
+        if fields.is_empty() {
+            continue;
+        }
+        let [w, v] = fields[..] else {
+            bail!("{}:{line_no}: expected 'wavelength value', found {} fields", path.display(), fields.len());
+        };
+        let number = |s: &str| -> Result<f64> {
+            match s.parse::<f64>() {
+                Ok(x) if x.is_finite() => Ok(x),
+                _ => bail!("{}:{line_no}: '{s}' is not a finite number", path.display()),
+            }
+        };
+        let (w, v) = (number(w)?, number(v)?);
+        if let Some(&last) = wavelengths.last() {
+            if w <= last {
+                bail!("{}:{line_no}: wavelengths must increase ({w} after {last})", path.display());
+            }
+        }
+        wavelengths.push(w);
+        values.push(v);
+    }
+    if wavelengths.is_empty() {
+        bail!("{}: no 'wavelength value' pairs", path.display());
+    }
+    Ok((wavelengths, values))
 }
 
 #[cfg(test)]
