@@ -151,7 +151,7 @@ fn uses(tops: &BTreeSet<Node>) -> Graph {
 }
 
 /// A cycle of `graph` as the nodes along it (the first repeated at the end), if it has one.
-fn cycle<'a>(graph: &'a BTreeMap<Node, BTreeSet<Node>>) -> Option<Vec<&'a Node>> {
+fn cycle(graph: &BTreeMap<Node, BTreeSet<Node>>) -> Option<Vec<&Node>> {
     fn visit<'a>(
         node: &'a Node,
         graph: &'a BTreeMap<Node, BTreeSet<Node>>,
