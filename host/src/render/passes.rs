@@ -2,6 +2,7 @@
 //! short enough for GPU watchdogs, the image readable after any pass. With several devices
 //! (`backend::pool`), every idle device takes the next pass (a fast device takes more of them), and
 //! the image is read when the loop has brought all of them to rest.
+use crate::backend::accumulation;
 use crate::backend::schedule::{Lanes, Lost, Samples};
 use crate::backend::Backend;
 use crate::output::film::Film;
@@ -204,12 +205,11 @@ pub fn render_span(
         &mut one
     };
     let n = lanes.count();
-    let max_per_pass =
-        if crate::backend::accumulation::batch_means(&buffers.params) && observer.needs_variance() {
-            (spp / MIN_BATCHES).clamp(1, MAX_SAMPLES_PER_PASS)
-        } else {
-            MAX_SAMPLES_PER_PASS
-        };
+    let max_per_pass = if accumulation::batch_means(&buffers.params) && observer.needs_variance() {
+        (spp / MIN_BATCHES).clamp(1, MAX_SAMPLES_PER_PASS)
+    } else {
+        MAX_SAMPLES_PER_PASS
+    };
     let target = target_pass(observer.pass_target())?;
     let mut samples = Samples::new(start);
     if per_pass.len() != n {
