@@ -1,41 +1,24 @@
 //! caustic's host: scene loading (Mitsuba 3 XML, OBJ/MTL), BVH construction, the GPU (wgpu) and CPU
 //! backends, render sessions, progressive rendering, image output, comparison and error-against-time
 //! curves. No shading code lives here: all of it is in `caustic-kernel`.
-pub mod aov;
-mod attribute_buffers;
+//!
+//! The folders follow the pipeline, each using only those before it (`host/tests/layout.rs` checks
+//! that no folder reaches back up; docs/host.md draws the graph):
+//!
+//! - `system`: files, memory and signals, as the process meets the operating system;
+//! - `scene`: the renderer-neutral description of a scene;
+//! - `load`: scene files (Mitsuba XML, OBJ), meshes and images into a `scene::Scene`;
+//! - `prepare`: a scene into the kernel's buffers (`prepare::buffers::SceneBuffers`);
+//! - `backend`: the GPU and CPU running the kernel over the buffers, into per-pixel sums;
+//! - `output`: sums developed into images, AOVs, image files, comparison, tev;
+//! - `render`: sessions, progressive passes, checkpoints, MPI ranks, batches, convergence curves.
 pub mod backend;
-pub mod batch;
-pub mod buffers;
-pub mod checkpoint;
-pub mod compare;
-pub mod convergence;
-pub mod files;
-pub mod film;
-pub mod filter_table;
-pub mod image_io;
-pub mod instance_buffers;
-pub mod instancing;
-pub mod interrupt;
-pub mod irradiance_meter;
-pub mod memory;
-pub mod mesh;
-pub mod mitsuba;
-#[cfg(feature = "mpi")]
-pub mod mpi;
-pub mod obj_scene;
-pub mod precision;
-pub mod ranked;
-pub mod ranks;
+pub mod load;
+pub mod output;
+pub mod prepare;
 pub mod render;
 pub mod scene;
-pub mod schedule;
-pub mod session;
-pub mod shares;
-pub mod tev;
-pub mod wide_bvh;
-
-use anyhow::Result;
-use std::path::Path;
+pub mod system;
 
 /// An error and its causes, `: `-separated as anyhow's `{:#}`, leaving out a cause whose message
 /// the text already holds (an OS error was printed twice: the exr and image crates put their
@@ -51,72 +34,4 @@ pub fn error_chain(e: &anyhow::Error) -> String {
         }
     }
     text
-}
-
-/// How a scene file is read.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct LoadOptions {
-    /// Refuse a Mitsuba scene that would not render as written (an unknown plugin replaced or left
-    /// out, a property not read) instead of warning: for pipelines that must not produce a wrong
-    /// image silently. The error names the file and line of each such element.
-    pub strict: bool,
-}
-
-/// Loads a scene by its extension: `.xml` (Mitsuba 3) or `.obj` (with its MTL library).
-pub fn load_scene(path: &Path, defines: &[(String, String)]) -> Result<scene::Scene> {
-    load_scene_with(path, defines, LoadOptions::default())
-}
-
-/// As `load_scene`, with options (`--strict`).
-pub fn load_scene_with(
-    path: &Path,
-    defines: &[(String, String)],
-    options: LoadOptions,
-) -> Result<scene::Scene> {
-    let scene = load_scene_unchecked(path, defines, options)?;
-    Ok(precision_checked(scene, path))
-}
-
-/// As `load_scene_with`, for a Mitsuba 3 scene given as XML text rather than a file (the Python
-/// module's `load_dict` writes one): `name` stands for the file in messages, and relative file
-/// names resolve against `dir`.
-pub fn load_scene_from_text(
-    name: &Path,
-    text: &str,
-    dir: &Path,
-    defines: &[(String, String)],
-    options: LoadOptions,
-) -> Result<scene::Scene> {
-    let scene = mitsuba::load_text_with(name, text, dir, defines, options)?;
-    Ok(precision_checked(scene, name))
-}
-
-/// `scene` (loaded from `path`), warned about where f32 precision ends for it (`precision`).
-fn precision_checked(mut scene: scene::Scene, path: &Path) -> scene::Scene {
-    if let Some(message) = precision::warning(&scene) {
-        scene::warn(&mut scene.warnings, format!("{}: {message}", path.display()));
-    }
-    scene
-}
-
-/// `load_scene_with` without the precision check (`precision`).
-fn load_scene_unchecked(
-    path: &Path,
-    defines: &[(String, String)],
-    options: LoadOptions,
-) -> Result<scene::Scene> {
-    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-        Some("xml") => mitsuba::load_with(path, defines, options),
-        Some("obj") => {
-            let mut warnings = Vec::new();
-            if !defines.is_empty() {
-                scene::warn(&mut warnings, "-D definitions do not apply to OBJ files".to_string());
-            }
-            let mut scene = obj_scene::load(path, options.strict)?;
-            warnings.append(&mut scene.warnings);
-            scene.warnings = warnings;
-            Ok(scene)
-        }
-        _ => anyhow::bail!("{}: unknown scene format (expected .xml or .obj)", path.display()),
-    }
 }

@@ -1,10 +1,14 @@
 //! The `caustic` command line: render, compare, bench, convergence.
 use anyhow::{bail, Context, Result};
 use caustic::backend::{self, BackendChoice, GpuSelection};
-use caustic::film::{variance_path, Film};
+use caustic::error_chain;
+use caustic::load::LoadOptions;
+use caustic::output::compare;
+use caustic::output::film::{variance_path, Film};
+use caustic::prepare::buffers;
+use caustic::render::passes;
+use caustic::render::session::{self, RenderJob};
 use caustic::scene::{FilmMode, IntegratorChoice};
-use caustic::session::{self, RenderJob};
-use caustic::{buffers, compare, error_chain, render, LoadOptions};
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -31,7 +35,7 @@ enum Command {
         #[command(flatten)]
         run: RunArgs,
         /// One image per value (and per combination, repeated): `--vary res=256,512`.
-        #[arg(long, value_parser = caustic::batch::parse_vary)]
+        #[arg(long, value_parser = caustic::render::batch::parse_vary)]
         vary: Vec<(String, Vec<String>)>,
         /// Output image: .exr (linear float), .png or .ppm (sRGB). Default: SCENE's name with .exr.
         /// With several images, a folder for them (named SCENE-name=value….exr).
@@ -178,10 +182,10 @@ fn main() {
     if !matches!(cli.command, Command::Compare { .. }) {
         backend::runtime_dir::ensure_xdg_runtime_dir();
     }
-    caustic::files::write_errors_are_errors();
+    caustic::system::files::write_errors_are_errors();
     // A render saves what it has on SIGINT/SIGTERM; the other commands stop as by default.
     if matches!(cli.command, Command::Render { .. }) {
-        if let Err(e) = caustic::interrupt::install() {
+        if let Err(e) = caustic::system::interrupt::install() {
             eprintln!("warning: {e:#}; an interrupt will lose the render");
         }
     }
@@ -191,7 +195,10 @@ fn main() {
             let every = Duration::try_from_secs_f64(checkpoint_every.max(0.0)).unwrap_or(Duration::MAX);
             // Under mpirun (an MPI build): this process renders its share, rank 0 writes the image.
             #[cfg(feature = "mpi")]
-            let world = match caustic::ranks::launched().then(caustic::mpi::World::init).transpose() {
+            let world = match caustic::render::ranks::launched()
+                .then(caustic::render::mpi::World::init)
+                .transpose()
+            {
                 Ok(w) => w,
                 Err(e) => {
                     eprintln!("error: {e:#}");
@@ -199,11 +206,11 @@ fn main() {
                 }
             };
             #[cfg(feature = "mpi")]
-            let ranks = world.as_ref().map(|w| w as &dyn caustic::ranks::Ranks);
+            let ranks = world.as_ref().map(|w| w as &dyn caustic::render::ranks::Ranks);
             #[cfg(not(feature = "mpi"))]
             let ranks = None;
             #[cfg(not(feature = "mpi"))]
-            if caustic::ranks::launched() {
+            if caustic::render::ranks::launched() {
                 eprintln!(
                     "warning: started by an MPI launcher, but this caustic was built without \
                      --features mpi: every process renders the whole image"
@@ -232,7 +239,7 @@ fn main() {
                     }
                 },
             };
-            match caustic::batch::jobs(&template, &scenes, &vary, output.as_deref()) {
+            match caustic::render::batch::jobs(&template, &scenes, &vary, output.as_deref()) {
                 Ok(jobs) if jobs.len() == 1 => cmd_render(ranks, &jobs[0]),
                 Ok(jobs) => cmd_batch(ranks, &jobs),
                 Err(e) => Err(e),
@@ -258,7 +265,9 @@ fn main() {
     if let Err(e) = result {
         eprintln!("error: {}", error_chain(&e));
         // Stopped by a signal (while loading, say): the status says which, as for a render.
-        std::process::exit(caustic::interrupt::requested().map_or(1, caustic::interrupt::exit_code));
+        std::process::exit(
+            caustic::system::interrupt::requested().map_or(1, caustic::system::interrupt::exit_code),
+        );
     }
 }
 
@@ -281,11 +290,11 @@ fn summary(r: &session::RenderReport, output: &Path) -> String {
     )
 }
 
-fn cmd_render(ranks: Option<&dyn caustic::ranks::Ranks>, job: &RenderJob) -> Result<()> {
-    let Some(r) = session::render_share(job, ranks)? else { return Ok(()) };
+fn cmd_render(ranks: Option<&dyn caustic::render::ranks::Ranks>, job: &RenderJob) -> Result<()> {
+    let Some(r) = caustic::render::ranked::render_share(job, ranks)? else { return Ok(()) };
     say!("{}", summary(&r, &job.output));
     if let Some(signal) = r.interrupted {
-        std::process::exit(caustic::interrupt::exit_code(signal));
+        std::process::exit(caustic::system::interrupt::exit_code(signal));
     }
     Ok(())
 }
@@ -293,11 +302,11 @@ fn cmd_render(ranks: Option<&dyn caustic::ranks::Ranks>, job: &RenderJob) -> Res
 /// Several images: this process renders its share of them (every n-th under mpirun), one line each.
 /// A failed image is reported and the others still rendered; the ranks wait for each other before
 /// exiting, so that one rank's failure does not make mpirun end the others' renders.
-fn cmd_batch(ranks: Option<&dyn caustic::ranks::Ranks>, jobs: &[RenderJob]) -> Result<()> {
+fn cmd_batch(ranks: Option<&dyn caustic::render::ranks::Ranks>, jobs: &[RenderJob]) -> Result<()> {
     let (rank, size) = ranks.map_or((0, 1), |r| (r.rank(), r.size()));
     let who = ranks.filter(|_| size > 1).map(|r| format!("{}: ", r.name(rank))).unwrap_or_default();
     let mut failed = 0;
-    for i in caustic::batch::mine(jobs.len(), rank, size) {
+    for i in caustic::render::batch::mine(jobs.len(), rank, size) {
         let mut job = jobs[i].clone();
         if size > 1 {
             match session::rank_gpus(&job, rank) {
@@ -318,11 +327,11 @@ fn cmd_batch(ranks: Option<&dyn caustic::ranks::Ranks>, jobs: &[RenderJob]) -> R
         }
         // A signal ends the batch: the image under way was saved as partial, the rest are not
         // started.
-        if let Some(signal) = caustic::interrupt::requested() {
+        if let Some(signal) = caustic::system::interrupt::requested() {
             if let Some(ranks) = ranks {
                 ranks.barrier();
             }
-            std::process::exit(caustic::interrupt::exit_code(signal));
+            std::process::exit(caustic::system::interrupt::exit_code(signal));
         }
     }
     if let Some(ranks) = ranks {
@@ -345,12 +354,12 @@ fn cmd_compare(
         if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
             bail!("{}: the error image is a PNG file (name it .png)", path.display());
         }
-        caustic::film::check_writable(path)?;
+        caustic::output::film::check_writable(path)?;
     }
     let a = Film::load_with_variance(image)?;
     let b = Film::load_exr(reference)?;
     if let Some(path) = error_image {
-        caustic::files::check_output(path)?;
+        caustic::system::files::check_output(path)?;
     }
     compare::check_finite(&a, image)?;
     compare::check_finite(&b, reference)?;
@@ -375,7 +384,7 @@ fn cmd_compare(
 }
 
 /// A convergence curve as the table `convergence` prints.
-fn say_points(points: &[caustic::convergence::ConvergencePoint]) {
+fn say_points(points: &[caustic::render::convergence::ConvergencePoint]) {
     say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
     say!("|---|---|---|---|---|");
     for p in points {
@@ -398,18 +407,18 @@ fn cmd_convergence(
     plot: Option<&Path>,
     peers: &[PathBuf],
 ) -> Result<()> {
-    use caustic::convergence;
+    use caustic::render::convergence;
     let RunArgs { backend: choice, gpus, spp, define: defines, seed, integrator, strict, film } = run;
     let (choice, seed) = (*choice, *seed);
     for path in [csv, plot].into_iter().flatten() {
-        caustic::film::check_writable(path)?;
+        caustic::output::film::check_writable(path)?;
     }
-    let loaded = caustic::load_scene_with(scene_path, defines, LoadOptions { strict: *strict })?;
+    let loaded = caustic::load::load_scene_with(scene_path, defines, LoadOptions { strict: *strict })?;
     let reference_film = Film::load_exr(reference)?;
     compare::check_finite(&reference_film, reference)?;
     // No output may be an input (the scene, the reference), found before rendering.
     for path in [csv, plot].into_iter().flatten() {
-        caustic::files::check_output(path)?;
+        caustic::system::files::check_output(path)?;
     }
     // The scene's own integrator, or each one asked for: one curve each, measured one after the other.
     let choices: Vec<Option<IntegratorChoice>> =
@@ -482,11 +491,11 @@ fn bench_buffers(
         anyhow::bail!("--spp must be at least 1");
     }
     let start = Instant::now();
-    let scene = caustic::load_scene_with(scene_path, defines, options)?;
+    let scene = caustic::load::load_scene_with(scene_path, defines, options)?;
     let loaded = start.elapsed().as_secs_f64();
     let buffers = buffers::build(&scene)?;
     // What a large scene costs before its first sample (the large-scene table in BENCHMARKS.md).
-    let scene_bytes = caustic::memory::scene_bytes(&buffers);
+    let scene_bytes = caustic::backend::memory::scene_bytes(&buffers);
     // With instances: the primitives stored (each group's once, and the instances themselves) and
     // the ones the instances place.
     let placed = match buffers.placed_prims {
@@ -518,7 +527,7 @@ fn cmd_kernel_stats(
             let name = format!("{}-{:?}-{w}x{h}.spv", r.entry.replace("::", "-"), r.variant.path_loop)
                 .to_lowercase();
             let path = dir.join(name);
-            caustic::files::write(&path, bytemuck::cast_slice::<u32, u8>(&r.module))?;
+            caustic::system::files::write(&path, bytemuck::cast_slice::<u32, u8>(&r.module))?;
             say!("wrote {}", path.display());
         }
     }
@@ -574,10 +583,10 @@ fn cmd_bench(
         // the render is repeated until the backend has settled on one, which it keeps on disk for the
         // next render of this setup, `backend::variant`), then the timed render: what a second render
         // of the scene runs at.
-        render::render(backend.as_mut(), &buffers, 1, 1, |_| {})?;
+        passes::render(backend.as_mut(), &buffers, 1, 1, |_| {})?;
         let warm = Instant::now();
         while !backend.settled() && warm.elapsed() < WARM_UP_LIMIT {
-            render::render(backend.as_mut(), &buffers, spp, 1, |_| {})?;
+            passes::render(backend.as_mut(), &buffers, spp, 1, |_| {})?;
         }
         if !backend.settled() {
             say!("(the GPU's trial of its candidate pipelines did not end within the warm-up)");
@@ -589,8 +598,8 @@ fn cmd_bench(
         // a 0.24 s render timed without it ran at half the speed of the same scene's other renders,
         // once (BENCHMARKS.md, "All 23 scenes against Mitsuba, a BVH layout that lost").
         let mut backend = backend::create_on(choice, gpus, &buffers)?;
-        render::render(backend.as_mut(), &buffers, 1, 1, |_| {})?;
-        let (film, stats) = render::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
+        passes::render(backend.as_mut(), &buffers, 1, 1, |_| {})?;
+        let (film, stats) = passes::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
         let msps = film.width as f64 * film.height as f64 * spp as f64 / stats.seconds / 1e6;
         say!(
             "| {} | {}x{} | {spp} | {:.3} | {msps:.2} |",
@@ -600,7 +609,7 @@ fn cmd_bench(
             stats.seconds
         );
     }
-    if let Some(peak) = caustic::memory::peak_resident() {
+    if let Some(peak) = caustic::system::memory::peak_resident() {
         say!("peak host memory {:.1} MiB", peak as f64 / (1u64 << 20) as f64);
     }
     Ok(())
@@ -627,10 +636,10 @@ fn cmd_bench_scaling(
     for count in counts {
         let selection = GpuSelection::List(all[..count].to_vec());
         let mut warm = backend::create_on(BackendChoice::Gpu, &selection, &buffers)?;
-        render::render(warm.as_mut(), &buffers, count as u32, 1, |_| {})?;
+        passes::render(warm.as_mut(), &buffers, count as u32, 1, |_| {})?;
         drop(warm);
         let mut backend = backend::create_on(BackendChoice::Gpu, &selection, &buffers)?;
-        let (_, stats) = render::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
+        let (_, stats) = passes::render(backend.as_mut(), &buffers, spp, 0, |_| {})?;
         let msps = w as f64 * h as f64 * spp as f64 / stats.seconds / 1e6;
         let base = *one_gpu.get_or_insert(msps);
         let shares = match backend.lanes() {

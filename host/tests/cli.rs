@@ -62,7 +62,7 @@ fn renders_the_default_scene_on_the_cpu() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let summary = String::from_utf8_lossy(&out.stdout);
     assert!(summary.contains("32x32") && summary.contains("Msamples/s"), "{summary}");
-    let film = caustic::film::Film::load_exr(&out_path).unwrap();
+    let film = caustic::output::film::Film::load_exr(&out_path).unwrap();
     assert!(film.rgb.iter().flatten().all(|c| c.is_finite() && *c >= 0.0));
     assert!(film.rgb.iter().map(|p| p[1]).sum::<f32>() > 0.0, "the image is black");
 }
@@ -157,20 +157,27 @@ fn convergence_writes_its_curve_and_closed_stdout_is_not_a_panic() {
 /// sums are damaged (caught by its checksum) is refused with a message, not a panic.
 #[test]
 fn checkpointed_renders_resume_where_they_stopped() {
-    use caustic::checkpoint::{fingerprint, Checkpoint};
+    use caustic::render::checkpoint::{fingerprint, Checkpoint};
     let dir = std::env::temp_dir().join(format!("caustic-cli-ckpt-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let scene_path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
     let defines = vec![("res".to_string(), "16".to_string())];
-    let buffers =
-        caustic::buffers::build(&caustic::load_scene(std::path::Path::new(scene_path), &defines).unwrap())
-            .unwrap();
+    let buffers = caustic::prepare::buffers::build(
+        &caustic::load::load_scene(std::path::Path::new(scene_path), &defines).unwrap(),
+    )
+    .unwrap();
     let (seed, spp) = (3u32, 8u32);
     let mut backend = caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers).unwrap();
     // Interrupted at 4 of the 8 spp (passes stop at the listed count).
-    caustic::render::render_with_checkpoints(backend.as_mut(), &buffers, 0, spp, seed, &[4], |done, _, _| {
-        Ok(if done == 4 { Break(()) } else { Continue(()) })
-    })
+    caustic::render::passes::render_with_checkpoints(
+        backend.as_mut(),
+        &buffers,
+        0,
+        spp,
+        seed,
+        &[4],
+        |done, _, _| Ok(if done == 4 { Break(()) } else { Continue(()) }),
+    )
     .unwrap();
     let half = Checkpoint {
         scene: fingerprint(&buffers, seed, spp),
@@ -213,8 +220,10 @@ fn checkpointed_renders_resume_where_they_stopped() {
     assert!(!ckpt.exists(), "the checkpoint outlived the finished render");
     let out = caustic(&args(&whole).iter().map(String::as_str).collect::<Vec<_>>());
     assert!(out.status.success());
-    let (a, b) =
-        (caustic::film::Film::load_exr(&resumed).unwrap(), caustic::film::Film::load_exr(&whole).unwrap());
+    let (a, b) = (
+        caustic::output::film::Film::load_exr(&resumed).unwrap(),
+        caustic::output::film::Film::load_exr(&whole).unwrap(),
+    );
     for (p, q) in a.rgb.iter().zip(&b.rgb) {
         for c in 0..3 {
             assert!((p[c] - q[c]).abs() <= 1e-5 * (1.0 + q[c].abs()), "resumed {p:?} vs uninterrupted {q:?}");
@@ -371,7 +380,7 @@ fn checkpoint_on_the_output_is_refused() {
 /// such pixel (x, y), not a NaN statistic with exit code 0.
 #[test]
 fn compare_refuses_non_finite_pixels() {
-    use caustic::film::Film;
+    use caustic::output::film::Film;
     let dir = std::env::temp_dir().join(format!("caustic-cli-nan-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let film = |bad: Option<(usize, f32)>| {
@@ -508,9 +517,9 @@ fn an_interrupted_render_saves_its_partial_image() {
     let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     assert_eq!(out.status.code(), Some(130), "{stdout}\n{stderr}");
     assert!(stdout.contains("partial:") && stdout.contains("of 1000000 spp (interrupted)"), "{stdout}");
-    let comment = caustic::film::exr_comment(&image).unwrap().unwrap_or_default();
+    let comment = caustic::output::film::exr_comment(&image).unwrap().unwrap_or_default();
     assert!(comment.contains("partial render") && comment.contains("of 1000000 spp"), "{comment}");
-    let film = caustic::film::Film::load_exr(&image).unwrap();
+    let film = caustic::output::film::Film::load_exr(&image).unwrap();
     assert!(film.rgb.iter().flatten().all(|c| c.is_finite()));
     assert!(film.rgb.iter().map(|p| p[1]).sum::<f32>() > 0.0, "the partial image is black");
     assert!(checkpoint.exists(), "the checkpoint of the samples done is kept");
@@ -614,7 +623,8 @@ fn a_batch_renders_every_scene_and_variant() {
     assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
     assert_eq!(stdout.lines().count(), 4, "{stdout}");
     for (stem, res) in [("cornell-box", 8), ("cornell-box", 12), ("box2", 8), ("box2", 12)] {
-        let film = caustic::film::Film::load_exr(&out_dir.join(format!("{stem}-res={res}.exr"))).unwrap();
+        let film =
+            caustic::output::film::Film::load_exr(&out_dir.join(format!("{stem}-res={res}.exr"))).unwrap();
         assert_eq!((film.width, film.height), (res, res), "{stem} at res={res}");
     }
     let missing = dir.join("missing.xml");
@@ -636,8 +646,8 @@ fn a_batch_renders_every_scene_and_variant() {
 /// image alone, and nothing else is written beside either.
 #[test]
 fn aov_scenes_write_one_exr_with_every_channel() {
-    use caustic::aov::exr::read_channels;
-    use caustic::checkpoint::{fingerprint, Checkpoint};
+    use caustic::output::aov::exr::read_channels;
+    use caustic::render::checkpoint::{fingerprint, Checkpoint};
     let dir = std::env::temp_dir().join(format!("caustic-cli-aov-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let data = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/");
@@ -651,14 +661,21 @@ fn aov_scenes_write_one_exr_with_every_channel() {
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     };
     // Half of the samples through the library, as an interrupted render leaves them.
-    let buffers =
-        caustic::buffers::build(&caustic::load_scene(std::path::Path::new(&scene_path), &[]).unwrap())
-            .unwrap();
+    let buffers = caustic::prepare::buffers::build(
+        &caustic::load::load_scene(std::path::Path::new(&scene_path), &[]).unwrap(),
+    )
+    .unwrap();
     let (seed, spp) = (3u32, 8u32);
     let mut backend = caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers).unwrap();
-    caustic::render::render_with_checkpoints(backend.as_mut(), &buffers, 0, spp, seed, &[4], |done, _, _| {
-        Ok(if done == 4 { Break(()) } else { Continue(()) })
-    })
+    caustic::render::passes::render_with_checkpoints(
+        backend.as_mut(),
+        &buffers,
+        0,
+        spp,
+        seed,
+        &[4],
+        |done, _, _| Ok(if done == 4 { Break(()) } else { Continue(()) }),
+    )
     .unwrap();
     let accum = backend.read_accum().unwrap();
     let ckpt = dir.join("aov.ckpt");

@@ -4,7 +4,7 @@
 //! and for a batch of variants. Runs when the crate is built with the feature and `mpirun` is
 //! on the PATH (CI installs Open MPI and runs it: `.ci/run`).
 #![cfg(feature = "mpi")]
-use caustic::film::Film;
+use caustic::output::film::Film;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -167,7 +167,7 @@ fn a_slow_rank_takes_fewer_samples() {
 /// it had summed, and the checkpoint left behind resumes in one process to the one-process image.
 #[test]
 fn checkpoints_cross_between_one_process_and_ranks() {
-    use caustic::checkpoint::{fingerprint, Checkpoint};
+    use caustic::render::checkpoint::{fingerprint, Checkpoint};
     use std::ops::ControlFlow::{Break, Continue};
     let Some(mpirun) = mpirun() else { return };
     let dir = temp_dir("checkpoint");
@@ -181,13 +181,19 @@ fn checkpoints_cross_between_one_process_and_ranks() {
 
     // One process's checkpoint at 12 of 48 spp (written through the library), resumed by 2 ranks.
     let defines = vec![("res".to_string(), "24".to_string())];
-    let mut scene = caustic::load_scene(&scene(), &defines).unwrap();
+    let mut scene = caustic::load::load_scene(&scene(), &defines).unwrap();
     scene.integrator = scene.integrator.overridden(caustic::scene::IntegratorChoice::Path);
-    let buffers = caustic::buffers::build(&scene).unwrap();
+    let buffers = caustic::prepare::buffers::build(&scene).unwrap();
     let mut backend = caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers).unwrap();
-    caustic::render::render_with_checkpoints(backend.as_mut(), &buffers, 0, 48, 3, &[12], |done, _, _| {
-        Ok(if done == 12 { Break(()) } else { Continue(()) })
-    })
+    caustic::render::passes::render_with_checkpoints(
+        backend.as_mut(),
+        &buffers,
+        0,
+        48,
+        3,
+        &[12],
+        |done, _, _| Ok(if done == 12 { Break(()) } else { Continue(()) }),
+    )
     .unwrap();
     let accum = backend.read_accum().unwrap();
     Checkpoint { scene: fingerprint(&buffers, 3, 48), seed: 3, spp_total: 48, spp_done: 12, accum }

@@ -4,7 +4,8 @@
 //! host/tests holds the host's own behaviour: loading scenes, meshes and images, and the command
 //! line. Kernel math (sampling, BSDFs, lights) is tested in kernel/tests; rendered images as a whole in
 //! tests/tests.
-use caustic::mesh::{self, primitives, Mesh};
+use caustic::load::mesh::{self, primitives};
+use caustic::scene::mesh::Mesh;
 use caustic::scene::{Geometry, Scene, Shape};
 use caustic_tests::shared_dir_if_present;
 use glam::{Vec2, Vec3};
@@ -25,7 +26,7 @@ fn temp_dir(test: &str) -> PathBuf {
 fn load_scene_with(dir: &Path, shapes: &str) -> anyhow::Result<Scene> {
     let path = dir.join("scene.xml");
     std::fs::write(&path, format!("<scene version=\"3.0.0\">\n{shapes}\n</scene>\n")).unwrap();
-    caustic::mitsuba::load(&path, &[])
+    caustic::load::mitsuba::load(&path, &[])
 }
 
 fn load_error(dir: &Path, shapes: &str) -> String {
@@ -339,7 +340,7 @@ fn disk_and_cylinder_areas_match_the_analytic_shapes() {
     ))
     .unwrap();
     // The disk is analytic; the cylinder's inscribed polygon falls short of the true area by less
-    // than 1e-5 (see mesh::primitives).
+    // than 1e-5 (see load::mesh::primitives).
     let Geometry::Disk { center, u, v } = scene.shapes[0].geometry else { panic!("the disk is analytic") };
     assert_eq!((center, u, v), (Vec3::Z, Vec3::X * 2.0, Vec3::Y * 2.0));
     assert!((caustic_kernel::shape::disk::area(u, v) as f64 - 4.0 * std::f64::consts::PI).abs() < 1e-5);
@@ -425,7 +426,7 @@ fn disk_hits_uvs_and_normals_follow_mitsuba() {
     use caustic_kernel::shape::{intersect, surface_point, triangle::RayShear, Hit};
     let dir = temp_dir("disk");
     let scene = load_scene_with(&dir, "<shape type=\"disk\"/>\n<shape type=\"disk\"><transform name=\"to_world\"><scale x=\"-1\"/><translate z=\"-3\"/></transform></shape>").unwrap();
-    let buffers = caustic::buffers::build(&scene).unwrap();
+    let buffers = caustic::prepare::buffers::build(&scene).unwrap();
     for (k, z) in [(0usize, 0.0f32), (1, -3.0)] {
         let prim =
             buffers.prims.iter().find(|p| (p.p0[2] - z).abs() < 1e-6).expect("both disks are primitives");
@@ -553,13 +554,14 @@ fn bad_mesh_files_in_a_scene_name_the_scene_line_and_the_file() {
 fn shared_shape_scenes_load() {
     let Some(shared) = shared_dir_if_present() else { return };
     let scenes = shared.join("scenes/mitsuba/docs/scenes");
-    let disk = caustic::mitsuba::load(&scenes.join("shape_disk.xml"), &[]).expect("shape_disk.xml loads");
+    let disk =
+        caustic::load::mitsuba::load(&scenes.join("shape_disk.xml"), &[]).expect("shape_disk.xml loads");
     assert!(matches!(disk.shapes[0].geometry, Geometry::Disk { .. }), "the disk is analytic");
     for (file, kind_count) in
         [("shape_ply_bunny.xml", 69451), ("shape_cylinder_twosided.xml", 2 * primitives::SEGMENTS as usize)]
     {
         let scene =
-            caustic::mitsuba::load(&scenes.join(file), &[]).unwrap_or_else(|e| panic!("{file}: {e:#}"));
+            caustic::load::mitsuba::load(&scenes.join(file), &[]).unwrap_or_else(|e| panic!("{file}: {e:#}"));
         // The first shape is the one the scene is about; the included stage follows.
         let s = soup(&scene.shapes[0]);
         assert_eq!(s.triangles.len(), kind_count, "{file}");

@@ -1,5 +1,5 @@
 //! `load_dict`: Mitsuba 3's dictionary form of a scene, written out as the Mitsuba XML it stands for,
-//! which the host's loader then reads as it reads a file (`caustic::load_scene_from_text`): there is
+//! which the host's loader then reads as it reads a file (`caustic::load::load_scene_from_text`): there is
 //! one loader, and a dictionary is the scene its XML is.
 //!
 //! Mitsuba's conventions (its `load_dict`): `type` names the plugin; a nested dictionary is a child

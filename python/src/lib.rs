@@ -1,6 +1,6 @@
 //! `import caustic`: Mitsuba 3 scenes in, numpy arrays out, through the same library functions the
-//! command line calls (`caustic::load_scene_with`, `session::build_scene`, `backend::create_starting`,
-//! `render::render_observed`, `session::develop`, `Film::save`, `compare::compare`,
+//! command line calls (`caustic::load::load_scene_with`, `session::build_scene`, `backend::create_starting`,
+//! `passes::render_observed`, `session::develop`, `Film::save`, `compare::compare`,
 //! `convergence::measure_warmed_up`). Nothing here loads, builds, renders or compares by itself: it
 //! converts arguments and arrays (a scene dictionary into the XML the loader reads: `dict`), keeps a
 //! scene's backend between renders, releases the GIL while the host works and turns its errors into
@@ -8,11 +8,13 @@
 mod dict;
 
 use anyhow::Context;
+use caustic::backend::accumulation::{self, Accumulation};
 use caustic::backend::{self, Backend, BackendChoice, GpuSelection};
-use caustic::buffers::SceneBuffers;
-use caustic::film::{self, Accumulation, Film};
+use caustic::load::LoadOptions;
+use caustic::output::film::{self, Film};
+use caustic::prepare::buffers::SceneBuffers;
+use caustic::render::{convergence, passes, session};
 use caustic::scene::{FilmMode, IntegratorChoice};
-use caustic::{convergence, render, session, LoadOptions};
 use clap::ValueEnum;
 use numpy::ndarray::{Array2, Array3};
 use numpy::{IntoPyArray, PyArray3, PyArrayMethods, PyUntypedArrayMethods};
@@ -141,7 +143,7 @@ impl<P: FnMut(u32)> Observer<'_, P> {
     }
 }
 
-impl<P: FnMut(u32)> render::PassObserver for Observer<'_, P> {
+impl<P: FnMut(u32)> passes::PassObserver for Observer<'_, P> {
     fn progress(&mut self, finished: u32) {
         (self.progress)(finished)
     }
@@ -180,13 +182,13 @@ impl Scene {
             }
         };
         let pixels = (k.buffers.params.width * k.buffers.params.height) as usize;
-        let empty = Accumulation::new(pixels, film::batch_means(&k.buffers.params));
+        let empty = Accumulation::new(pixels, accumulation::batch_means(&k.buffers.params));
         k.backend.write_accum(&empty).map_err(host_error)?;
         let bar = session::progress_bar(progress, spp, 0);
         let mut raised = None;
         let observer =
             Observer { progress: |n: u32| bar.set_position(n as u64), variance, raised: &mut raised };
-        let stats = render::render_observed(k.backend.as_mut(), &k.buffers, 0, spp, seed, &[], observer);
+        let stats = passes::render_observed(k.backend.as_mut(), &k.buffers, 0, spp, seed, &[], observer);
         bar.finish_and_clear();
         // A backend that failed is not kept: the next render starts a new one.
         stats.map_err(host_error)?;
@@ -359,7 +361,7 @@ impl Scene {
         let (reference, reference_name) = film_or_file(py, reference, "reference", Film::load_exr)?;
         let (backend, points) = py
             .detach(|| {
-                caustic::compare::check_finite(&reference, &reference_name)?;
+                caustic::output::compare::check_finite(&reference, &reference_name)?;
                 let spp = session::samples_per_pixel(&self.scene, spp)?;
                 let buffers =
                     session::build_scene(self.scene.clone(), &self.path, setup.integrator, setup.film)?;
@@ -410,7 +412,7 @@ fn load_file(
         defines.push((name, value));
     }
     let scene = py
-        .detach(|| caustic::load_scene_with(&path, &defines, LoadOptions { strict }))
+        .detach(|| caustic::load::load_scene_with(&path, &defines, LoadOptions { strict }))
         .map_err(host_error)?;
     Ok(Scene { path, from_file: true, scene, kept: Mutex::new(None) })
 }
@@ -439,7 +441,7 @@ fn load_dict(py: Python<'_>, d: &Bound<'_, PyDict>, strict: bool) -> PyResult<Sc
         .detach(|| {
             let dir =
                 std::env::current_dir().context("the current directory, which file names are relative to")?;
-            caustic::load_scene_from_text(&path, &xml.text, &dir, &[], LoadOptions { strict })
+            caustic::load::load_scene_from_text(&path, &xml.text, &dir, &[], LoadOptions { strict })
         })
         .map_err(|e| CausticError::new_err(xml.annotate(&caustic::error_chain(&e))))?;
     Ok(Scene { path, from_file: false, scene, kept: Mutex::new(None) })
@@ -566,10 +568,10 @@ fn compare<'py>(
     }
     let c = py
         .detach(|| {
-            caustic::compare::check_finite(&a, &a_name)?;
-            caustic::compare::check_finite(&b, &b_name)?;
-            let ratio = caustic::compare::samples_ratio(image_spp, reference_spp);
-            caustic::compare::compare(&a, &b, ratio)
+            caustic::output::compare::check_finite(&a, &a_name)?;
+            caustic::output::compare::check_finite(&b, &b_name)?;
+            let ratio = caustic::output::compare::samples_ratio(image_spp, reference_spp);
+            caustic::output::compare::compare(&a, &b, ratio)
                 .with_context(|| format!("{} against {}", a_name.display(), b_name.display()))
         })
         .map_err(host_error)?;

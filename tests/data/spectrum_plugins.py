@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes spectrum_plugins.json: the colour Mitsuba 3.9.1 renders for each spectrum plugin written
 out as an object (`<spectrum type="...">`), against which tests/tests/spectrum_plugins.rs checks
-caustic's loader (host/src/mitsuba/spectrum_plugin.rs).
+caustic's loader (host/src/load/mitsuba/spectrum_plugin.rs).
 
     python3 -m venv /tmp/mi-venv && /tmp/mi-venv/bin/pip install mitsuba==3.9.1 numpy
     /tmp/mi-venv/bin/python tests/data/spectrum_plugins.py

@@ -6,9 +6,10 @@
 //! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
 //! files and its command line in host/tests.
 use caustic::backend::{self, BackendChoice};
-use caustic::film::Film;
+use caustic::output::film::Film;
+use caustic::prepare::buffers;
+use caustic::render::passes;
 use caustic::scene::Scene;
-use caustic::{buffers, render};
 use std::path::PathBuf;
 
 pub mod replicas;
@@ -83,12 +84,14 @@ pub fn defines(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
 /// Loads a Mitsuba scene given as text (written to a temporary `scene.xml` in a folder named after
 /// `tag`, then removed) with `defines` (`-D`); the loader's result, errors naming that file.
 pub fn try_load_xml(xml: &str, tag: &str, defines_: &[(&str, &str)]) -> anyhow::Result<Scene> {
-    load_xml_file(xml, tag, |path| caustic::load_scene(path, &defines(defines_)))
+    load_xml_file(xml, tag, |path| caustic::load::load_scene(path, &defines(defines_)))
 }
 
 /// `try_load_xml` under `--strict` (without defines): a substitution is an error.
 pub fn try_load_xml_strict(xml: &str, tag: &str) -> anyhow::Result<Scene> {
-    load_xml_file(xml, tag, |path| caustic::load_scene_with(path, &[], caustic::LoadOptions { strict: true }))
+    load_xml_file(xml, tag, |path| {
+        caustic::load::load_scene_with(path, &[], caustic::load::LoadOptions { strict: true })
+    })
 }
 
 /// Writes `xml` to a temporary `scene.xml` (in a folder named after `tag`), loads it with `load`,
@@ -123,7 +126,7 @@ pub fn render_buffers(buffers: &buffers::SceneBuffers, choice: BackendChoice, sp
     let mut backend = backend::create(choice, &buffers)
         .expect("backend starts (for the GPU: is a Vulkan driver such as lavapipe installed?)");
     let (film, stats) =
-        render::render(backend.as_mut(), &buffers, spp, seed, |_| {}).expect("render succeeds");
+        passes::render(backend.as_mut(), &buffers, spp, seed, |_| {}).expect("render succeeds");
     eprintln!("rendered on {} in {:.2} s", backend.describe(), stats.seconds);
     assert!(film.rgb.iter().flatten().all(|c| c.is_finite()), "non-finite pixel");
     film
@@ -182,7 +185,7 @@ pub fn against_mitsuba_reference(
     seed: u32,
     label: &str,
 ) -> (f64, f64) {
-    let loaded = caustic::load_scene(&test_data(scene), &defines(defines_)).expect("loads");
+    let loaded = caustic::load::load_scene(&test_data(scene), &defines(defines_)).expect("loads");
     scene_against_reference(&loaded, reference, reference_spp, choice, spp, seed, label)
 }
 
@@ -198,7 +201,8 @@ pub fn scene_against_reference(
 ) -> (f64, f64) {
     let film = render_scene(loaded, choice, spp, seed);
     let reference = Film::load_exr(&test_data(reference)).expect("reference loads");
-    let c = caustic::compare::compare(&film, &reference, spp as f64 / reference_spp).expect("same size");
+    let c =
+        caustic::output::compare::compare(&film, &reference, spp as f64 / reference_spp).expect("same size");
     let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());
     println!(
         "{label}, {choice:?} {spp} spp: RMSE {:.5}, luminance ratio {:.4}, z {z:+.2}, pass {pass:.4}",

@@ -3,7 +3,7 @@
 //! replicas rather than from its per-pixel variances.
 use crate::render_scene;
 use caustic::backend::BackendChoice;
-use caustic::film::Film;
+use caustic::output::film::Film;
 use caustic::scene::Scene;
 
 /// A light-traced (or IBPT) image rendered as `REPLICAS` independent renders of `spp / REPLICAS`
@@ -51,7 +51,7 @@ pub fn render_replicated(scene: &Scene, spp: u32, seed: u32) -> Replicated {
 /// worst per-pixel |z| (each image's variance pooled over neighbours).
 pub fn agreement(a: &Replicated, b: &Film) -> (f64, f64) {
     let pooled =
-        |f: &Film| caustic::compare::pooled_variance(f.variance.as_ref().unwrap(), f.width, f.height);
+        |f: &Film| caustic::output::compare::pooled_variance(f.variance.as_ref().unwrap(), f.width, f.height);
     let (va, vb) = (pooled(&a.film), pooled(b));
     let mut worst = 0.0f64;
     let mut var_b = 0.0f64;

@@ -1,4 +1,4 @@
-//! Mitsuba's `aov` and `depth` integrators (`caustic::aov`): every channel of a render of
+//! Mitsuba's `aov` and `depth` integrators (`caustic::output::aov`): every channel of a render of
 //! `tests/data/aov.xml` (the image, the nested integrator's copy with its alpha, and each AOV type)
 //! against Mitsuba 3.9.1's EXR (`aov.py`), on the CPU and on the GPU backend (lavapipe), with the
 //! channel names read from both files; the `depth` integrator against Mitsuba's; a negative control
@@ -9,10 +9,10 @@
 //! of the near clip plane (Mitsuba's ray origin) 76% of the depth channel's pixels agreeing; the
 //! facet normal given as `sh_normal` on the smooth OBJ 97% (`nn.X`); a box filter in place of the
 //! scene's Gaussian, every channel (84–97%).
-use caustic::aov::exr::read_channels;
 use caustic::backend::BackendChoice;
-use caustic::buffers;
-use caustic::film::Film;
+use caustic::output::aov::exr::read_channels;
+use caustic::output::film::Film;
+use caustic::prepare::buffers;
 use caustic_tests::*;
 
 const REFERENCE_SPP: f64 = 4096.0;
@@ -22,11 +22,11 @@ const Z_LIMIT: f64 = 4.5;
 /// Renders `aov.xml` (with `defines_`) at `spp` on `choice` and adds its AOVs, as `caustic render`
 /// does; the film and its EXR file's channels.
 fn render(choice: BackendChoice, spp: u32, defines_: &[(&str, &str)]) -> (Film, Vec<(String, Vec<f32>)>) {
-    let scene = caustic::load_scene(&test_data("aov.xml"), &defines(defines_)).expect("loads");
+    let scene = caustic::load::load_scene(&test_data("aov.xml"), &defines(defines_)).expect("loads");
     let built = buffers::build(&scene).expect("builds");
     let seed = 3;
     let mut film = render_buffers(&built, choice, spp, seed);
-    caustic::aov::add_to(&mut film, &built, spp, seed);
+    caustic::output::aov::add_to(&mut film, &built, spp, seed);
     let path = std::env::temp_dir().join(format!("caustic-aov-{}-{choice:?}.exr", std::process::id()));
     film.save(&path).expect("EXR written");
     let (w, h, channels) = read_channels(&path).expect("EXR read back");
@@ -141,7 +141,7 @@ fn depth_integrator_matches_mitsuba() {
     let built = buffers::build(&scene).expect("builds");
     let spp = 256;
     let mut film = render_buffers(&built, BackendChoice::Cpu, spp, 5);
-    caustic::aov::add_to(&mut film, &built, spp, 5);
+    caustic::output::aov::add_to(&mut film, &built, spp, 5);
     assert!(film.aovs.is_empty(), "the depth integrator writes no extra channels");
     let (_, _, reference) = read_channels(&test_data("aov_depth.exr")).expect("reference loads");
     assert_eq!(names(&reference), ["B", "G", "R"], "Mitsuba's depth image is RGB");
@@ -193,7 +193,7 @@ fn an_aov_integrator_without_nested_integrator_renders_black() {
         let loaded = try_load_xml(&scene(aovs), "no-nested", &[]).expect("loads");
         let built = buffers::build(&loaded).expect("builds");
         let mut film = render_buffers(&built, BackendChoice::Cpu, 4, 1);
-        caustic::aov::add_to(&mut film, &built, 4, 1);
+        caustic::output::aov::add_to(&mut film, &built, 4, 1);
         assert!(film.rgb.iter().all(|p| *p == [0.0; 3]), "{aovs:?}: the image is not black");
         assert_eq!(film.aovs.iter().map(|a| a.name.as_str()).collect::<Vec<_>>(), names, "{aovs:?}");
         if let Some(depth) = film.aovs.first() {
@@ -209,11 +209,11 @@ fn an_aov_integrator_without_nested_integrator_renders_black() {
 /// |difference| of 0.3 to 1.0 per component; after it, 0.002 to 0.008.
 #[test]
 fn shading_normals_under_normal_and_bump_maps_match_mitsuba() {
-    let loaded = caustic::load_scene(&test_data("aov_normalmap.xml"), &[]).expect("loads");
+    let loaded = caustic::load::load_scene(&test_data("aov_normalmap.xml"), &[]).expect("loads");
     let built = buffers::build(&loaded).expect("builds");
     let spp = 256;
     let mut film = render_buffers(&built, BackendChoice::Cpu, spp, 7);
-    caustic::aov::add_to(&mut film, &built, spp, 7);
+    caustic::output::aov::add_to(&mut film, &built, spp, 7);
     let (_, _, reference) = read_channels(&test_data("aov_normalmap.exr")).expect("reference loads");
     for (name, pass, rmse) in agreement_at(&film, spp, &reference, 1024.0) {
         println!("normal maps {name:<8} pass {pass:.4}, RMSE {rmse:.5}");

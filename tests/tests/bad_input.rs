@@ -17,7 +17,7 @@ fn write_scene(name: &str, body: &str) -> PathBuf {
 
 fn load_err(name: &str, body: &str) -> String {
     let path = write_scene(name, body);
-    match caustic::load_scene(&path, &[]) {
+    match caustic::load::load_scene(&path, &[]) {
         Ok(_) => panic!("{name} loaded but should not"),
         Err(e) => format!("{e:#}"),
     }
@@ -90,7 +90,7 @@ fn unsupported_elements_warn_and_the_rest_loads() {
         "unsupported.xml",
         &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<emitter type=\"sunsky\"/>\n<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n<shape type=\"teapot\"/>\n</scene>\n"),
     );
-    let scene = caustic::load_scene(&path, &[]).expect("loads with warnings");
+    let scene = caustic::load::load_scene(&path, &[]).expect("loads with warnings");
     assert_eq!(scene.shapes.len(), 1, "the supported sphere is kept");
     let w = scene.warnings.join("\n");
     assert!(w.contains("unsupported.xml:3") && w.contains("emitter"), "{w}");
@@ -111,7 +111,7 @@ fn deviations_warn_once_per_kind_and_strict_refuses_them() {
             "<scene version=\"3.0.0\">\n{SENSOR}\n{hair}\n{hair}\n{hair}\n<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n<emitter type=\"sunsky\"/>\n</scene>\n"
         ),
     );
-    let scene = caustic::load_scene(&path, &[]).expect("loads without --strict");
+    let scene = caustic::load::load_scene(&path, &[]).expect("loads without --strict");
     assert_eq!(scene.shapes.len(), 4, "the substituted BSDFs' shapes are kept");
     let about_hair: Vec<&String> = scene.warnings.iter().filter(|w| w.contains("'hair'")).collect();
     assert_eq!(about_hair.len(), 1, "one warning for three hair BSDFs: {:?}", scene.warnings);
@@ -132,8 +132,9 @@ fn deviations_warn_once_per_kind_and_strict_refuses_them() {
     );
     assert_eq!(scene.warnings.len(), 4, "hair, wobble, sunsky and the summary: {:?}", scene.warnings);
 
-    let strict = caustic::LoadOptions { strict: true };
-    let e = format!("{:#}", caustic::load_scene_with(&path, &[], strict).expect_err("--strict refuses it"));
+    let strict = caustic::load::LoadOptions { strict: true };
+    let e =
+        format!("{:#}", caustic::load::load_scene_with(&path, &[], strict).expect_err("--strict refuses it"));
     for needle in [
         "deviations.xml:3",
         "hair",
@@ -151,7 +152,7 @@ fn deviations_warn_once_per_kind_and_strict_refuses_them() {
         "clean.xml",
         &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<shape type=\"sphere\"/>\n</scene>\n"),
     );
-    let scene = caustic::load_scene_with(&clean, &[], strict).expect("a clean scene loads strictly");
+    let scene = caustic::load::load_scene_with(&clean, &[], strict).expect("a clean scene loads strictly");
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
 }
 
@@ -159,7 +160,7 @@ fn deviations_warn_once_per_kind_and_strict_refuses_them() {
 /// as written: each loads under `--strict`.
 #[test]
 fn shipped_and_reference_scenes_load_strictly() {
-    let strict = caustic::LoadOptions { strict: true };
+    let strict = caustic::load::LoadOptions { strict: true };
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"))
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -173,7 +174,9 @@ fn shipped_and_reference_scenes_load_strictly() {
     assert!(scenes.len() >= 6, "{scenes:?}");
     for path in &scenes {
         // As the conformance test (and Mitsuba's reference renders): some scenes use $spp undefined.
-        if let Err(e) = caustic::load_scene_with(path, &caustic_tests::defines(&[("spp", "16")]), strict) {
+        if let Err(e) =
+            caustic::load::load_scene_with(path, &caustic_tests::defines(&[("spp", "16")]), strict)
+        {
             panic!("{} does not load under --strict: {e:#}", path.display());
         }
     }
@@ -182,9 +185,9 @@ fn shipped_and_reference_scenes_load_strictly() {
 #[test]
 fn defaults_and_overrides() {
     let path = write_scene("defaults.xml", "<scene version=\"3.0.0\">\n<default name=\"res\" value=\"8\"/>\n<sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"$res\"/><integer name=\"height\" value=\"$res\"/></film></sensor>\n</scene>\n");
-    let scene = caustic::load_scene(&path, &[]).unwrap();
+    let scene = caustic::load::load_scene(&path, &[]).unwrap();
     assert_eq!(scene.sensor.width, 8);
-    let scene = caustic::load_scene(&path, &[("res".into(), "12".into())]).unwrap();
+    let scene = caustic::load::load_scene(&path, &[("res".into(), "12".into())]).unwrap();
     assert_eq!((scene.sensor.width, scene.sensor.height), (12, 12));
 }
 
@@ -194,13 +197,13 @@ fn moment_renders_its_nested_integrator() {
         "moment.xml",
         &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<integrator type=\"moment\"><integrator type=\"path\"><integer name=\"max_depth\" value=\"3\"/></integrator></integrator>\n</scene>\n"),
     );
-    let scene = caustic::load_scene(&path, &[]).expect("loads");
+    let scene = caustic::load::load_scene(&path, &[]).expect("loads");
     assert_eq!(scene.integrator.max_depth, 3, "the nested path integrator's settings apply");
     let bad = write_scene(
         "moment_empty.xml",
         &format!("<scene version=\"3.0.0\">\n{SENSOR}\n<integrator type=\"moment\"/>\n</scene>\n"),
     );
-    let e = format!("{:#}", caustic::load_scene(&bad, &[]).unwrap_err());
+    let e = format!("{:#}", caustic::load::load_scene(&bad, &[]).unwrap_err());
     assert!(e.contains("moment_empty.xml:3") && e.contains("nested"), "{e}");
 }
 
@@ -220,7 +223,7 @@ fn twenty_thousand_spheres_load() {
     body.push_str("<shape type=\"sphere\"><float name=\"wobble\" value=\"2\"/></shape>\n</scene>\n");
     let path = write_scene("spheres.xml", &body);
     let start = std::time::Instant::now();
-    let scene = caustic::load_scene(&path, &[]).expect("loads");
+    let scene = caustic::load::load_scene(&path, &[]).expect("loads");
     println!("{} spheres loaded in {:.3} s", SPHERES + 1, start.elapsed().as_secs_f64());
     assert_eq!(scene.shapes.len(), SPHERES + 1);
     let w = scene.warnings.join("\n");
@@ -297,7 +300,7 @@ fn deep_nesting_is_an_error_not_a_stack_overflow() {
         "</bsdf>".repeat(252)
     );
     let path = write_scene("deep-enough.xml", &format!("<scene version=\"3.0.0\">{}</scene>", shape(&inner)));
-    assert_eq!(caustic::load_scene(&path, &[]).expect("loads").shapes.len(), 1);
+    assert_eq!(caustic::load::load_scene(&path, &[]).expect("loads").shapes.len(), 1);
 }
 
 /// Files that each include the next one twice, 26 deep, ask for 2^26 loads within the depth limit:
@@ -316,7 +319,7 @@ fn an_include_explosion_is_bounded() {
         top = write_scene(&format!("explode-{level}.xml"), &body);
     }
     let start = std::time::Instant::now();
-    let e = match caustic::load_scene(&top, &[]) {
+    let e = match caustic::load::load_scene(&top, &[]) {
         Ok(_) => panic!("2^26 includes loaded"),
         Err(e) => format!("{e:#}"),
     };
@@ -359,9 +362,9 @@ fn a_film_over_the_gpu_binding_limit_is_refused() {
     let height = (limit / 32 / width as u64 + 1) as u32;
     let mut scene = caustic_tests::load_xml(&format!("<scene version=\"3.0.0\">{SENSOR}</scene>"), "limits");
     (scene.sensor.width, scene.sensor.height) = (width, height);
-    let buffers = caustic::buffers::build(&scene).expect("builds");
-    let need = caustic::memory::render_need(&buffers);
-    if caustic::memory::available().is_some_and(|have| need > have) {
+    let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
+    let need = caustic::backend::memory::render_need(&buffers);
+    if caustic::system::memory::available().is_some_and(|have| need > have) {
         eprintln!("notice: a {width}×{height} film needs more memory than this machine has; test skipped");
         return;
     }
@@ -381,16 +384,17 @@ fn a_film_over_the_gpu_binding_limit_is_refused() {
 fn a_film_larger_than_memory_is_refused() {
     let mut scene = caustic_tests::load_xml(&format!("<scene version=\"3.0.0\">{SENSOR}</scene>"), "memory");
     (scene.sensor.width, scene.sensor.height) = (32768, 32768);
-    let buffers = caustic::buffers::build(&scene).expect("builds");
-    let need = caustic::memory::render_need(&buffers);
+    let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
+    let need = caustic::backend::memory::render_need(&buffers);
     assert!(need > 100 << 30, "a 32768² film needs {need} bytes?");
-    let e = caustic::memory::check(need, Some(64 << 30), "a 32768×32768 render").unwrap_err().to_string();
+    let e =
+        caustic::system::memory::check(need, Some(64 << 30), "a 32768×32768 render").unwrap_err().to_string();
     assert!(e.contains("32768×32768") && e.contains("64.0 GiB available"), "{e}");
     assert_eq!(
-        caustic::memory::parse_mem_available("MemTotal: 9 kB\nMemAvailable:    2048 kB\n"),
+        caustic::system::memory::parse_mem_available("MemTotal: 9 kB\nMemAvailable:    2048 kB\n"),
         Some(2 << 20)
     );
-    match caustic::memory::available() {
+    match caustic::system::memory::available() {
         Some(have) if have < need => {
             let e = match caustic::backend::create(caustic::backend::BackendChoice::Cpu, &buffers) {
                 Ok(_) => panic!("a render needing {need} bytes started with {have} available"),
@@ -412,7 +416,7 @@ fn hostile_numbers_in_files_are_refused_naming_where() {
     let texels = |name: &str, at: usize, value: f32| {
         let mut rgb = vec![[0.5f32; 3]; 4 * 3];
         rgb[at][1] = value;
-        let film = caustic::film::Film::from_rgb(4, 3, rgb);
+        let film = caustic::output::film::Film::from_rgb(4, 3, rgb);
         film.save(&write_scene(name, "").with_file_name(name)).unwrap();
     };
     texels("inf.exr", 4 + 2, f32::INFINITY);
@@ -465,7 +469,7 @@ fn a_huge_rectangle_is_kept() {
         }
         _ => panic!("a rectangle is triangles"),
     }
-    let buffers = caustic::buffers::build(&scene).expect("builds");
+    let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
     // Two triangles of equal area: half the light-selection probability each (a power overflowing
     // f32 would be zero and leave only the uniform half of the mixture).
     let pmf: Vec<f32> = buffers.lights.iter().map(|l| l.pmf).collect();

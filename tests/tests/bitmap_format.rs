@@ -46,7 +46,7 @@ fn worst_steps(got: &[f32], want: &serde_json::Value, encoded: bool) -> f64 {
         .unwrap()
         .iter()
         .flat_map(|t| t.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()));
-    let encode = |v: f32| if encoded { caustic::film::linear_to_srgb(v) } else { v };
+    let encode = |v: f32| if encoded { caustic::load::image_io::linear_to_srgb(v) } else { v };
     got.iter()
         .zip(want)
         .map(|(&g, w)| (encode(g) as f64 - encode(w as f32) as f64).abs() * 255.0)
@@ -103,7 +103,7 @@ fn bitmap_format_refusals_name_file_and_line() {
     let dir = std::env::temp_dir().join(format!("caustic-bitmap-overflow-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let exr = dir.join("big.exr");
-    let film = caustic::film::Film {
+    let film = caustic::output::film::Film {
         width: 2,
         height: 1,
         rgb: vec![[0.5, 70000.0, 1.0], [0.1, 0.2, 0.3]],

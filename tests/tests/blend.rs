@@ -4,7 +4,7 @@
 //! with a negative control; trees of blends likewise (`nested_blend.xml`); the record the loader
 //! writes, Mitsuba's refusals and caustic's, with file and line; the feature bit. (The BSDF itself: `kernel/tests/bsdf_blend.rs`.)
 use caustic::backend::BackendChoice;
-use caustic::buffers;
+use caustic::prepare::buffers;
 use caustic_kernel::bsdf::blend;
 use caustic_kernel::features;
 use caustic_kernel::layout::*;
@@ -226,7 +226,7 @@ fn a_dirac_leaf_deep_in_a_tree_is_a_substitution() {
 /// in, the CPU renders the blended spheres alike (it takes the same branches either way).
 #[test]
 fn specialization_keeps_blends() {
-    let scene = caustic::load_scene(&test_data("blend.xml"), &[]).expect("loads");
+    let scene = caustic::load::load_scene(&test_data("blend.xml"), &[]).expect("loads");
     let specialised = buffers::build(&scene).expect("builds");
     assert!(features::has(specialised.features, features::BLEND));
     let mut general = specialised.clone();

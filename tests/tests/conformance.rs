@@ -10,8 +10,8 @@
 //! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
 //! files and its command line in host/tests.
 use caustic::backend::BackendChoice;
-use caustic::compare::compare;
-use caustic::film::Film;
+use caustic::output::compare::compare;
+use caustic::output::film::Film;
 use caustic::scene::Crop;
 use caustic_tests::*;
 use std::time::Instant;
@@ -81,7 +81,7 @@ fn check_edited(
 ) -> Outcome {
     // Like Mitsuba's own reference renders, pass the sample count (some scenes use $spp before their
     // includes give it a default); the render below sets the budget's count anyway.
-    let mut s = caustic::load_scene(&mitsuba_scene(&scene.file), &defines(&[("spp", "16")]))
+    let mut s = caustic::load::load_scene(&mitsuba_scene(&scene.file), &defines(&[("spp", "16")]))
         .unwrap_or_else(|e| panic!("{} does not load: {e:#}", scene.name));
     let (w, h) = (s.sensor.width, s.sensor.height);
     let (cw, ch) = (((w as f32 * fraction) as u32).max(1), ((h as f32 * fraction) as u32).max(1));

@@ -6,12 +6,12 @@
 //! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
 //! files and its command line in host/tests.
 use caustic::backend::BackendChoice;
-use caustic::compare::compare;
+use caustic::output::compare::compare;
 use caustic_tests::*;
 
 #[test]
 fn gpu_and_cpu_agree_on_the_cornell_box() {
-    let scene = caustic::load_scene(&mitsuba_scene("scenes/cbox/cbox.xml"), &defines(&[("res", "96")]))
+    let scene = caustic::load::load_scene(&mitsuba_scene("scenes/cbox/cbox.xml"), &defines(&[("res", "96")]))
         .expect("cbox loads");
     let cpu = render_scene(&scene, BackendChoice::Cpu, 32, 11);
     let gpu = render_scene(&scene, BackendChoice::Gpu, 32, 11);
@@ -64,7 +64,7 @@ fn gpu_and_cpu_agree_on_every_feature() {
     let own = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/rtiow-final.xml");
     for path in mitsuba.iter().map(|f| mitsuba_scene(f)).chain([own]) {
         let file = path.display();
-        let mut scene = caustic::load_scene(&path, &defines(&[("spp", "4")])).expect("scene loads");
+        let mut scene = caustic::load::load_scene(&path, &defines(&[("spp", "4")])).expect("scene loads");
         let (w, h) = (scene.sensor.width, scene.sensor.height);
         scene.sensor.crop =
             Some(caustic::scene::Crop { x: w / 2 - 24, y: h / 2 - 24, width: 48, height: 48 });
@@ -102,11 +102,11 @@ fn gpu_and_cpu_agree_on_every_feature() {
 fn specialization_changes_nothing_but_speed() {
     for file in ["docs/scenes/bsdf_plastic_default.xml", "docs/scenes/emitter_spot_no_texture.xml"] {
         let mut scene =
-            caustic::load_scene(&mitsuba_scene(file), &defines(&[("spp", "4")])).expect("scene loads");
+            caustic::load::load_scene(&mitsuba_scene(file), &defines(&[("spp", "4")])).expect("scene loads");
         let (w, h) = (scene.sensor.width, scene.sensor.height);
         scene.sensor.crop =
             Some(caustic::scene::Crop { x: w / 2 - 16, y: h / 2 - 16, width: 32, height: 32 });
-        let specialised = caustic::buffers::build(&scene).expect("scene builds");
+        let specialised = caustic::prepare::buffers::build(&scene).expect("scene builds");
         assert_ne!(specialised.features, caustic_kernel::features::ALL, "{file}: nothing to leave out");
         let mut general = specialised.clone();
         general.features = caustic_kernel::features::ALL;
@@ -131,14 +131,14 @@ fn specialization_changes_nothing_but_speed() {
 /// uninterrupted image on both backends.
 #[test]
 fn resumed_renders_match_uninterrupted_ones() {
-    use caustic::render::render_with_checkpoints;
+    use caustic::render::passes::render_with_checkpoints;
     use std::ops::ControlFlow::{Break, Continue};
-    let scene = caustic::load_scene(
+    let scene = caustic::load::load_scene(
         std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml")),
         &defines(&[("res", "16")]),
     )
     .unwrap();
-    let buffers = caustic::buffers::build(&scene).unwrap();
+    let buffers = caustic::prepare::buffers::build(&scene).unwrap();
     for choice in [BackendChoice::Cpu, BackendChoice::Gpu] {
         let mut first = caustic::backend::create(choice, &buffers).unwrap();
         // Interrupted at 3 of 6 spp: the stratified sampler's strata are laid out for all 6.
@@ -152,7 +152,7 @@ fn resumed_renders_match_uninterrupted_ones() {
         render_with_checkpoints(second.as_mut(), &buffers, 3, 6, 7, &[], |_, _, _| Ok(Continue(()))).unwrap();
         let whole = render_buffers(&buffers, choice, 6, 7);
         let resumed =
-            caustic::film::Film::from_accum(whole.width, whole.height, &second.read_accum().unwrap());
+            caustic::output::film::Film::from_accum(whole.width, whole.height, &second.read_accum().unwrap());
         for (p, q) in resumed.rgb.iter().zip(&whole.rgb) {
             for c in 0..3 {
                 assert!(

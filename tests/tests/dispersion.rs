@@ -3,7 +3,7 @@
 //! tracing and IBPT agree with path tracing through dispersive glass, and the GPU splats the same
 //! signed sums as the CPU.
 use caustic::backend::BackendChoice;
-use caustic::film::Film;
+use caustic::output::film::Film;
 use caustic::scene::{IntegratorKind, Scene};
 use caustic_kernel::layout::MATERIAL_DISPERSIVE;
 use caustic_tests::replicas::*;
@@ -14,7 +14,7 @@ use std::path::PathBuf;
 /// `disperse: false` renders its glass as plain RGB glass.
 fn prism(disperse: bool) -> Scene {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes/prism.xml");
-    let mut scene = caustic::load_scene(&path, &defines(&[("res", "48"), ("ceiling", "0")]))
+    let mut scene = caustic::load::load_scene(&path, &defines(&[("res", "48"), ("ceiling", "0")]))
         .unwrap_or_else(|e| panic!("{e:#}"));
     scene.integrator.kind = IntegratorKind::Ptracer;
     for m in scene.materials.iter_mut().filter(|_| !disperse) {
@@ -282,7 +282,7 @@ fn bad_dispersion_parameters_are_refused_with_their_line() {
         let path = dir.join("scene.xml");
         let xml = format!("<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n<bsdf type=\"dielectric\">{bsdf}</bsdf>\n</shape>\n</scene>");
         std::fs::write(&path, xml).unwrap();
-        let message = match caustic::load_scene(&path, &[]) {
+        let message = match caustic::load::load_scene(&path, &[]) {
             Ok(_) => panic!("{bsdf}: accepted"),
             Err(e) => format!("{e:#}"),
         };

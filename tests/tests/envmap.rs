@@ -2,7 +2,7 @@
 //! sampling follows the luminance above the map's mean, BSDF sampling covers the rest, and the image
 //! is the one without compensation.
 use caustic::backend::BackendChoice;
-use caustic::buffers;
+use caustic::prepare::buffers;
 use caustic_kernel::layout::LIGHT_ENVMAP;
 use caustic_tests::replicas::*;
 use caustic_tests::*;

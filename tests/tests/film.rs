@@ -4,7 +4,7 @@
 //! scatter of independent renders. Its agreement with Mitsuba per filter is `filters.rs`'s; CPU
 //! against GPU is `cross_backend.rs`'s.
 use caustic::backend::BackendChoice;
-use caustic::film::Film;
+use caustic::output::film::Film;
 use caustic::scene::FilmMode;
 use caustic_kernel::film::{filter_weight, FilmSample};
 use caustic_kernel::film_splat::{add, clear, gather, reach_for_radius, resolved, CellReader, FilmCells};
@@ -50,7 +50,7 @@ fn one_sample_reaches_each_pixel_with_the_filters_weight() {
          <rfilter type=\"gaussian\"/></film></sensor></scene>",
         "film-weights",
     );
-    let buffers = caustic::buffers::build(&scene).expect("builds");
+    let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
     let params = buffers.params;
     assert_eq!(params.film_reach, 2, "the gaussian's radius 2 reaches two pixels");
     let stride = caustic_kernel::film_splat::words_per_pixel(&params) as usize;
@@ -95,7 +95,7 @@ fn render_filters_scene(filter: &str, film: FilmMode, spp: u32, seed: u32) -> Fi
 
 fn render_sized(filter: &str, film: FilmMode, spp: u32, seed: u32, res: &str) -> Film {
     let defines = defines(&[("filter", filter), ("res", res)]);
-    let mut scene = caustic::load_scene(&test_data("filters.xml"), &defines).expect("loads");
+    let mut scene = caustic::load::load_scene(&test_data("filters.xml"), &defines).expect("loads");
     scene.sensor.film = film;
     render_scene(&scene, BackendChoice::Cpu, spp, seed)
 }
@@ -138,7 +138,7 @@ fn the_splatting_film_has_less_error_per_sample_than_filter_sampling() {
 fn against(filter: &str, film: FilmMode) -> (f64, f64) {
     let image = render_filters_scene(filter, film, 256, 9);
     let reference = Film::load_exr(&test_data(&format!("filters_{filter}.exr"))).expect("reference");
-    let c = caustic::compare::compare(&image, &reference, 256.0 / 16384.0).expect("same size");
+    let c = caustic::output::compare::compare(&image, &reference, 256.0 / 16384.0).expect("same size");
     (c.pass_fraction.unwrap(), c.luminance_z.unwrap())
 }
 

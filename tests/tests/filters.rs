@@ -4,7 +4,7 @@
 //! mean-luminance z-score on the CPU and the GPU backend, with a negative control (the Gaussian
 //! filter's image against the Lanczos reference). Over a black background (`filters_black.xml`,
 //! references by `filters_black.py`) the negative lobes drive pixels below zero, in caustic's image as
-//! in Mitsuba's. The sampling itself is checked in `caustic::filter_table`'s unit tests; light
+//! in Mitsuba's. The sampling itself is checked in `caustic::prepare::filter_table`'s unit tests; light
 //! tracing's signed splats in `ptracer.rs`.
 use caustic::backend::BackendChoice;
 use caustic_tests::*;
@@ -63,7 +63,7 @@ fn lanczos_without_lobes_is_refused() {
          <rfilter type=\"lanczos\"><integer name=\"lobes\" value=\"0\"/></rfilter></film></sensor>\n</scene>\n",
     )
     .unwrap();
-    let Err(e) = caustic::load_scene(&path, &[]) else { panic!("lanczos with lobes = 0 loaded") };
+    let Err(e) = caustic::load::load_scene(&path, &[]) else { panic!("lanczos with lobes = 0 loaded") };
     let message = format!("{e:#}");
     std::fs::remove_dir_all(&dir).ok();
     assert!(message.contains("lobes.xml:3") && message.contains("lobes"), "{message}");
@@ -86,18 +86,22 @@ fn luminance(c: [f32; 3]) -> f64 {
 }
 
 /// caustic's CPU render of `filters_black.xml` with `filter`, and Mitsuba's reference.
-fn render_black(filter: &str) -> (caustic::film::Film, caustic::film::Film) {
-    let scene =
-        caustic::load_scene(&test_data("filters_black.xml"), &defines(&[("filter", filter)])).expect("loads");
+fn render_black(filter: &str) -> (caustic::output::film::Film, caustic::output::film::Film) {
+    let scene = caustic::load::load_scene(&test_data("filters_black.xml"), &defines(&[("filter", filter)]))
+        .expect("loads");
     let film = render_scene(&scene, BackendChoice::Cpu, BLACK_SPP, 3);
-    let reference = caustic::film::Film::load_exr(&test_data(&format!("filters_black_{filter}.exr")))
+    let reference = caustic::output::film::Film::load_exr(&test_data(&format!("filters_black_{filter}.exr")))
         .expect("reference loads");
     (film, reference)
 }
 
 /// (pass fraction, luminance z) of `film` against `reference`, printed with `label`.
-fn judge(film: &caustic::film::Film, reference: &caustic::film::Film, label: &str) -> (f64, f64) {
-    let c = caustic::compare::compare(film, reference, BLACK_SPP as f64 / BLACK_REFERENCE_SPP)
+fn judge(
+    film: &caustic::output::film::Film,
+    reference: &caustic::output::film::Film,
+    label: &str,
+) -> (f64, f64) {
+    let c = caustic::output::compare::compare(film, reference, BLACK_SPP as f64 / BLACK_REFERENCE_SPP)
         .expect("same size");
     let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());
     println!(

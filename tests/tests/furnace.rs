@@ -160,9 +160,9 @@ fn smooth_shaded_diamond_in_a_unit_environment() {
 /// must fall as 1/spp (an unbiased estimator), the luminance ratio tend to 1, and the render time grow.
 #[test]
 fn convergence_against_the_exact_furnace_image() {
-    use caustic::film::Film;
+    use caustic::output::film::Film;
     let scene = furnace(white_lambert());
-    let buffers = caustic::buffers::build(&scene).unwrap();
+    let buffers = caustic::prepare::buffers::build(&scene).unwrap();
     let (w, h) = (buffers.params.width, buffers.params.height);
     let exact = Film {
         width: w,
@@ -175,13 +175,14 @@ fn convergence_against_the_exact_furnace_image() {
         aovs: Vec::new(),
     };
     let mut backend = caustic::backend::create(BackendChoice::Cpu, &buffers).unwrap();
-    let points = caustic::convergence::measure(backend.as_mut(), &buffers, &exact, 256, 9).unwrap();
+    let points = caustic::render::convergence::measure(backend.as_mut(), &buffers, &exact, 256, 9).unwrap();
     assert_eq!(points.iter().map(|p| p.spp).collect::<Vec<_>>(), vec![1, 2, 4, 8, 16, 32, 64, 128, 256]);
     assert!(points.windows(2).all(|p| p[1].seconds > p[0].seconds), "render time must grow");
     // Slope of log(rel MSE) against log(spp), fitted over all points.
-    let slope =
-        caustic::convergence::least_squares_log_slope(points.iter().map(|p| (p.spp as f64, p.rel_mse)))
-            .expect("nine points");
+    let slope = caustic::render::convergence::least_squares_log_slope(
+        points.iter().map(|p| (p.spp as f64, p.rel_mse)),
+    )
+    .expect("nine points");
     println!("furnace convergence: slope {slope:.3}, last {:?}", points.last().unwrap());
     assert!((-1.2..-0.8).contains(&slope), "relative MSE falls as spp^{slope:.3}, not 1/spp");
     assert!((points.last().unwrap().luminance_ratio - 1.0).abs() < 0.01);

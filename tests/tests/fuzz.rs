@@ -65,17 +65,17 @@ fn load(dir: &Path, file: &str) -> Result<(), String> {
     match file {
         // The scene loads the PLY mesh (the PLY reader is the mesh module's own).
         "scene.xml" | "mesh.ply" => {
-            let scene = caustic::load_scene(&dir.join("scene.xml"), &[]).map_err(e)?;
-            caustic::buffers::build(&scene).map_err(e)?;
+            let scene = caustic::load::load_scene(&dir.join("scene.xml"), &[]).map_err(e)?;
+            caustic::prepare::buffers::build(&scene).map_err(e)?;
         }
         "mesh.obj" | "mesh.mtl" => {
-            let scene = caustic::load_scene(&dir.join("mesh.obj"), &[]).map_err(e)?;
-            caustic::buffers::build(&scene).map_err(e)?;
+            let scene = caustic::load::load_scene(&dir.join("mesh.obj"), &[]).map_err(e)?;
+            caustic::prepare::buffers::build(&scene).map_err(e)?;
         }
         "env.exr" | "texture.png" => {
-            drop(caustic::image_io::load_linear_rgb(&dir.join(file), false).map_err(e)?)
+            drop(caustic::load::image_io::load_linear_rgb(&dir.join(file), false).map_err(e)?)
         }
-        "checkpoint" => drop(caustic::checkpoint::Checkpoint::load(&dir.join(file)).map_err(e)?),
+        "checkpoint" => drop(caustic::render::checkpoint::Checkpoint::load(&dir.join(file)).map_err(e)?),
         other => panic!("no loader for {other}"),
     }
     Ok(())
@@ -100,12 +100,12 @@ fn loaders_never_panic_on_mutated_files() {
         files.iter().map(|f| (f.clone(), std::fs::read(corpus().join(f)).unwrap())).collect();
     // A checkpoint of two pixels, made through the API (its format carries a checksum).
     let checkpoint = dir.join("checkpoint");
-    caustic::checkpoint::Checkpoint {
+    caustic::render::checkpoint::Checkpoint {
         scene: 7,
         seed: 1,
         spp_total: 4,
         spp_done: 2,
-        accum: caustic::film::Accumulation::new(2, false),
+        accum: caustic::backend::accumulation::Accumulation::new(2, false),
     }
     .save(&checkpoint)
     .unwrap();
@@ -160,8 +160,8 @@ fn loaders_never_panic_on_mutated_files() {
 /// change, no writer may panic, and a write either succeeds whole or leaves what was there.
 #[test]
 fn writers_never_overwrite_an_input_or_leave_half_a_file() {
-    use caustic::convergence::ConvergencePoint;
-    use caustic::film::Film;
+    use caustic::output::film::Film;
+    use caustic::render::convergence::ConvergencePoint;
     let seed: u64 = std::env::var("CAUSTIC_FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(0x5eed);
     let dir = std::env::temp_dir().join(format!("caustic-fuzz-outputs-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -173,9 +173,9 @@ fn writers_never_overwrite_an_input_or_leave_half_a_file() {
         inputs.push(name);
     }
     inputs.sort();
-    caustic::load_scene(&dir.join("scene.xml"), &[]).unwrap();
-    caustic::load_scene(&dir.join("mesh.obj"), &[]).unwrap();
-    caustic::image_io::load_linear_rgb(&dir.join("texture.png"), false).unwrap();
+    caustic::load::load_scene(&dir.join("scene.xml"), &[]).unwrap();
+    caustic::load::load_scene(&dir.join("mesh.obj"), &[]).unwrap();
+    caustic::load::image_io::load_linear_rgb(&dir.join("texture.png"), false).unwrap();
     let snapshot: Vec<Vec<u8>> = inputs.iter().map(|n| std::fs::read(dir.join(n)).unwrap()).collect();
     let film = Film {
         width: 3,
@@ -214,16 +214,16 @@ fn writers_never_overwrite_an_input_or_leave_half_a_file() {
         let result = std::panic::catch_unwind(|| match writer {
             0 => film.save(&target),
             1 => film.save_variance(&target),
-            2 => caustic::checkpoint::Checkpoint {
+            2 => caustic::render::checkpoint::Checkpoint {
                 scene: 1,
                 seed: 2,
                 spp_total: 8,
                 spp_done: 4,
-                accum: caustic::film::Accumulation::new(6, false),
+                accum: caustic::backend::accumulation::Accumulation::new(6, false),
             }
             .save(&target),
-            3 => caustic::convergence::write_csv(&target, &[("path", &[point][..])]),
-            _ => caustic::convergence::write_plot(&target, &[("path".to_string(), vec![point])]),
+            3 => caustic::render::convergence::write_csv(&target, &[("path", &[point][..])]),
+            _ => caustic::render::convergence::write_plot(&target, &[("path".to_string(), vec![point])]),
         });
         let result = result.unwrap_or_else(|_| panic!("a writer panicked on {}", target.display()));
         let after = std::fs::read(&target).ok();

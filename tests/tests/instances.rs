@@ -2,7 +2,7 @@
 //! `merge`. Against Mitsuba 3.9.1 on a group of a mesh, a sphere and a disk placed three times
 //! (rotated and scaled, and mirrored: Mitsuba keeps a mirrored instance's normals facing out), on
 //! both backends, with a negative control; and what Mitsuba refuses, refused with file and line.
-//! Instances stored once (`caustic::instancing`): against their flattened copies image by image
+//! Instances stored once (`caustic::scene::instancing`): against their flattened copies image by image
 //! (rotation, uneven scale, mirrors, normal maps; both backends) and hit by hit (CPU); memory flat
 //! in the number of instances; scenes without instances on the one-level walk.
 use caustic::backend::BackendChoice;
@@ -131,13 +131,13 @@ fn placed_scene() -> String {
 fn instances_render_as_their_flattened_copies() {
     let instanced = load_xml(&placed_scene(), "instanced");
     assert_eq!(instanced.instancing.instances.len(), 4, "the group stays stored once");
-    let b = caustic::buffers::build(&instanced).expect("builds");
+    let b = caustic::prepare::buffers::build(&instanced).expect("builds");
     assert!(b.features & caustic_kernel::features::INSTANCING != 0, "instancing's traversal is on");
     let mut flattened = instanced.clone();
     flattened.flatten_instances(usize::MAX).unwrap();
     assert!(flattened.instancing.instances.is_empty());
-    let compare = |a: &caustic::film::Film, b: &caustic::film::Film| {
-        let c = caustic::compare::compare(a, b, 1.0).expect("same size");
+    let compare = |a: &caustic::output::film::Film, b: &caustic::output::film::Film| {
+        let c = caustic::output::compare::compare(a, b, 1.0).expect("same size");
         (c.pass_fraction.unwrap(), c.luminance_z.unwrap())
     };
     for (choice, spp) in [(BackendChoice::Cpu, 512), (BackendChoice::Gpu, 64)] {
@@ -177,7 +177,7 @@ fn instances_store_their_group_once() {
             <emitter type="constant"/></scene>"#
         );
         let s = load_xml(&xml, &format!("flat-memory-{n}"));
-        (caustic::buffers::build(&s).expect("builds"), s)
+        (caustic::prepare::buffers::build(&s).expect("builds"), s)
     };
     let (ten, s10) = scene(10);
     let (thousand, s1000) = scene(1000);
@@ -194,7 +194,7 @@ fn instances_store_their_group_once() {
     assert!(thousand.nodes.len() < ten.nodes.len() + 2 * 1000, "{} BVH nodes", thousand.nodes.len());
     // Each instance's two maps, 24 floats.
     assert!(thousand.tables.len() - ten.tables.len() == 990 * 24);
-    let bytes = caustic::memory::scene_bytes(&thousand) as f64;
+    let bytes = caustic::backend::memory::scene_bytes(&thousand) as f64;
     let flattened_triangles = 1000.0 * group as f64 * 48.0;
     println!("1000 instances: {:.2} MiB of scene buffers", bytes / (1 << 20) as f64);
     assert!(bytes < 0.01 * flattened_triangles, "{bytes} bytes");
@@ -221,18 +221,18 @@ fn scenes_without_instances_keep_the_one_level_walk() {
         .collect();
     let scene = load_xml(&first_only, "placed-once");
     assert!(scene.instancing.instances.is_empty(), "a group placed once is flattened");
-    let b = caustic::buffers::build(&scene).expect("builds");
+    let b = caustic::prepare::buffers::build(&scene).expect("builds");
     assert_eq!(b.features & INSTANCING, 0);
     assert!(b.prims.iter().all(|p| p.kind != PRIM_INSTANCE));
     assert_eq!(b.placed_prims, 0);
     // The loader's choice aside, one instance kept two-level renders as its flattened copy.
     let mut two_level = load_xml(&placed_scene(), "one-instance");
     two_level.instancing.instances.truncate(1);
-    let t = caustic::buffers::build(&two_level).expect("builds");
+    let t = caustic::prepare::buffers::build(&two_level).expect("builds");
     assert!(t.features & INSTANCING != 0);
     let (one, two) =
         (render_buffers(&b, BackendChoice::Cpu, 256, 5), render_buffers(&t, BackendChoice::Cpu, 256, 6));
-    let c = caustic::compare::compare(&two, &one, 1.0).expect("same size");
+    let c = caustic::output::compare::compare(&two, &one, 1.0).expect("same size");
     let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());
     println!("one instance, two-level against flattened: pass {pass:.4}, z {z:+.2}");
     assert!(pass >= 0.99 && z.abs() < 4.0, "pass {pass:.4}, z {z:+.2}");
@@ -250,8 +250,10 @@ fn instanced_hits_match_flattened_hits() {
     let instanced = load_xml(&placed_scene(), "hits-instanced");
     let mut flattened = instanced.clone();
     flattened.flatten_instances(usize::MAX).unwrap();
-    let (bi, bf) =
-        (caustic::buffers::build(&instanced).unwrap(), caustic::buffers::build(&flattened).unwrap());
+    let (bi, bf) = (
+        caustic::prepare::buffers::build(&instanced).unwrap(),
+        caustic::prepare::buffers::build(&flattened).unwrap(),
+    );
     let (vi, vf) = (bi.view(), bf.view());
     let (ai, af) = (Accel::of(&vi), Accel::of(&vf));
     let close = |a: Vec3, b: Vec3, tol: f32| (a - b).length() <= tol * (1.0 + b.length());

@@ -33,11 +33,11 @@ fn wall_scene(integrator: &str, hide: bool, emitter_z: f32) -> String {
     )
 }
 
-fn render(xml: &str, tag: &str) -> caustic::film::Film {
+fn render(xml: &str, tag: &str) -> caustic::output::film::Film {
     render_scene(&load_xml(xml, tag), BackendChoice::Cpu, 8, 1)
 }
 
-fn centre(film: &caustic::film::Film) -> [f32; 3] {
+fn centre(film: &caustic::output::film::Film) -> [f32; 3] {
     film.rgb[(film.height / 2 * film.width + film.width / 2) as usize]
 }
 
@@ -109,8 +109,8 @@ fn light_and_bsdf_sampling_agree_on_every_emitter_shape() {
         let bsdf_only = render_with(0, 3);
         // The two estimators' variances differ widely: the z-scores use both, each pooled over the
         // pixel's neighbours (a pixel whose few BSDF samples all missed the light has a zero estimate).
-        let pooled = |f: &caustic::film::Film| {
-            caustic::compare::pooled_variance(f.variance.as_ref().unwrap(), f.width, f.height)
+        let pooled = |f: &caustic::output::film::Film| {
+            caustic::output::compare::pooled_variance(f.variance.as_ref().unwrap(), f.width, f.height)
         };
         let (va, vb) = (pooled(&light_only), pooled(&bsdf_only));
         let (mut diff, mut var, mut worst) = (0.0f64, 0.0f64, 0.0f64);
@@ -137,7 +137,7 @@ fn light_and_bsdf_sampling_agree_on_every_emitter_shape() {
 /// is what the box is for.
 #[test]
 fn prb_renders_as_mitsubas_prb() {
-    let scene = caustic::load_scene(&test_data("prb.xml"), &[]).expect("loads");
+    let scene = caustic::load::load_scene(&test_data("prb.xml"), &[]).expect("loads");
     assert_eq!((scene.integrator.max_depth, scene.integrator.rr_depth), (6, 5));
     let label = "prb.xml (prb: path, max_depth 6)";
     let result = scene_against_reference(&scene, "prb.exr", 65536.0, BackendChoice::Cpu, 1024, 3, label);
@@ -157,7 +157,7 @@ fn emitters_are_chosen_as_mitsuba_chooses_them_for_next_event_estimation() {
     // 5 on area 1: power 5π).
     let pmfs = |integrator: &str| -> Vec<f32> {
         let scene = load_xml(&wall_scene(integrator, false, 2.0), &format!("selection-{integrator}"));
-        caustic::buffers::build(&scene).expect("builds").lights.iter().map(|l| l.pmf).collect()
+        caustic::prepare::buffers::build(&scene).expect("builds").lights.iter().map(|l| l.pmf).collect()
     };
     for integrator in ["path", "direct"] {
         let pmf = pmfs(integrator);

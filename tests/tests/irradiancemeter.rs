@@ -4,7 +4,7 @@
 //! backends, with a negative control (a weight 3% off); against the exact πL under a constant sky
 //! (irradiance, not flux: shapes of any area read the same); and the inputs refused.
 use caustic::backend::BackendChoice;
-use caustic::film::Film;
+use caustic::output::film::Film;
 use caustic_tests::replicas::image_mean;
 use caustic_tests::*;
 
@@ -14,8 +14,8 @@ const REFERENCE_SPP: f64 = 4_194_304.0;
 /// Renders the meter on `meter` (rectangle or sphere), scales the image by `scale` (a negative
 /// control's wrong weight) and compares it with Mitsuba's: (pass fraction, luminance z).
 fn check(choice: BackendChoice, meter: &str, spp: u32, scale: f32) -> (f64, f64) {
-    let scene =
-        caustic::load_scene(&test_data("irradiancemeter.xml"), &defines(&[("meter", meter)])).expect("loads");
+    let scene = caustic::load::load_scene(&test_data("irradiancemeter.xml"), &defines(&[("meter", meter)]))
+        .expect("loads");
     let mut film = render_scene(&scene, choice, spp, 5);
     for p in &mut film.rgb {
         p.iter_mut().for_each(|c| *c *= scale);
@@ -25,7 +25,8 @@ fn check(choice: BackendChoice, meter: &str, spp: u32, scale: f32) -> (f64, f64)
     }
     let reference =
         Film::load_exr(&test_data(&format!("irradiancemeter_{meter}.exr"))).expect("reference loads");
-    let c = caustic::compare::compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
+    let c =
+        caustic::output::compare::compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
     let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());
     println!(
         "irradiancemeter on a {meter} ×{scale}, {choice:?} {spp} spp: {:?} for Mitsuba's {:?}, z {z:+.2}, pass {pass}",
@@ -165,7 +166,7 @@ fn irradiancemeter_refuses_what_it_cannot_measure() {
     ];
     for (i, (xml, expected, location)) in cases.iter().enumerate() {
         let result = try_load_xml(xml, &format!("meter-refuse-{i}"), &[])
-            .and_then(|scene| caustic::buffers::build(&scene).map(|_| ()));
+            .and_then(|scene| caustic::prepare::buffers::build(&scene).map(|_| ()));
         let error = format!("{:#}", result.expect_err(expected));
         println!("case {i}: {error}");
         assert!(error.contains(expected), "case {i}: {error}");

@@ -6,7 +6,7 @@
 //! stops camera rays at masks and rendered 12.6% darker (mean 0.1462 against 0.1672, 32×32). Light
 //! tracing: `mask_light_tracing.rs`.
 use caustic::backend::BackendChoice;
-use caustic::film::Film;
+use caustic::output::film::Film;
 use caustic::scene::IntegratorChoice;
 use caustic_tests::*;
 
@@ -44,11 +44,13 @@ fn mask_gpu_matches_mitsuba_volpath() {
 /// at `max_depth` 2: (fraction of pixels passing the z-test, mean-luminance z-score).
 fn check_direct(choice: BackendChoice, spp: u32, opacity: &str) -> (f64, f64) {
     let mut scene =
-        caustic::load_scene(&test_data("mask_cards.xml"), &defines(&[("opacity", opacity)])).expect("loads");
+        caustic::load::load_scene(&test_data("mask_cards.xml"), &defines(&[("opacity", opacity)]))
+            .expect("loads");
     scene.integrator = scene.integrator.overridden(IntegratorChoice::Direct);
     let film = render_scene(&scene, choice, spp, 7);
     let reference = Film::load_exr(&test_data("mask_cards_direct.exr")).expect("reference loads");
-    let c = caustic::compare::compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
+    let c =
+        caustic::output::compare::compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
     let (pass, z) = (c.pass_fraction.unwrap(), c.luminance_z.unwrap());
     println!(
         "direct, opacity {opacity}, {choice:?} {spp} spp: luminance ratio {:.4}, z {z:+.2}, pass {pass:.4}",

@@ -11,7 +11,8 @@ use caustic_tests::*;
 
 fn cards(opacity: &str, integrator: IntegratorChoice) -> Scene {
     let mut scene =
-        caustic::load_scene(&test_data("mask_cards.xml"), &defines(&[("opacity", opacity)])).expect("loads");
+        caustic::load::load_scene(&test_data("mask_cards.xml"), &defines(&[("opacity", opacity)]))
+            .expect("loads");
     scene.integrator = scene.integrator.overridden(integrator);
     scene
 }

@@ -42,8 +42,8 @@ fn mesh_attributes_match_mitsuba() {
 #[test]
 fn instanced_mesh_attributes_match_mitsuba() {
     let scene = "mesh_attribute_instanced.xml";
-    let loaded = caustic::load_scene(&test_data(scene), &[]).unwrap();
-    let built = caustic::buffers::build(&loaded).unwrap();
+    let loaded = caustic::load::load_scene(&test_data(scene), &[]).unwrap();
+    let built = caustic::prepare::buffers::build(&loaded).unwrap();
     assert!(features::has(built.features, features::INSTANCING), "the grid is not stored once");
     assert_matches(scene, BackendChoice::Cpu, 512);
     assert_matches(scene, BackendChoice::Gpu, 128);
@@ -65,7 +65,7 @@ fn attributes_are_kept_only_where_read() {
     let plain = load_xml(&scene(r#"<rgb name="reflectance" value="0.5"/>"#), "attr-plain");
     let Geometry::Triangles { attributes, .. } = &plain.shapes[0].geometry else { panic!("a mesh") };
     assert!(attributes.is_empty(), "a scene reading no attribute keeps {attributes:?}");
-    let plain_buffers = caustic::buffers::build(&plain).unwrap();
+    let plain_buffers = caustic::prepare::buffers::build(&plain).unwrap();
     assert!(!features::has(plain_buffers.features, features::MESH_ATTRIBUTES));
     let read = load_xml(
         &scene(
@@ -76,7 +76,7 @@ fn attributes_are_kept_only_where_read() {
     let Geometry::Triangles { attributes, .. } = &read.shapes[0].geometry else { panic!("a mesh") };
     let names: Vec<&str> = attributes.iter().map(|a| a.name.as_str()).collect();
     assert_eq!(names, ["face_wear"]);
-    let read_buffers = caustic::buffers::build(&read).unwrap();
+    let read_buffers = caustic::prepare::buffers::build(&read).unwrap();
     assert!(features::has(read_buffers.features, features::MESH_ATTRIBUTES));
     // Nine floats (three corners, RGB) per triangle of the grid's 18, and nothing more.
     assert_eq!(read_buffers.tables.len() - plain_buffers.tables.len(), 18 * 9);

@@ -81,7 +81,7 @@ fn sensor_failures(scene: &Scene, expect: &serde_json::Map<String, Value>) -> Ve
     if expect["filter"] != filter {
         out.push(format!("filter: Mitsuba {}, caustic {filter}", expect["filter"]));
     }
-    let camera = caustic::buffers::camera(scene);
+    let camera = caustic::prepare::camera::camera(scene);
     for ray in expect["rays"].as_array().unwrap() {
         let p = numbers(&ray["film"]);
         let lens = numbers(&ray["lens"]);
@@ -197,9 +197,10 @@ fn case_failures(case: &Value, dir: &std::path::Path) -> Vec<String> {
     let path = case_dir.join("scene.xml");
     std::fs::write(&path, case["xml"].as_str().unwrap()).unwrap();
     let expect = case["mitsuba"].as_object().unwrap();
-    let loaded = caustic::mitsuba::load(&path, &[]);
+    let loaded = caustic::load::mitsuba::load(&path, &[]);
     if let Some(refused) = expect.get("error") {
-        let strict = caustic::mitsuba::load_with(&path, &[], caustic::LoadOptions { strict: true });
+        let strict =
+            caustic::load::mitsuba::load_with(&path, &[], caustic::load::LoadOptions { strict: true });
         return error_case_failures(name, refused.as_bool().unwrap(), loaded, strict);
     }
     let scene = match loaded {

@@ -3,14 +3,14 @@
 //! union of the devices' passes is the single-device estimator and the sums may differ only by the
 //! order of float additions. Without multi-GPU hardware: two CPU backends, and two logical devices
 //! on one Vulkan adapter (lavapipe in CI).
+use caustic::backend::accumulation::Accumulation;
 use caustic::backend::pool::{Device, Pool};
+use caustic::backend::schedule::Lanes;
 use caustic::backend::stand_in::StandIn;
 use caustic::backend::{cpu::CpuBackend, Backend, BackendChoice, GpuSelection};
-use caustic::buffers::{self, SceneBuffers};
-use caustic::film::Accumulation;
-use caustic::render::render_with_checkpoints;
+use caustic::prepare::buffers::{self, SceneBuffers};
+use caustic::render::passes::render_with_checkpoints;
 use caustic::scene::IntegratorChoice;
-use caustic::schedule::Lanes;
 use caustic_kernel::layout::FrameParams;
 use caustic_tests::*;
 use std::ops::ControlFlow::Continue;
@@ -25,7 +25,8 @@ const SUM_TOLERANCE: f64 = 1e-5;
 
 fn cornell_box(integrator: IntegratorChoice) -> SceneBuffers {
     let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml"));
-    let mut scene = caustic::load_scene(path, &defines(&[("res", "12")])).expect("the Cornell box loads");
+    let mut scene =
+        caustic::load::load_scene(path, &defines(&[("res", "12")])).expect("the Cornell box loads");
     scene.integrator = scene.integrator.overridden(integrator);
     buffers::build(&scene).expect("the Cornell box builds")
 }
@@ -70,7 +71,11 @@ fn assert_same_sums(what: &str, a: &Accumulation, b: &Accumulation) {
 
 fn cpu_pool(buffers: &SceneBuffers, devices: Vec<Box<dyn Backend + Send>>) -> Pool {
     let pixels = (buffers.params.width * buffers.params.height) as usize;
-    Pool::new(devices, Accumulation::new(pixels, caustic::film::batch_means(&buffers.params))).unwrap()
+    Pool::new(
+        devices,
+        Accumulation::new(pixels, caustic::backend::accumulation::batch_means(&buffers.params)),
+    )
+    .unwrap()
 }
 
 fn cpu(buffers: &SceneBuffers) -> Box<dyn Backend + Send> {
@@ -217,7 +222,7 @@ impl Backend for Counted {
 
 fn starting_pool(buffers: &SceneBuffers, stand_in: Box<dyn Backend + Send>, device: Device) -> Pool {
     let pixels = (buffers.params.width * buffers.params.height) as usize;
-    let empty = Accumulation::new(pixels, caustic::film::batch_means(&buffers.params));
+    let empty = Accumulation::new(pixels, caustic::backend::accumulation::batch_means(&buffers.params));
     Pool::starting(stand_in, vec![device], empty).unwrap()
 }
 

@@ -11,7 +11,7 @@
 //! inside treated as outside 96% or not mirrored 95%, no shadowing term 99.4% but a luminance z of
 //! +14, the bump's gradient negated 86%, no `flip_invalid_normals` 89%.
 use caustic::backend::BackendChoice;
-use caustic::film::Film;
+use caustic::output::film::Film;
 use caustic_kernel::frame::Frame;
 use caustic_kernel::glam::{Vec2, Vec3};
 use caustic_kernel::shape::{disk, sphere, triangle};
@@ -171,7 +171,7 @@ fn scene(bsdf: &str) -> String {
 
 /// Per-pixel and whole-image agreement of two independent renders of equal sample counts.
 fn agree(a: &Film, b: &Film) -> (f64, f64) {
-    let c = caustic::compare::compare(a, b, 1.0).expect("same size");
+    let c = caustic::output::compare::compare(a, b, 1.0).expect("same size");
     (c.pass_fraction.unwrap(), c.luminance_z.unwrap())
 }
 

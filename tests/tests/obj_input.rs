@@ -20,7 +20,7 @@ fn obj_with_mtl_renders() {
         "mtllib m.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 1 0\nv 0.2 1 0\nv 0 1 0.2\nusemtl shiny\nf 1 3 2\nf 1 4 3\nusemtl matte\nf 1 2 5\nusemtl lamp\nf 5 6 7\n",
     )
     .unwrap();
-    let scene = caustic::load_scene(&dir.join("model.obj"), &[]).expect("OBJ loads");
+    let scene = caustic::load::load_scene(&dir.join("model.obj"), &[]).expect("OBJ loads");
     assert!(scene.materials.iter().any(|m| m.kind == BSDF_PHONG && (m.eta - 40.0).abs() < 1e-6));
     assert!(scene.materials.iter().any(|m| m.kind == BSDF_DIFFUSE && (m.reflectance[0] - 0.7).abs() < 1e-6));
     let emissive: Vec<_> = scene.shapes.iter().filter(|s| s.emission.is_some()).collect();

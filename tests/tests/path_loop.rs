@@ -6,7 +6,7 @@
 //! One test in this binary: it sets `CAUSTIC_PATH_LOOP` and `CAUSTIC_WORKGROUP`, which every backend
 //! reads when created.
 use caustic::backend::BackendChoice;
-use caustic::film::Film;
+use caustic::output::film::Film;
 use caustic_tests::*;
 
 /// A glass sphere (total internal reflection: paths of very different lengths) and a diffuse one in

@@ -16,7 +16,7 @@ fn check(scene: &caustic::scene::Scene, choice: BackendChoice, spp: u32, what: &
 
 #[test]
 fn textured_weights_match_mitsuba() {
-    let scene = caustic::load_scene(&test_data("principled_weights.xml"), &[]).expect("loads");
+    let scene = caustic::load::load_scene(&test_data("principled_weights.xml"), &[]).expect("loads");
     assert!(scene.warnings.is_empty(), "nothing is substituted: {:?}", scene.warnings);
     // Both records list their textured weights: the principled sphere seven, the thin sheet six,
     // `eta` among them.

@@ -16,10 +16,10 @@ fn a_pruned_kernel_renders_the_specialised_image() {
     std::env::set_var("XDG_CACHE_HOME", &cache);
     let file = "docs/scenes/bsdf_plastic_default.xml";
     let mut scene =
-        caustic::load_scene(&mitsuba_scene(file), &defines(&[("spp", "4")])).expect("scene loads");
+        caustic::load::load_scene(&mitsuba_scene(file), &defines(&[("spp", "4")])).expect("scene loads");
     let (w, h) = (scene.sensor.width, scene.sensor.height);
     scene.sensor.crop = Some(caustic::scene::Crop { x: w / 2 - 16, y: h / 2 - 16, width: 32, height: 32 });
-    let buffers = caustic::buffers::build(&scene).expect("scene builds");
+    let buffers = caustic::prepare::buffers::build(&scene).expect("scene builds");
 
     // The module itself: the constant is gone and so is most of the code.
     let words: Vec<u32> =

@@ -2,7 +2,7 @@
 //! the same image, statistically, on scenes lit by each emitter kind light tracing supports and on a
 //! caustic; the GPU and the CPU splat the same sums.
 use caustic::backend::BackendChoice;
-use caustic::film::Film;
+use caustic::output::film::Film;
 use caustic_tests::replicas::*;
 use caustic_tests::*;
 

@@ -95,7 +95,7 @@ fn radiancemeter_refuses_what_mitsuba_refuses() {
     ];
     for (i, (xml, expected)) in cases.iter().enumerate() {
         let result = try_load_xml(xml, &format!("meter-refuse-{i}"), &[])
-            .and_then(|scene| caustic::buffers::build(&scene).map(|_| ()));
+            .and_then(|scene| caustic::prepare::buffers::build(&scene).map(|_| ()));
         let error = format!("{:#}", result.expect_err(expected));
         println!("case {i}: {error}");
         assert!(error.contains(expected), "case {i}: {error}");

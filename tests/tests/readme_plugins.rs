@@ -97,7 +97,8 @@ fn scene_using(family: &str, plugin: &str) -> Option<String> {
 fn load_strict(dir: &Path, name: &str, element: &str) -> Result<caustic::scene::Scene, String> {
     let path = dir.join(format!("{name}.xml"));
     std::fs::write(&path, format!("<scene version=\"3.0.0\">\n{element}\n</scene>\n")).unwrap();
-    caustic::load_scene_with(&path, &[], caustic::LoadOptions { strict: true }).map_err(|e| format!("{e:#}"))
+    caustic::load::load_scene_with(&path, &[], caustic::load::LoadOptions { strict: true })
+        .map_err(|e| format!("{e:#}"))
 }
 
 #[test]

@@ -7,14 +7,15 @@
 //! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
 //! files and its command line in host/tests.
 use caustic::backend::BackendChoice;
-use caustic::compare::compare;
-use caustic::film::Film;
+use caustic::output::compare::compare;
+use caustic::output::film::Film;
 use caustic_tests::*;
 
 const REFERENCE_SPP: f64 = 2048.0;
 
 fn check_cbox(choice: BackendChoice, spp: u32, radiance_scale: f32) -> (f64, f64) {
-    let mut scene = caustic::load_scene(&mitsuba_scene("scenes/cbox/cbox.xml"), &[]).expect("cbox loads");
+    let mut scene =
+        caustic::load::load_scene(&mitsuba_scene("scenes/cbox/cbox.xml"), &[]).expect("cbox loads");
     for shape in &mut scene.shapes {
         if let Some(e) = shape.emission.as_mut() {
             *e = e.map(|c| c * radiance_scale);
@@ -54,7 +55,8 @@ fn cbox_ptracer_and_ibpt_match_mitsuba() {
     use caustic::scene::IntegratorChoice::{Ibpt, Ptracer};
     // The last run, a 3% brighter light, must fail the same checks.
     for (choice, radiance_scale) in [(Ptracer, 1.0), (Ibpt, 1.0), (Ptracer, 1.03)] {
-        let mut scene = caustic::load_scene(&mitsuba_scene("scenes/cbox/cbox.xml"), &[]).expect("cbox loads");
+        let mut scene =
+            caustic::load::load_scene(&mitsuba_scene("scenes/cbox/cbox.xml"), &[]).expect("cbox loads");
         scene.integrator = scene.integrator.overridden(choice);
         for shape in &mut scene.shapes {
             if let Some(e) = shape.emission.as_mut() {

@@ -17,7 +17,7 @@ fn load(case: &Value, dir: &std::path::Path) -> Result<[f32; 3], String> {
     };
     let path = dir.join(format!("{}.xml", case["name"].as_str().unwrap()));
     std::fs::write(&path, format!("<scene version=\"3.0.0\">\n{body}\n</scene>\n")).unwrap();
-    let scene = caustic::mitsuba::load(&path, &[]).map_err(|e| format!("{e:#}"))?;
+    let scene = caustic::load::mitsuba::load(&path, &[]).map_err(|e| format!("{e:#}"))?;
     let shape = &scene.shapes[0];
     Ok(if emission {
         shape.emission.expect("an area emitter")

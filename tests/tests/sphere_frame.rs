@@ -24,7 +24,7 @@ fn frames(scene: &Scene) -> Vec<Mat3> {
 
 #[test]
 fn sphere_uv_turns_with_to_world() {
-    let scene = caustic::load_scene(&test_data("sphere_frame.xml"), &[]).expect("loads");
+    let scene = caustic::load::load_scene(&test_data("sphere_frame.xml"), &[]).expect("loads");
     for (choice, spp) in [(BackendChoice::Cpu, 512), (BackendChoice::Gpu, 128)] {
         let (pass, z) = check(&scene, choice, spp, &format!("rotated spheres, {choice:?}"));
         assert_agrees_with_reference((pass, z), &format!("rotated spheres, {choice:?}"));
@@ -44,7 +44,7 @@ fn sphere_uv_turns_with_to_world() {
 /// one with a negative determinant and its normals flipped, as Mitsuba's inward-facing ones.
 #[test]
 fn the_loader_keeps_the_rotation() {
-    let scene = caustic::load_scene(&test_data("sphere_frame.xml"), &[]).expect("loads");
+    let scene = caustic::load::load_scene(&test_data("sphere_frame.xml"), &[]).expect("loads");
     let f = frames(&scene);
     assert_eq!(f.len(), 4);
     let about_x = Mat3::from_rotation_x(125.7f32.to_radians());

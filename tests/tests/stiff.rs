@@ -8,7 +8,7 @@
 //! answer). Kernel math (sampling, BSDFs, lights) belongs in kernel/tests; the host's loading of single
 //! files and its command line in host/tests.
 use caustic::backend::BackendChoice;
-use caustic::film::Film;
+use caustic::output::film::Film;
 use caustic::scene::{Geometry, Scene};
 use caustic_tests::replicas::image_mean;
 use caustic_tests::*;
@@ -78,7 +78,7 @@ fn transformed(scene: &Scene, scale: f32, offset: Vec3) -> Scene {
 /// per-value |z| (each film's variance pooled over neighbours, as `compare` pools it).
 fn z_scores(a: &Film, b: &Film) -> (f64, f64) {
     let pooled =
-        |f: &Film| caustic::compare::pooled_variance(f.variance.as_ref().unwrap(), f.width, f.height);
+        |f: &Film| caustic::output::compare::pooled_variance(f.variance.as_ref().unwrap(), f.width, f.height);
     let (va, vb) = (pooled(a), pooled(b));
     let (mut worst, mut diff, mut var) = (0.0f64, 0.0f64, 0.0f64);
     for i in 0..a.rgb.len() {
@@ -159,7 +159,7 @@ fn scale_and_position_invariance() {
     for (scale, offset) in [(1e-4, 0.0), (1.0, 1e3), (1e4, 1e5)] {
         let scene =
             transformed(&load_xml(&cornell(24, "15", 5), "cornell-quiet"), scale, Vec3::splat(offset));
-        assert_eq!(caustic::precision::warning(&scene), None, "scale {scale:e} offset {offset:e}");
+        assert_eq!(caustic::scene::precision::warning(&scene), None, "scale {scale:e} offset {offset:e}");
     }
 }
 
@@ -172,7 +172,7 @@ fn scale_and_position_invariance() {
 fn loading_warns_where_float_precision_ends() {
     for (scale, offset) in [(1.0f32, 1e4f32), (1.0, 1e5), (1e-2, 1e3)] {
         let scene = transformed(&load_xml(&cornell(24, "15", 5), "cornell-far"), scale, Vec3::splat(offset));
-        let warning = caustic::precision::warning(&scene);
+        let warning = caustic::scene::precision::warning(&scene);
         println!("scale {scale:e} offset {offset:e}: {warning:?}");
         let warning = warning.unwrap_or_else(|| panic!("no warning at scale {scale:e} offset {offset:e}"));
         assert!(warning.contains("ratio"), "{warning}");
@@ -197,7 +197,11 @@ fn tiny_distant_sphere_light() {
 fn sun_sized_sphere_light() {
     let (rho, radius, distance, radiance) = (0.5f64, 7e8f64, 1.5e11f64, 4e4f64);
     let scene = floor_under_sphere_light(rho, radius, distance, radiance, "sun");
-    assert_eq!(caustic::precision::warning(&scene), None, "the sun is well resolved at its own distance");
+    assert_eq!(
+        caustic::scene::precision::warning(&scene),
+        None,
+        "the sun is well resolved at its own distance"
+    );
     assert_floor_radiance(&scene, rho * radiance * (radius / distance).powi(2), "sun");
 }
 
@@ -337,7 +341,7 @@ fn facing_mirrors_with_russian_roulette() {
 /// splits passes on software adapters, and the kernel counts samples cut short as invalid.
 #[test]
 fn facing_mirrors_in_one_long_pass() {
-    let buffers = caustic::buffers::build(&facing_mirrors(4.0)).expect("scene builds");
+    let buffers = caustic::prepare::buffers::build(&facing_mirrors(4.0)).expect("scene builds");
     let films: Vec<Film> = BACKENDS
         .iter()
         .map(|&choice| {
@@ -454,7 +458,7 @@ fn million_sample_furnace(choice: BackendChoice) {
 /// rounding, here required to be 1e-5 relative. With f32 sums alone: 0.10000376 on the CPU,
 /// 0.10000375 on lavapipe (3.8e-5 relative: each pass of 256 samples added 25.6 to an f32 sum near
 /// 1e5, whose ulp is 0.0078, and the rounding had the same sign pass after pass); the host now folds
-/// the sums into f64 every `film::FOLD_SAMPLES` samples.
+/// the sums into f64 every `accumulation::FOLD_SAMPLES` samples.
 fn million_constant_samples(choice: BackendChoice) {
     let xml = r#"<scene version="3.0.0">
     <sensor type="perspective"><float name="fov" value="20"/>
@@ -695,7 +699,7 @@ fn box_with_meshed_floor(triangles: usize) -> Scene {
 fn large_mesh(triangles: usize) {
     let start = std::time::Instant::now();
     let scene = box_with_meshed_floor(triangles);
-    let buffers = caustic::buffers::build(&scene).expect("the mesh builds");
+    let buffers = caustic::prepare::buffers::build(&scene).expect("the mesh builds");
     println!("{} triangles: built in {:.1} s", buffers.prims.len(), start.elapsed().as_secs_f64());
     let reference =
         render_scene(&load_xml(&cornell(16, "15", 5), "mesh-floor-ref"), BackendChoice::Cpu, 64, 12);

@@ -84,11 +84,11 @@ fn directional_area_emitters_match_mitsuba_light_tracing() {
     assert_matches(scene, &[], BackendChoice::Cpu, 1024);
     assert_matches(scene, &[], BackendChoice::Gpu, 256);
     assert_caught(scene, &[("tilt", "0")]);
-    let path = caustic::load_scene(&test_data(scene), &defines(&[("integrator", "path")])).unwrap();
+    let path = caustic::load::load_scene(&test_data(scene), &defines(&[("integrator", "path")])).unwrap();
     let film = render_scene(&path, BackendChoice::Cpu, 16, 1);
     assert!(film.rgb.iter().flatten().all(|&c| c == 0.0), "path tracing saw a directionalarea's light");
-    let ibpt = caustic::load_scene(&test_data(scene), &defines(&[("integrator", "ibpt")])).unwrap();
-    let Err(e) = caustic::buffers::build(&ibpt) else { panic!("ibpt rendered a directionalarea") };
+    let ibpt = caustic::load::load_scene(&test_data(scene), &defines(&[("integrator", "ibpt")])).unwrap();
+    let Err(e) = caustic::prepare::buffers::build(&ibpt) else { panic!("ibpt rendered a directionalarea") };
     let message = format!("{e:#}");
     assert!(message.contains("emitter_directionalarea.xml:") && message.contains("ibpt"), "{message}");
 }
@@ -96,7 +96,7 @@ fn directional_area_emitters_match_mitsuba_light_tracing() {
 /// Only scenes that use textured emission compile its lookups in.
 #[test]
 fn the_textured_emission_bit_follows_the_scene() {
-    let bits = |xml: &str, tag: &str| caustic::buffers::build(&load_xml(xml, tag)).unwrap().features;
+    let bits = |xml: &str, tag: &str| caustic::prepare::buffers::build(&load_xml(xml, tag)).unwrap().features;
     let plain = r#"<scene version="3.0.0"><shape type="sphere"><emitter type="area"/></shape>
         <emitter type="spot"/><emitter type="projector"/></scene>"#;
     assert!(!features::has(bits(plain, "plain-emitters"), features::TEXTURED_EMISSION));

@@ -133,12 +133,12 @@ fn the_albedo_aov_sees_the_back() {
     );
     assert!(xml.contains(r#"type="aov""#), "the scene's integrator line changed");
     let scene = try_load_xml(&xml, "pair-albedo", &[]).expect("loads");
-    let built = caustic::buffers::build(&scene).expect("builds");
+    let built = caustic::prepare::buffers::build(&scene).expect("builds");
     let mut film = render_buffers(&built, BackendChoice::Cpu, 4, 3);
-    caustic::aov::add_to(&mut film, &built, 4, 3);
+    caustic::output::aov::add_to(&mut film, &built, 4, 3);
     let path = std::env::temp_dir().join(format!("caustic-pair-albedo-{}.exr", std::process::id()));
     film.save(&path).expect("EXR written");
-    let (w, _, channels) = caustic::aov::exr::read_channels(&path).expect("EXR read back");
+    let (w, _, channels) = caustic::output::aov::exr::read_channels(&path).expect("EXR read back");
     let w = w as usize;
     std::fs::remove_file(&path).ok();
     let channel = |name: &str| &channels.iter().find(|(n, _)| n == name).expect(name).1;

@@ -1,4 +1,4 @@
-//! The CPU's 4-wide BVH (`caustic::wide_bvh`, `caustic_kernel::wide_bvh`) finds what the scene's
+//! The CPU's 4-wide BVH (`caustic::prepare::wide_bvh`, `caustic_kernel::wide_bvh`) finds what the scene's
 //! BVH2 finds: the same closest hit (distance, primitive, barycentrics; of two primitives at one
 //! distance, either) and the same answer to shadow queries, ray for ray, on real scenes' trees.
 //! Random rays, and the hostile ones: rays exactly parallel to an axis in the plane of a box's face,
@@ -35,9 +35,9 @@ fn show(ray: &Ray) -> String {
 }
 
 fn compare_on(file: &str) {
-    let scene = caustic::load_scene(&mitsuba_scene(file), &defines(&[])).expect("scene loads");
-    let buffers = caustic::buffers::build(&scene).expect("scene builds");
-    let wide = caustic::wide_bvh::widen(&buffers.nodes).expect("shallow enough to widen");
+    let scene = caustic::load::load_scene(&mitsuba_scene(file), &defines(&[])).expect("scene loads");
+    let buffers = caustic::prepare::buffers::build(&scene).expect("scene builds");
+    let wide = caustic::prepare::wide_bvh::widen(&buffers.nodes).expect("shallow enough to widen");
     let binary_view = buffers.view();
     let wide_view = caustic_kernel::layout::SceneView { nodes: &wide, wide_bvh: true, ..buffers.view() };
     let (binary, four) = (Accel::of(&binary_view), Accel::of(&wide_view));

@@ -26,7 +26,7 @@ fn sphere_scene(bsdf: &str, extra: &str) -> String {
     )
 }
 
-fn render(xml: &str, tag: &str) -> caustic::film::Film {
+fn render(xml: &str, tag: &str) -> caustic::output::film::Film {
     render_scene(&load_xml(xml, tag), BackendChoice::Cpu, 16, 9)
 }
 
@@ -159,8 +159,8 @@ fn samplers_films_and_filters_by_reference() {
 </scene>"#,
     )
     .unwrap();
-    let scene = caustic::load_scene(&main, &[]).expect("loads");
-    let strict = caustic::load_scene_with(&main, &[], caustic::LoadOptions { strict: true });
+    let scene = caustic::load::load_scene(&main, &[]).expect("loads");
+    let strict = caustic::load::load_scene_with(&main, &[], caustic::load::LoadOptions { strict: true });
     std::fs::remove_dir_all(&dir).ok();
     let sensor = &scene.sensor;
     assert_eq!((sensor.width, sensor.height, sensor.spp), (40, 20, 9));

@@ -1,12 +1,12 @@
 //! The CPU backend: the kernel linked natively, over all cores, into f32 sums that fold into the
-//! host's f64 totals on the GPU's schedule (`film::Folding`).
+//! host's f64 totals on the GPU's schedule (`accumulation::Folding`).
+use super::accumulation::{Accumulation, Folding};
 use super::Backend;
-use crate::buffers::SceneBuffers;
-use crate::film::{Accumulation, Folding};
+use crate::prepare::buffers::SceneBuffers;
 use anyhow::Result;
 use caustic_kernel::layout::{FrameParams, PixelAccum, SceneView};
 
-/// Whether the CPU walks a 4-wide BVH (`crate::wide_bvh`, the default) or the scene's BVH2
+/// Whether the CPU walks a 4-wide BVH (`crate::prepare::wide_bvh`, the default) or the scene's BVH2
 /// (`CAUSTIC_CPU_BVH=2`, for A/B timings and tests).
 pub fn wide_requested() -> Result<bool> {
     match std::env::var("CAUSTIC_CPU_BVH").as_deref() {
@@ -33,7 +33,7 @@ pub struct CpuBackend {
 impl CpuBackend {
     pub fn new(buffers: SceneBuffers) -> Self {
         let pixels = (buffers.params.width * buffers.params.height) as usize;
-        let batched = crate::film::batch_means(&buffers.params);
+        let batched = super::accumulation::batch_means(&buffers.params);
         let folding = Folding::new(pixels, batched, buffers.params.square_scale_log2);
         use super::path_loop::{requested, PathLoop, Request};
         let regenerate = requested().ok() == Some(Request::Fixed(PathLoop::Regenerate));
@@ -42,7 +42,7 @@ impl CpuBackend {
         // traversal's stack its BVH2.
         let widened = (wide_requested().unwrap_or(true)
             && !caustic_kernel::features::has(buffers.features, caustic_kernel::features::INSTANCING))
-        .then(|| crate::wide_bvh::widen(&buffers.nodes))
+        .then(|| crate::prepare::wide_bvh::widen(&buffers.nodes))
         .flatten();
         let wide = widened.is_some();
         if let Some(nodes) = widened {

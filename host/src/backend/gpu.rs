@@ -4,11 +4,11 @@
 //! with unchecked runtime checks): measured fastest on the H100 (../shared/notes/rust-gpu-0.11.md;
 //! BENCHMARKS.md, "How the kernel's design was chosen"), and safe because the kernel's own indexing
 //! is bounds-checked Rust.
+use super::accumulation::{Accumulation, Folding};
 use super::path_loop::PathLoop;
 use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
 use super::Backend;
-use crate::buffers::SceneBuffers;
-use crate::film::{Accumulation, Folding};
+use crate::prepare::buffers::SceneBuffers;
 use anyhow::{anyhow, bail, Context, Result};
 use caustic_kernel::integrator::{splats, traces_camera_paths};
 use caustic_kernel::layout::{
@@ -48,7 +48,8 @@ pub struct GpuBackend {
     accum_buffer: wgpu::Buffer,
     accum_size: u64,
     /// The host's f64 totals that `accum_buffer`'s f32 sums are read back into and cleared, every
-    /// `film::FOLD_SAMPLES` samples per pixel and at every read (with the batch count of splatted sums).
+    /// `accumulation::FOLD_SAMPLES` samples per pixel and at every read (with the batch count of
+    /// splatted sums).
     folding: Folding,
     /// Splatting integrators: the pipeline that resolves each pass's splat words into `accum_buffer`
     /// and clears them. `None` otherwise.
@@ -182,7 +183,7 @@ impl GpuBackend {
         let light_pipeline =
             splats(integrator).then(|| factory.build(first_loop, DEFAULT_WORKGROUP, LIGHT_ENTRY));
         // (Also the splatting film's gather.)
-        let batched = crate::film::batch_means(&buffers.params);
+        let batched = super::accumulation::batch_means(&buffers.params);
         let resolve_pipeline = batched.then(|| factory.build(first_loop, DEFAULT_WORKGROUP, RESOLVE_ENTRY));
         if let Some(e) = pollster::block_on(scope.pop()) {
             bail!("the GPU rejected the kernel on {}: {e}", info.name);
@@ -492,7 +493,7 @@ impl PipelineFactory {
         let (words, specialisable) = self.loops.module(path_loop, size);
         // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are
         // bounds-checked in the source, but for the BVH walk's, whose indices the host checks
-        // when it builds the tree (`buffers::inside_buffers`); dropping naga's runtime checks is
+        // when it builds the tree (`prepare::bvh::inside_buffers`); dropping naga's runtime checks is
         // what makes this path fast.
         let module = unsafe {
             self.device.create_shader_module_trusted(

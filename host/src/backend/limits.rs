@@ -3,7 +3,7 @@
 //! `max_storage_buffer_binding_size`, which a 2049×2048 film (its 32-byte accumulator per pixel) or a
 //! 3M-triangle mesh reaches on lavapipe and with wgpu's default limits. The device is opened with the
 //! adapter's own limits (the H100 binds 4 GiB, 32 times the default), so these are what this GPU allows.
-use crate::buffers::SceneBuffers;
+use crate::prepare::buffers::SceneBuffers;
 use anyhow::Result;
 use caustic_kernel::layout::{PixelAccum, TILE};
 

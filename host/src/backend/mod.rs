@@ -1,20 +1,26 @@
 //! Rendering backends: the same kernel on the GPU (wgpu compute) or the CPU (rayon), and several
 //! GPUs as one backend (`pool`).
+//!
+//! Uses `prepare` (the buffers it renders) and `system` (the machine's memory); its tests load
+//! scenes (`load`).
+pub mod accumulation;
 pub mod cpu;
 pub mod gpu;
 pub mod kernel_stats;
 pub mod limits;
+pub mod memory;
 pub mod path_loop;
 pub mod pool;
 pub mod prune;
 pub mod runtime_dir;
+pub mod schedule;
 pub mod stand_in;
 pub mod variant;
 
-use crate::film::Accumulation;
-use crate::schedule::Lanes;
+use accumulation::Accumulation;
 use anyhow::{bail, Result};
 use caustic_kernel::layout::FrameParams;
+use schedule::Lanes;
 
 /// A device that can add samples to an accumulation buffer (one `PixelAccum` per pixel). Light
 /// tracing splats into fixed-point sums that the backend resolves into it after every pass.
@@ -124,12 +130,12 @@ pub fn resolve_gpus(
 pub fn create_on(
     choice: BackendChoice,
     gpus: &GpuSelection,
-    buffers: &crate::buffers::SceneBuffers,
+    buffers: &crate::prepare::buffers::SceneBuffers,
 ) -> Result<Box<dyn Backend + Send>> {
     let (w, h) = (buffers.params.width, buffers.params.height);
-    crate::memory::check(
-        crate::memory::render_need(buffers),
-        crate::memory::available(),
+    crate::system::memory::check(
+        memory::render_need(buffers),
+        crate::system::memory::available(),
         &format!("a {w}×{h} render"),
     )?;
     // (A bad CAUSTIC_PATH_LOOP, CAUSTIC_WORKGROUP or CAUSTIC_CPU_BVH is an error on every backend.)
@@ -164,7 +170,7 @@ pub fn create_on(
         return Ok(devices.pop().expect("one device"));
     }
     let pixels = (buffers.params.width * buffers.params.height) as usize;
-    let batched = crate::film::batch_means(&buffers.params);
+    let batched = accumulation::batch_means(&buffers.params);
     Ok(Box::new(pool::Pool::new(devices, Accumulation::new(pixels, batched))?))
 }
 
@@ -179,7 +185,7 @@ pub fn create_on(
 pub fn create_starting(
     choice: BackendChoice,
     gpus: &GpuSelection,
-    buffers: &crate::buffers::SceneBuffers,
+    buffers: &crate::prepare::buffers::SceneBuffers,
 ) -> Result<Box<dyn Backend + Send>> {
     if choice != BackendChoice::Auto || std::env::var_os("CAUSTIC_CPU_START").is_some_and(|v| v == "0") {
         return create_on(choice, gpus, buffers);
@@ -188,12 +194,12 @@ pub fn create_starting(
     let Ok(indices) = resolve_gpus(gpus, &adapters, true) else {
         return create_on(choice, gpus, buffers);
     };
-    let need = crate::memory::render_need(buffers);
+    let need = memory::render_need(buffers);
     let (w, h) = (buffers.params.width, buffers.params.height);
-    crate::memory::check(need, crate::memory::available(), &format!("a {w}×{h} render"))?;
+    crate::system::memory::check(need, crate::system::memory::available(), &format!("a {w}×{h} render"))?;
     // The stand-in holds a second copy of the scene: where that would crowd the host's memory, the
     // GPUs start alone.
-    if crate::memory::available().is_none_or(|a| need.saturating_mul(3) > a) {
+    if crate::system::memory::available().is_none_or(|a| need.saturating_mul(3) > a) {
         return create_on(choice, gpus, buffers);
     }
     path_loop::requested()?;
@@ -212,14 +218,14 @@ pub fn create_starting(
         .collect();
     let stand_in = Box::new(stand_in::StandIn::new(buffers.clone())?);
     let pixels = (w * h) as usize;
-    let batched = crate::film::batch_means(&buffers.params);
+    let batched = accumulation::batch_means(&buffers.params);
     Ok(Box::new(pool::Pool::starting(stand_in, devices, Accumulation::new(pixels, batched))?))
 }
 
 /// `create_on` with every suitable GPU (today's single adapter where there is one).
 pub fn create(
     choice: BackendChoice,
-    buffers: &crate::buffers::SceneBuffers,
+    buffers: &crate::prepare::buffers::SceneBuffers,
 ) -> Result<Box<dyn Backend + Send>> {
     create_on(choice, &GpuSelection::All, buffers)
 }

@@ -1,5 +1,5 @@
 //! Several devices as one backend: one thread per device, each with its own device, pipelines and
-//! accumulation buffer; the pass loop (`render.rs`) hands passes to whichever device is idle and the
+//! accumulation buffer; the pass loop (`render::passes`) hands passes to whichever device is idle and the
 //! accumulations are summed when read. A device that fails loses only the samples since its sums
 //! were last read back (`schedule::Lost`); the others render them again.
 //!
@@ -8,9 +8,9 @@
 //! (`backend::prune`, the driver), and a CPU stand-in renders meanwhile, so that the first image
 //! comes at the CPU's pace instead of after the build. Once a built device joins, the stand-in
 //! takes no more passes (unless every built device is lost); what it rendered stays in the sum.
+use super::accumulation::Accumulation;
+use super::schedule::{Event, Lanes, Lost, SampleRange};
 use super::Backend;
-use crate::film::Accumulation;
-use crate::schedule::{Event, Lanes, Lost, SampleRange};
 use anyhow::{anyhow, bail, Result};
 use caustic_kernel::layout::FrameParams;
 use std::panic::{catch_unwind, AssertUnwindSafe};

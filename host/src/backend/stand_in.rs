@@ -2,10 +2,10 @@
 //! it renders on a thread pool of its own that leaves two cores free, since the build runs beside it
 //! on the host (`backend::prune` prunes the path loops on threads of its own, and the driver compiles
 //! on others): on the global pool it would take every core and slow the build it stands in for.
+use super::accumulation::Accumulation;
 use super::cpu::CpuBackend;
 use super::Backend;
-use crate::buffers::SceneBuffers;
-use crate::film::Accumulation;
+use crate::prepare::buffers::SceneBuffers;
 use anyhow::Result;
 use caustic_kernel::layout::FrameParams;
 

@@ -171,7 +171,7 @@ impl Decisions {
 /// feature mask and an image size (the shared set's diffuse scenes, say) keep a choice each: in
 /// c6f7d47's 22-scene table of 2026-11-27 they shared one (BENCHMARKS.md, "Registers and workgroup
 /// sizes").
-pub fn scene_fingerprint(buffers: &crate::buffers::SceneBuffers) -> u64 {
+pub fn scene_fingerprint(buffers: &crate::prepare::buffers::SceneBuffers) -> u64 {
     use std::hash::{Hash, Hasher};
     let mut params = buffers.params;
     (params.sample_base, params.sample_count, params.seed, params.spp_total) = (0, 0, 0, 0);
@@ -430,8 +430,8 @@ mod tests {
     fn a_scene_setup_has_its_own_fingerprint() {
         let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml"));
         let build = |res: &str| {
-            let scene = crate::load_scene(path, &[("res".to_string(), res.to_string())]).unwrap();
-            crate::buffers::build(&scene).unwrap()
+            let scene = crate::load::load_scene(path, &[("res".to_string(), res.to_string())]).unwrap();
+            crate::prepare::buffers::build(&scene).unwrap()
         };
         let a = build("16");
         assert_eq!(scene_fingerprint(&a), scene_fingerprint(&build("16")));

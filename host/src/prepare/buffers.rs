@@ -1,0 +1,240 @@
+//! Scene description → the kernel's buffers (`SceneBuffers`), assembled by `build` from the stages
+//! beside it: primitives and their attributes (`primitives`, `attribute_buffers`), the BVH in whose
+//! leaf order they are stored (`bvh`, two-level with instances: `instance_buffers`), materials and
+//! textures (`materials`), lights with power-proportional selection (`lights`), the camera and
+//! film (`camera`, `filter_table`, `irradiance_meter`), the kernel paths the scene reaches
+//! (`features`), and the table buffer all of them append to (sampling distributions, texels,
+//! precomputed BSDF tables).
+use super::bvh::{bounding_sphere, build_bvh_reordering};
+use super::camera::{camera, film_reach};
+use super::features::features_of;
+use super::lights::{cdf_of, emitter_lights, square_scale_log2, LightList, LIGHT_TRACING_UNIFORM_SHARE};
+use super::materials::{place_materials, place_textures, place_wavelengths};
+use super::primitives::{prim_origins, primitives};
+use crate::scene::{IntegratorKind, Projection, SamplerKind, Scene};
+use anyhow::{bail, Result};
+use caustic_kernel::layout::*;
+use glam::Vec3;
+
+/// Bins of the tabulated reconstruction filter.
+pub const FILTER_BINS: u32 = 64;
+
+/// Everything the kernel reads, ready to upload (GPU) or borrow (CPU). Every list has at least one
+/// element because GPU buffers cannot be empty; unused placeholders are never read.
+#[derive(Clone, Debug)]
+pub struct SceneBuffers {
+    pub nodes: Vec<BvhNode>,
+    pub prims: Vec<Primitive>,
+    pub attributes: Vec<TriangleAttributes>,
+    pub materials: Vec<Material>,
+    pub lights: Vec<Light>,
+    pub textures: Vec<Texture>,
+    pub tables: Vec<f32>,
+    /// `FrameParams` with everything but the per-dispatch fields filled in.
+    pub params: FrameParams,
+    /// What the scene uses (`caustic_kernel::features`); the kernel skips, and on the GPU compiles
+    /// out, everything else.
+    pub features: u32,
+    /// The scene's `aov` or `depth` integrator (`crate::scene::aov`), rendered beside the image.
+    pub aovs: Option<crate::scene::aov::AovSpec>,
+    /// Host only, for AOVs (empty without): per primitive (BVH order), Mitsuba's shape index
+    /// (`shape_indices`) and its index within the shape.
+    pub prim_origins: Vec<[u32; 2]>,
+    /// Primitives the scene's instances place, each group's counted once per instance (stored once
+    /// each, in `prims`; `crate::scene::instancing`). 0 without instances.
+    pub placed_prims: u64,
+}
+
+impl SceneBuffers {
+    pub fn view(&self) -> SceneView<'_> {
+        SceneView {
+            nodes: &self.nodes,
+            prims: &self.prims,
+            attributes: &self.attributes,
+            materials: &self.materials,
+            lights: &self.lights,
+            textures: &self.textures,
+            tables: &self.tables,
+            features: self.features,
+            wide_bvh: false,
+        }
+    }
+}
+
+pub fn build(scene: &Scene) -> Result<SceneBuffers> {
+    let mut light_list = LightList::default();
+    let light_tracing = scene.integrator.kind == IntegratorKind::Ptracer;
+    let mut blocks = crate::prepare::attribute_buffers::AttributeBlocks::of(scene);
+    let (mut prims, mut attributes) = primitives(&scene.shapes, light_tracing, &mut light_list, &mut blocks);
+    let mut prim_origins = if scene.aovs.is_some() { prim_origins(scene) } else { Vec::new() };
+    let has_prims = !prims.is_empty();
+    // The irradiance meter's primitives, by their index in scene order (`primitives` pushes them).
+    let meter_prims = crate::prepare::irradiance_meter::scene_order_primitives(scene);
+    let mut new_index = Vec::new();
+    let mut nodes = if has_prims {
+        let (nodes, order) =
+            build_bvh_reordering(&mut prims, &mut attributes, &mut prim_origins, &mut light_list.lights)?;
+        new_index = order;
+        nodes
+    } else {
+        // A leaf holding only the placeholder primitive pushed below (a triangle of zero area that no
+        // ray hits). Not an inner node with an inverted box: the slab test swaps min and max, so such a
+        // box is [-1, 1]³ to it, and traversal read children that do not exist (CPU panic, GPU garbage).
+        vec![BvhNode { min: [0.0; 3], prim_count: 1, max: [0.0; 3], first: 0 }]
+    };
+    // With instances, that BVH becomes one group under a BVH over the instances
+    // (`crate::prepare::instance_buffers`).
+    let instanced = crate::prepare::instance_buffers::two_level(
+        &mut nodes,
+        &mut prims,
+        &mut attributes,
+        scene,
+        &mut blocks,
+    )?;
+    if instanced {
+        // The groups' leaves too are read without bounds checks (`bvh::intersect_leaf`).
+        super::bvh::inside_buffers(&nodes, prims.len())?;
+    }
+    let has_prims = !prims.is_empty();
+    // The ray offset's absolute part (`caustic_kernel::shape::offset_origin`): Mitsuba's 1, or the
+    // scene's half-diagonal where smaller, so that a scene scaled down keeps its image.
+    let offset_floor = if has_prims {
+        (0.5 * (Vec3::from(nodes[0].max) - Vec3::from(nodes[0].min)).length()).min(1.0)
+    } else {
+        1.0
+    };
+    for p in &mut prims {
+        p.offset_floor = offset_floor;
+    }
+    let (mut tables, filter_signed) =
+        crate::prepare::filter_table::filter_tables(&scene.sensor.filter, FILTER_BINS)?;
+    let filter_cdf_offset = 0;
+    crate::prepare::instance_buffers::place_transforms(&mut prims, &mut tables, &scene.instancing);
+    let mut textures = place_textures(scene, &mut tables, &blocks);
+    blocks.place(&mut tables, &mut attributes);
+    let env_light =
+        emitter_lights(scene, &textures, &mut tables, &mut light_list, bounding_sphere(&nodes, has_prims));
+
+    let uniform_share = match scene.integrator.kind {
+        IntegratorKind::Ptracer | IntegratorKind::Ibpt => LIGHT_TRACING_UNIFORM_SHARE,
+        IntegratorKind::Path | IntegratorKind::Direct { .. } => 1.0,
+    };
+    let light_cdf = cdf_of(&light_list.selection_weights(uniform_share));
+    let mut lights = light_list.lights;
+    for (l, i) in lights.iter_mut().zip(0..) {
+        l.pmf = light_cdf[i] - if i == 0 { 0.0 } else { light_cdf[i - 1] };
+    }
+    let light_cdf_offset = tables.len() as u32;
+    tables.extend(light_cdf);
+    let mut camera = camera(scene);
+    if let Some(meter) = meter_prims {
+        camera.meter_table =
+            crate::prepare::irradiance_meter::place_table(&meter, &new_index, &prims, &mut tables)?;
+    }
+
+    let mut materials = place_materials(scene, &mut tables);
+    let wavelength_table = place_wavelengths(&materials, &mut tables);
+
+    let s = &scene.sensor;
+    let crop = s.crop.unwrap_or(crate::scene::Crop { x: 0, y: 0, width: s.width, height: s.height });
+    let (integrator_kind, emitter_samples, bsdf_samples) = match scene.integrator.kind {
+        IntegratorKind::Path => (INTEGRATOR_PATH, 1, 1),
+        IntegratorKind::Direct { emitter_samples, bsdf_samples } => {
+            (INTEGRATOR_DIRECT, emitter_samples, bsdf_samples)
+        }
+        IntegratorKind::Ptracer => {
+            check_light_tracing(scene, "ptracer")?;
+            (INTEGRATOR_PTRACER, 1, 1)
+        }
+        IntegratorKind::Ibpt => {
+            check_light_tracing(scene, "ibpt")?;
+            if let Some(s) = scene.shapes.iter().find(|s| s.emission.is_some() && s.emission_directional) {
+                bail!(
+                    "{}: a directionalarea emitter is rendered by ptracer (which alone sees it in Mitsuba) \
+                     and by path and direct (as black), not by ibpt",
+                    s.origin
+                );
+            }
+            (INTEGRATOR_IBPT, 1, 1)
+        }
+    };
+    let params = FrameParams {
+        width: crop.width,
+        height: crop.height,
+        max_depth: if scene.integrator.max_depth < 0 { NONE } else { scene.integrator.max_depth as u32 },
+        rr_depth: scene.integrator.rr_depth,
+        sampler: if s.sampler == SamplerKind::Stratified { SAMPLER_STRATIFIED } else { SAMPLER_INDEPENDENT },
+        spp_total: s.spp,
+        light_count: lights.len() as u32,
+        light_cdf_offset,
+        filter_cdf_offset,
+        filter_bins: FILTER_BINS,
+        filter_radius: s.filter.radius(),
+        filter_signed: filter_signed as u32,
+        hide_emitters: scene.integrator.hide_emitters as u32,
+        env_light,
+        crop_x: crop.x,
+        crop_y: crop.y,
+        full_width: s.width,
+        full_height: s.height,
+        integrator: integrator_kind,
+        emitter_samples,
+        bsdf_samples,
+        wavelength_table,
+        square_scale_log2: square_scale_log2(&lights, &textures, &tables),
+        film_reach: film_reach(s, integrator_kind),
+        camera,
+        ..Default::default()
+    };
+    let features = features_of(scene, &materials, &lights, !textures.is_empty(), &params, instanced);
+    if materials.is_empty() {
+        materials.push(Material::default());
+    }
+    if prims.is_empty() {
+        prims.push(Primitive { light: NONE, ..Primitive::default() });
+        attributes.push(TriangleAttributes::default());
+        prim_origins.push([0, 0]);
+    }
+    if lights.is_empty() {
+        lights.push(Light::default());
+    }
+    if textures.is_empty() {
+        textures.push(Texture::default());
+    }
+    let aovs = scene.aovs.clone();
+    let placed_prims = crate::prepare::instance_buffers::placed_primitives(&scene.instancing);
+    Ok(SceneBuffers {
+        nodes,
+        prims,
+        attributes,
+        materials,
+        lights,
+        textures,
+        tables,
+        params,
+        features,
+        aovs,
+        prim_origins,
+        placed_prims,
+    })
+}
+
+/// What light tracing does not cover yet is refused, never rendered without it: the orthographic
+/// camera (light tracing connects to the pinhole and to points of a thin lens's aperture) and the
+/// radiance meter (a single ray, which no light path can reach by a connection).
+fn check_light_tracing(scene: &Scene, name: &str) -> Result<()> {
+    let integrator = name;
+    if matches!(scene.sensor.projection, Projection::RadianceMeter) {
+        bail!("{integrator}: the radiancemeter sensor measures a single ray, which light tracing cannot connect to (render this scene with path)");
+    }
+    if matches!(scene.sensor.projection, Projection::IrradianceMeter { .. }) {
+        bail!("{integrator}: the irradiancemeter sensor is not supported by light tracing yet (render this scene with path)");
+    }
+    if !camera(scene).connectable() {
+        bail!(
+            "{integrator}: the orthographic sensor is not supported, only perspective and thinlens (render \
+             this scene with path)"
+        );
+    }
+    Ok(())
+}

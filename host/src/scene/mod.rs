@@ -1,0 +1,396 @@
+//! A renderer-neutral description of a scene, produced by the loaders (`load`: Mitsuba XML, OBJ)
+//! and turned into kernel buffers by `prepare`: its shapes and meshes (`mesh`), instances
+//! (`instancing`), sensor, emitters, materials and integrator, the AOVs it asks for, the warnings
+//! its loading gave (`warn`) and where f32 precision ends for it (`precision`).
+//!
+//! Uses no other folder.
+pub mod aov;
+pub mod instancing;
+pub mod mesh;
+pub mod precision;
+
+use caustic_kernel::layout::{Material, Texture};
+use glam::{Mat3, Mat4, Vec2, Vec3};
+
+/// Reconstruction filter of the film (Mitsuba's `rfilter`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Filter {
+    Box {
+        radius: f32,
+    },
+    Tent {
+        radius: f32,
+    },
+    Gaussian {
+        stddev: f32,
+        radius: f32,
+    },
+    /// Mitchell and Netravali's piecewise cubic with parameters `b` and `c`, radius 2 (Mitsuba's
+    /// `mitchell`; its `catmullrom` is this with b = 0, c = 1/2). Negative between |x| ≈ 1 and 2.
+    Mitchell {
+        b: f32,
+        c: f32,
+    },
+    /// A sinc windowed by a wider sinc, `lobes` lobes on each side and as many pixels of radius
+    /// (Mitsuba's `lanczos`). Negative on every other lobe.
+    Lanczos {
+        lobes: u32,
+    },
+}
+
+impl Filter {
+    pub fn radius(&self) -> f32 {
+        match *self {
+            Filter::Box { radius } | Filter::Tent { radius } | Filter::Gaussian { radius, .. } => radius,
+            Filter::Mitchell { .. } => 2.0,
+            Filter::Lanczos { lobes } => lobes as f32,
+        }
+    }
+
+    /// The 1D filter weight at offset `x` (the 2D filter is the product of two). Negative for the
+    /// negative lobes of `Mitchell` and `Lanczos`.
+    pub fn weight(&self, x: f32) -> f32 {
+        match *self {
+            Filter::Box { radius } => {
+                if x >= -radius && x < radius {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+            Filter::Tent { radius } => (1.0 - x.abs() / radius).max(0.0),
+            Filter::Gaussian { stddev, radius } => {
+                let alpha = -1.0 / (2.0 * stddev * stddev);
+                ((alpha * x * x).exp() - (alpha * radius * radius).exp()).max(0.0)
+            }
+            Filter::Mitchell { b, c } => mitchell_netravali(b, c, x.abs()),
+            Filter::Lanczos { lobes } => {
+                let l = lobes as f32;
+                if x.abs() >= l {
+                    0.0
+                } else {
+                    sinc(x) * sinc(x / l)
+                }
+            }
+        }
+    }
+}
+
+/// Mitchell and Netravali's cubic at `t` = |x| ≥ 0: 1 at 0 for b = 0, C¹ everywhere, zero from 2.
+fn mitchell_netravali(b: f32, c: f32, t: f32) -> f32 {
+    let (t2, t3) = (t * t, t * t * t);
+    let k = if t < 1.0 {
+        (12.0 - 9.0 * b - 6.0 * c) * t3 + (-18.0 + 12.0 * b + 6.0 * c) * t2 + (6.0 - 2.0 * b)
+    } else if t < 2.0 {
+        (-b - 6.0 * c) * t3 + (6.0 * b + 30.0 * c) * t2 - (12.0 * b + 48.0 * c) * t + (8.0 * b + 24.0 * c)
+    } else {
+        0.0
+    };
+    k / 6.0
+}
+
+/// sin(πx)/(πx), 1 at 0.
+fn sinc(x: f32) -> f32 {
+    let px = std::f32::consts::PI * x;
+    if px.abs() < 1e-6 {
+        1.0
+    } else {
+        px.sin() / px
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SamplerKind {
+    Independent,
+    Stratified,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    Perspective,
+    ThinLens {
+        aperture_radius: f32,
+        focus_distance: f32,
+    },
+    /// Half extents of the view volume along local x and y.
+    Orthographic {
+        half_width: f32,
+        half_height: f32,
+    },
+    /// Mitsuba's `radiancemeter`: the radiance along one ray, from the origin along local +z (a
+    /// perspective camera whose field of view is zero: every film position gives that ray).
+    RadianceMeter,
+    /// Mitsuba's `irradiancemeter`: the irradiance averaged over shape `shape` (index into
+    /// `Scene::shapes`), measured by rays leaving it (`crate::prepare::irradiance_meter`).
+    IrradianceMeter {
+        shape: usize,
+    },
+}
+
+/// The part of the full image that is rendered (Mitsuba's `crop_*`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Crop {
+    pub x: u32,
+    pub y: u32,
+    pub width: u32,
+    pub height: u32,
+}
+
+#[derive(Clone, Debug)]
+pub struct Sensor {
+    pub projection: Projection,
+    /// Camera-to-world transform (no scale): local +z looks forward, +x to the image's left.
+    pub to_world: Mat4,
+    /// Horizontal field of view in degrees.
+    pub fov_x: f32,
+    pub near_clip: f32,
+    pub far_clip: f32,
+    /// Mitsuba's `principal_point_offset_x/y` (perspective only): fractions of the film's width and
+    /// height by which the image window's centre moves.
+    pub principal_point_offset: [f32; 2],
+    /// Size of the full image; `crop` selects what is rendered.
+    pub width: u32,
+    pub height: u32,
+    pub crop: Option<Crop>,
+    pub filter: Filter,
+    pub sampler: SamplerKind,
+    pub spp: u32,
+    /// How camera samples reach the film (`--film`).
+    pub film: FilmMode,
+}
+
+/// How camera samples reach the film (`caustic_kernel::film`): splatted into every pixel the filter
+/// covers, as Mitsuba's `hdrfilm` does (the default), or each to its own pixel with its offset drawn
+/// from the filter, whose noise is uncorrelated between pixels (a denoiser's input) at a higher
+/// error per sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum FilmMode {
+    #[default]
+    Splat,
+    /// Filter importance sampling.
+    Fis,
+}
+
+#[derive(Clone, Debug)]
+pub struct Integrator {
+    pub kind: IntegratorKind,
+    /// Mitsuba `max_depth`; -1 = unbounded.
+    pub max_depth: i32,
+    pub rr_depth: u32,
+    pub hide_emitters: bool,
+}
+
+impl Default for Integrator {
+    fn default() -> Self {
+        Integrator { kind: IntegratorKind::Path, max_depth: -1, rr_depth: 5, hide_emitters: false }
+    }
+}
+
+/// An integrator chosen on the command line (`--integrator`), overriding the scene's.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum IntegratorChoice {
+    /// Path tracing with next-event estimation.
+    Path,
+    /// Direct illumination, one light and one BSDF sample per shading point.
+    Direct,
+    /// Light tracing (Mitsuba's `ptracer`).
+    Ptracer,
+    /// Path tracing and light tracing combined by MIS (instant bidirectional path tracing).
+    Ibpt,
+}
+
+impl Integrator {
+    /// The scene's integrator with its kind replaced by `choice`; `max_depth`, `rr_depth` and
+    /// `hide_emitters` carry over (`direct` has its own depth of 2).
+    pub fn overridden(self, choice: IntegratorChoice) -> Integrator {
+        match choice {
+            IntegratorChoice::Path => Integrator { kind: IntegratorKind::Path, ..self },
+            IntegratorChoice::Ptracer => Integrator { kind: IntegratorKind::Ptracer, ..self },
+            IntegratorChoice::Ibpt => Integrator { kind: IntegratorKind::Ibpt, ..self },
+            IntegratorChoice::Direct => Integrator {
+                kind: IntegratorKind::Direct { emitter_samples: 1, bsdf_samples: 1 },
+                max_depth: 2,
+                ..self
+            },
+        }
+    }
+}
+
+/// Which estimator renders the image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegratorKind {
+    Path,
+    /// Direct illumination with this many light and BSDF samples per shading point.
+    Direct {
+        emitter_samples: u32,
+        bsdf_samples: u32,
+    },
+    /// Light tracing (Mitsuba's `ptracer`).
+    Ptracer,
+    /// Instant bidirectional path tracing: path tracing and light tracing combined by MIS.
+    Ibpt,
+}
+
+#[derive(Clone, Debug)]
+pub enum Geometry {
+    /// World-space triangles, with optional per-corner shading normals.
+    Triangles {
+        triangles: Vec<[Vec3; 3]>,
+        normals: Option<Vec<[Vec3; 3]>>,
+        uvs: Option<Vec<[Vec2; 3]>>,
+        /// Named attributes at the corners (`mesh_attribute` textures read them): only those the
+        /// shape's textures use are kept, so most shapes have none.
+        attributes: Vec<crate::scene::mesh::CornerAttribute>,
+    },
+    Sphere {
+        center: Vec3,
+        radius: f32,
+        /// The orientation of `to_world` (orthonormal, mirrored where its determinant is negative):
+        /// Mitsuba's uv and tangents of a sphere turn with it.
+        frame: Mat3,
+    },
+    /// Mitsuba's analytic disk: `center + a·u + b·v` for `a² + b² ≤ 1`, facing `u × v`.
+    Disk { center: Vec3, u: Vec3, v: Vec3 },
+}
+
+#[derive(Clone, Debug)]
+pub struct Shape {
+    /// Where the shape came from, for messages (file:line or a name).
+    pub origin: String,
+    pub geometry: Geometry,
+    /// Index into `Scene::materials`.
+    pub material: u32,
+    /// Uniform emitted radiance (linear sRGB) of an area emitter on this shape; with
+    /// `emission_texture`, the texture's mean (what selection by power uses).
+    pub emission: Option<[f32; 3]>,
+    /// The texture (index into `Scene::textures`) giving the area emitter's radiance over the
+    /// surface's uv, if textured.
+    pub emission_texture: Option<u32>,
+    /// Mitsuba's `directionalarea`: the emitter sends its radiance along the surface's normal only
+    /// (light tracing alone carries that light; path tracing sees a black surface, as in Mitsuba).
+    pub emission_directional: bool,
+    pub flip_normals: bool,
+}
+
+/// An emitter not attached to a shape.
+#[derive(Clone, Debug)]
+pub enum Emitter {
+    Point {
+        position: Vec3,
+        intensity: [f32; 3],
+    },
+    /// `to_world` maps the beam axis to local +z; angles in degrees.
+    Spot {
+        to_world: Mat4,
+        intensity: [f32; 3],
+        cutoff_angle: f32,
+        beam_width: f32,
+        /// Mitsuba's `texture`: an image spread over the cone, multiplying the intensity.
+        texture: Option<u32>,
+    },
+    /// Mitsuba's `projector`: `to_world` maps the projection axis to local +z; `irradiance` times
+    /// `scale` (and the texture, if any); `fov_x` in degrees, `aspect` the image's width / height.
+    Projector {
+        to_world: Mat4,
+        irradiance: [f32; 3],
+        texture: Option<u32>,
+        fov_x: f32,
+        aspect: f32,
+    },
+    /// `direction` the light travels in.
+    Directional {
+        direction: Vec3,
+        irradiance: [f32; 3],
+    },
+    Constant {
+        radiance: [f32; 3],
+    },
+    /// A lat-long image (`texture` indexes `Scene::textures`), rotated by `to_world`.
+    Envmap {
+        texture: u32,
+        to_world: Mat3,
+        scale: f32,
+        /// Mitsuba's `mis_compensation`: sample in proportion to the luminance above the map's mean
+        /// (Karlík et al. 2019), leaving the dim directions to BSDF sampling.
+        mis_compensation: bool,
+    },
+}
+
+/// A texture record with its texels (linear RGB, row-major from the top; empty for procedural
+/// textures); `buffers` places the texels in the table buffer and sets the record's offset.
+#[derive(Clone, Debug)]
+pub struct SceneTexture {
+    pub record: Texture,
+    pub texels: Vec<f32>,
+    /// A `mesh_attribute` texture's attribute name and where it was defined.
+    pub mesh_attribute: Option<MeshAttributeRef>,
+}
+
+/// What a `mesh_attribute` texture reads: the attribute `name` of the shape it is on; `origin` is
+/// the texture's file and line.
+#[derive(Clone, Debug)]
+pub struct MeshAttributeRef {
+    pub name: String,
+    pub origin: String,
+}
+
+impl SceneTexture {
+    /// The mean colour (a checkerboard's: of its two colours). A mesh attribute's values are the
+    /// shape's, unknown to the texture: its `scale` times a grey ½ stands in, which only sets sampling
+    /// weights (the loader refuses it wherever a mean would replace the texture).
+    pub fn mean(&self) -> [f32; 3] {
+        let r = &self.record;
+        if self.mesh_attribute.is_some() {
+            return [0.5 * r.color0[0]; 3];
+        }
+        if r.kind == caustic_kernel::layout::TEXTURE_CHECKERBOARD {
+            return [0, 1, 2].map(|c| 0.5 * (r.color0[c] + r.color1[c]));
+        }
+        let n = (self.texels.len() / 3).max(1) as f64;
+        [0, 1, 2].map(|c| (self.texels.iter().skip(c).step_by(3).map(|&v| v as f64).sum::<f64>() / n) as f32)
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub sensor: Sensor,
+    pub integrator: Integrator,
+    pub materials: Vec<Material>,
+    pub shapes: Vec<Shape>,
+    /// Shapegroups stored once and the instances placing them (besides `shapes`).
+    pub instancing: crate::scene::instancing::Instancing,
+    pub emitters: Vec<Emitter>,
+    pub textures: Vec<SceneTexture>,
+    /// The textured weights of `principled` and `principledthin` records beyond the record's own
+    /// slots (`caustic_kernel::bsdf::textured_weights`): such a record's `table` indexes this list
+    /// here, and `buffers::build` moves the entry into the table buffer.
+    pub weight_tables: Vec<[f32; caustic_kernel::bsdf::textured_weights::SLOTS]>,
+    /// Mitsuba's `aov` or `depth` integrator: what is rendered beside (or instead of) the image.
+    pub aovs: Option<aov::AovSpec>,
+    /// Non-fatal problems found while loading (unsupported elements, clamped values), already printed.
+    pub warnings: Vec<String>,
+}
+
+/// Prints a loading warning and records it in `warnings` (which becomes `Scene::warnings`). Every
+/// loader warns through this, so that what stderr shows and what the scene lists agree.
+pub(crate) fn warn(warnings: &mut Vec<String>, message: String) {
+    eprintln!("warning: {message}");
+    warnings.push(message);
+}
+
+/// Look-at transform with Mitsuba's conventions (columns: left, up, forward, origin).
+pub fn look_at(origin: Vec3, target: Vec3, up: Vec3) -> Option<Mat4> {
+    let dir = (target - origin).normalize_or_zero();
+    let left = up.cross(dir).normalize_or_zero();
+    if dir == Vec3::ZERO || left == Vec3::ZERO {
+        return None;
+    }
+    let new_up = dir.cross(left);
+    Some(Mat4::from_cols(left.extend(0.0), new_up.extend(0.0), dir.extend(0.0), origin.extend(1.0)))
+}
+
+/// An RGB colour as the kernel's layout stores it: four floats, the fourth unused. The scene's
+/// materials hold it (the loaders build them), and so do the buffers `prepare` builds.
+pub(crate) fn rgba(c: [f32; 3]) -> [f32; 4] {
+    [c[0], c[1], c[2], 0.0]
+}
