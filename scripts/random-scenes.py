@@ -34,9 +34,9 @@ deep), spheres turned by their `to_world`, `normalmap` and `bumpmap`
 (tests/data's normalmap_normals.png and normalmap_height.png) around a BSDF on shapes with uv,
 `bitmap` reflectances (8- and 16-bit PNGs, a BMP; filter_type, wrap_mode, raw, to_uv),
 checkerboards with unequal, turned and shifted to_uv, `obj` and `ply` meshes (their own or face
-normals; uniform or unequal scales), `instance`s of one `shapegroup` (spheres under uniform
-scales only), area emitters whose radiance is a checkerboard of greys or an HDR bitmap, a spot with
-a `texture`, `projector` (irradiance a colour, a bitmap or a checkerboard), `envmap` (two tiny EXRs
+normals; uniform or unequal scales), `instance`s of one `shapegroup` (under uniform scales only
+where it holds a sphere or a null interface), area emitters whose radiance is a checkerboard of
+greys or an HDR bitmap, a spot with a `texture`, `projector` (irradiance a colour, a bitmap or a checkerboard), `envmap` (two tiny EXRs
 of tests/data and the shared museum.exr; `mis_compensation` except under ptracer), perspective
 `principal_point_offset_x/y`, the mitchell, catmullrom and lanczos filters, the multijitter,
 orthogonal and ldsampler samplers, the `ptracer` integrator (perspective and thinlens cameras);
@@ -62,12 +62,12 @@ Mitsuba scenes in $CAUSTIC_SHARED (default ../shared), whose files are left out 
 Kept clear of too, faults of Mitsuba 3.9.1 (its renderers disagreeing with each other, or
 failing): its `path` with hide_emitters dies (segmentation fault) where a camera ray meets an
 `instance`; with hide_emitters, what a camera ray meets past an area emitter it skips renders
-differently in each of its integrators: `path` takes the surface found by a ray spawned at the
-emitter as if the camera ray had found it (its t is measured from the emitter), `volpath` renders
-a glossy surface seen through an emitter brighter than its own image without hide_emitters less
-the emitters' directly seen emission (0.1844 against 0.1734 on a rough conductor disk behind an
-emitting null cylinder; caustic renders 0.1736), and `ptracer` stops camera connections at the
-emitter; so under hide_emitters the extended generator makes no shape of the scene emissive (area
+differently in each of its integrators: `path` completes the surface that a ray spawned past the
+emitters found with the camera ray (its distance measured from the last emitter, not the camera),
+`volpath` does so with the ray spawned past the first emitter, which is wrong where the camera ray
+passed more than one (a cylinder's two walls: a rough conductor disk seen through an emitting null
+cylinder renders 0.1844 where its image without hide_emitters less the emitters' directly seen
+emission is 0.1734, and caustic's 0.1736), and `ptracer` stops camera connections at the emitter; so under hide_emitters the extended generator makes no shape of the scene emissive (area
 lamps above it stay); its `ptracer` never ends where the sampler rounds the sample count (stratified at 512
 spp: 529), refuses a checkerboard on an emitter (Texture::sample_spectrum(): not implemented),
 lights wrongly from a turned `envmap`, leaves black a band of the image along the edges that a
@@ -86,7 +86,10 @@ the same plain colour; on a sphere turned 150 degrees, 6%), so cubes, meshes wit
 on eval_null_transmission (the BSDF base class's 0), so its `volpath` stops shadow rays at a
 mapped thin dielectric (or mask) while its sampled paths cross it (a bump-mapped pane's shadow
 renders 0.004 where the plain pane's is 0.225, as caustic renders both): no thin dielectric under a
-map.
+map. And its `volpath`, which does not bound the number of null crossings, can cross a null
+cylinder in an unequally scaled instance for ever (each crossing meets the cylinder again: seed 88
+hung in Cylinder::ray_intersect_preliminary under VolumetricPathIntegrator::sample): a group
+holding a null interface is instanced under uniform scales only.
 
 Mitsuba 3.9.1 (`scalar_rgb`) renders the reference at `--spp` x `--ref-factor` samples per pixel,
 in --ref-batches renders with seeds 1, 2, ... whose spread gives the reference's own variance;
@@ -167,7 +170,7 @@ EXTENDED = {
     "bitmap": "bitmap reflectances (PNG, BMP): filter_type, wrap_mode, raw, to_uv",
     "uv": "checkerboards' to_uv with unequal scales, a turn and an offset",
     "meshes": "obj and ply meshes, their own or face normals",
-    "instances": "instances of a shapegroup (spheres under uniform scales only)",
+    "instances": "instances of a shapegroup (spheres and null interfaces under uniform scales only)",
     "emitter-textures": "area emitters' radiance a checkerboard or an HDR bitmap, a spot's texture",
     "projector": "projector, irradiance a colour, an HDR bitmap or a checkerboard",
     "envmap": "envmap of a small EXR or museum.exr, sometimes mis_compensation",
@@ -731,8 +734,12 @@ class SceneMaker:
 
     def shapegroup(self):
         """The scene's `shapegroup`: one or two shapes about its origin, with BSDFs (no emitters:
-        Mitsuba refuses them there). Its XML, bounding radius, description, whether it holds a sphere."""
+        Mitsuba refuses them there). Its XML, bounding radius, description, and whether its instances
+        take uniform scales only: where it holds a sphere, or a null interface (Mitsuba 3.9.1's
+        volpath can loop for ever crossing a null cylinder in an unequally scaled instance: each
+        crossing meets the cylinder again, and a crossing is no bounce)."""
         members, texts, bound, has_sphere = [], [], 0.0, False
+        outside, self.null_interfaces = self.null_interfaces, False
         kinds = [k for k in self.shape_kinds() if k != "instance"]
         direction = self.unit_vector()
         offset = 0.0
@@ -748,7 +755,9 @@ class SceneMaker:
             members.append(element("shape", shape.plugin, shape.geometry(centre) + [bsdf]))
             texts.append(f"{shape.label}:{text}")
         xml = f'<shape type="shapegroup" id="group">{"".join(members)}</shape>'
-        return xml, bound, "+".join(texts), has_sphere
+        uniform = has_sphere or self.null_interfaces
+        self.null_interfaces |= outside
+        return xml, bound, "+".join(texts), uniform
 
     def instance(self):
         """An `instance` of the shapegroup (made at the first call), turned and sized (unequally or
@@ -756,10 +765,10 @@ class SceneMaker:
         gives its XML and description."""
         if self.group is None:
             self.group = self.shapegroup()
-        group_xml, group_bound, group_text, has_sphere = self.group
+        group_xml, group_bound, group_text, uniform = self.group
         size = self.uniform(0.35, 0.7)
         factors = [size / group_bound] * 3
-        if not has_sphere and self.r.random() < 0.5:
+        if not uniform and self.r.random() < 0.5:
             factors = [f * self.uniform(0.6, 1.0) for f in factors]
             if self.r.random() < 0.4:
                 factors[0] = -factors[0]
