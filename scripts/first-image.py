@@ -7,18 +7,17 @@ For each scene: caustic `render SCENE --spp N -o out.exr` with the default backe
 machine with a GPU, a CPU stand-in renders while the GPU's pipelines are built; `backend::create_starting`)
 and, with --gpu-only, with `--backend gpu` too (the GPU alone, waiting for its build); Mitsuba 3
 (`--variant`, `cuda_ad_rgb` by default) in a fresh Python process that loads the scene, renders N spp
-and writes the EXR. "Cold" removes `~/.cache/caustic` (pruned kernels, pipeline trial decisions),
+and writes the EXR. "Cold" removes `~/.cache/caustic/{pruned,variants}` (pruned kernels, pipeline trial decisions),
 `~/.cache/nvidia` and `~/.nv` (the NVIDIA driver's shader cache) before caustic's run and `~/.drjit`
 (Dr.Jit's kernel cache) before Mitsuba's; "warm" runs the same command again at once.
 
 Prints one Markdown table (seconds, and Mitsuba's time over caustic's: above 1, caustic first) and
 checks that every image was written. Usage (from the repository root, on the machine measured):
     python3 scripts/first-image.py --caustic target/release/caustic --shared ../shared
-    python3 scripts/first-image.py --scenes cbox,bsdf_dielectric_glass --spp 64 --gpu-only
-Scenes are named as in ../shared/refs/mitsuba/refs.json.
+    python3 scripts/first-image.py --scenes scenes/cbox/cbox.xml,docs/scenes/bsdf_dielectric_glass.xml --gpu-only
+Scenes are Mitsuba scene files, relative to SHARED/scenes/mitsuba (or absolute).
 """
 import argparse
-import json
 import os
 import shutil
 import subprocess
@@ -26,7 +25,9 @@ import sys
 import tempfile
 import time
 
-CAUSTIC_CACHES = ["~/.cache/caustic", "~/.cache/nvidia", "~/.nv"]
+# caustic's run-time caches only (`backend::prune`, `backend::variant`): its build caches live beside
+# them in ~/.cache/caustic and are kept.
+CAUSTIC_CACHES = ["~/.cache/caustic/pruned", "~/.cache/caustic/variants", "~/.cache/nvidia", "~/.nv"]
 MITSUBA_CACHES = ["~/.drjit"]
 
 MITSUBA_RENDER = """
@@ -65,20 +66,24 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--caustic", default="target/release/caustic")
     ap.add_argument("--shared", default="../shared")
-    ap.add_argument("--scenes", default="cbox,bsdf_dielectric_glass,bsdf_roughconductor_copper,shape_ply_bunny")
+    ap.add_argument(
+        "--scenes",
+        default="scenes/cbox/cbox.xml,docs/scenes/bsdf_dielectric_glass.xml,"
+        "docs/scenes/bsdf_roughconductor_copper.xml,docs/scenes/shape_ply_bunny.xml",
+    )
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--variant", default="cuda_ad_rgb")
     ap.add_argument("--python", default=sys.executable, help="a Python with mitsuba installed")
     ap.add_argument("--gpu-only", action="store_true", help="also time caustic with --backend gpu (cold)")
     args = ap.parse_args()
-    refs = json.load(open(os.path.join(args.shared, "refs/mitsuba/refs.json")))["scenes"]
     scratch = tempfile.mkdtemp(prefix="first-image-")
     header = "| scene | Mitsuba cold | caustic cold | Mitsuba / caustic | Mitsuba warm | caustic warm | Mitsuba / caustic |"
     if args.gpu_only:
         header += " caustic GPU alone, cold |"
     rows = [header, "|" + "---|" * (header.count("|") - 1)]
-    for name in args.scenes.split(","):
-        path = os.path.join(args.shared, "scenes/mitsuba", refs[name]["file"])
+    for scene in args.scenes.split(","):
+        path = os.path.join(args.shared, "scenes/mitsuba", scene)
+        name = os.path.splitext(os.path.basename(scene))[0]
         out = os.path.join(scratch, f"{name}.exr")
         caustic = [args.caustic, "render", path, "--spp", str(args.spp), "-q", "-o", out]
         mitsuba = [args.python, "-c", MITSUBA_RENDER, args.variant, path, str(args.spp), out]
