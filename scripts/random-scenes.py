@@ -34,8 +34,8 @@ deep), spheres turned by their `to_world`, `normalmap` and `bumpmap`
 (tests/data's normalmap_normals.png and normalmap_height.png) around a BSDF on shapes with uv,
 `bitmap` reflectances (8- and 16-bit PNGs, a BMP; filter_type, wrap_mode, raw, to_uv),
 checkerboards with unequal, turned and shifted to_uv, `obj` and `ply` meshes (their own or face
-normals; uniform or unequal scales), `instance`s of one `shapegroup` (under uniform scales only
-where it holds a sphere or a null interface), area emitters whose radiance is a checkerboard of
+normals; uniform or unequal scales), `instance`s of one `shapegroup` (spheres under uniform
+scales only; no null interface on its cylinders), area emitters whose radiance is a checkerboard of
 greys or an HDR bitmap, a spot with a `texture`, `projector` (irradiance a colour, a bitmap or a checkerboard), `envmap` (two tiny EXRs
 of tests/data and the shared museum.exr; `mis_compensation` except under ptracer), perspective
 `principal_point_offset_x/y`, the mitchell, catmullrom and lanczos filters, the multijitter,
@@ -87,9 +87,9 @@ on eval_null_transmission (the BSDF base class's 0), so its `volpath` stops shad
 mapped thin dielectric (or mask) while its sampled paths cross it (a bump-mapped pane's shadow
 renders 0.004 where the plain pane's is 0.225, as caustic renders both): no thin dielectric under a
 map. And its `volpath`, which does not bound the number of null crossings, can cross a null
-cylinder in an unequally scaled instance for ever (each crossing meets the cylinder again: seed 88
-hung in Cylinder::ray_intersect_preliminary under VolumetricPathIntegrator::sample): a group
-holding a null interface is instanced under uniform scales only.
+cylinder in an instance for ever (each crossing meets the cylinder again: seed 88 hung in
+Cylinder::ray_intersect_preliminary under VolumetricPathIntegrator::sample, its instance scaled
+unequally and, drawn again, uniformly): no null interface on a cylinder in a shapegroup.
 
 Mitsuba 3.9.1 (`scalar_rgb`) renders the reference at `--spp` x `--ref-factor` samples per pixel,
 in --ref-batches renders with seeds 1, 2, ... whose spread gives the reference's own variance;
@@ -170,7 +170,7 @@ EXTENDED = {
     "bitmap": "bitmap reflectances (PNG, BMP): filter_type, wrap_mode, raw, to_uv",
     "uv": "checkerboards' to_uv with unequal scales, a turn and an offset",
     "meshes": "obj and ply meshes, their own or face normals",
-    "instances": "instances of a shapegroup (spheres and null interfaces under uniform scales only)",
+    "instances": "instances of a shapegroup (spheres under uniform scales only)",
     "emitter-textures": "area emitters' radiance a checkerboard or an HDR bitmap, a spot's texture",
     "projector": "projector, irradiance a colour, an HDR bitmap or a checkerboard",
     "envmap": "envmap of a small EXR or museum.exr, sometimes mis_compensation",
@@ -460,14 +460,18 @@ class SceneMaker:
             kinds.append("thindielectric")
         return kinds
 
-    def object_bsdf(self, surface):
+    def object_bsdf(self, surface, nulls=True):
         """An object's BSDF (`surface_bsdf` of `materials`); not under ptracer, sometimes `null`
-        (feature "null") or inside a `mask` (feature "mask")."""
-        if self.has("null") and not self.light_tracing and self.r.random() < 0.07:
+        (feature "null") or inside a `mask` (feature "mask"); none of the three (nor a thin
+        dielectric) where not `nulls`."""
+        if nulls and self.has("null") and not self.light_tracing and self.r.random() < 0.07:
             self.null_interfaces = True
             return element("bsdf", "null", []), "null"
-        bsdf, text = self.surface_bsdf(self.materials(OBJECT_MATERIALS, surface), surface)
-        if self.has("mask") and not self.light_tracing and self.r.random() < 0.12:
+        kinds = self.materials(OBJECT_MATERIALS, surface)
+        if not nulls:
+            kinds = [k for k in kinds if k != "thindielectric"]
+        bsdf, text = self.surface_bsdf(kinds, surface)
+        if nulls and self.has("mask") and not self.light_tracing and self.r.random() < 0.12:
             return self.mask(bsdf, text)
         return bsdf, text
 
@@ -734,12 +738,10 @@ class SceneMaker:
 
     def shapegroup(self):
         """The scene's `shapegroup`: one or two shapes about its origin, with BSDFs (no emitters:
-        Mitsuba refuses them there). Its XML, bounding radius, description, and whether its instances
-        take uniform scales only: where it holds a sphere, or a null interface (Mitsuba 3.9.1's
-        volpath can loop for ever crossing a null cylinder in an unequally scaled instance: each
-        crossing meets the cylinder again, and a crossing is no bounce)."""
+        Mitsuba refuses them there). Its XML, bounding radius, description, whether it holds a sphere.
+        No null interface on a cylinder there: Mitsuba 3.9.1's volpath can cross a null cylinder in
+        an instance for ever (each crossing meets the cylinder again, and a crossing is no bounce)."""
         members, texts, bound, has_sphere = [], [], 0.0, False
-        outside, self.null_interfaces = self.null_interfaces, False
         kinds = [k for k in self.shape_kinds() if k != "instance"]
         direction = self.unit_vector()
         offset = 0.0
@@ -751,13 +753,11 @@ class SceneMaker:
             offset += shape.bound
             bound = max(bound, math.sqrt(sum(x * x for x in centre)) + shape.bound)
             has_sphere |= shape.plugin == "sphere"
-            bsdf, text = self.object_bsdf(shape.surface)
+            bsdf, text = self.object_bsdf(shape.surface, nulls=shape.plugin != "cylinder")
             members.append(element("shape", shape.plugin, shape.geometry(centre) + [bsdf]))
             texts.append(f"{shape.label}:{text}")
         xml = f'<shape type="shapegroup" id="group">{"".join(members)}</shape>'
-        uniform = has_sphere or self.null_interfaces
-        self.null_interfaces |= outside
-        return xml, bound, "+".join(texts), uniform
+        return xml, bound, "+".join(texts), has_sphere
 
     def instance(self):
         """An `instance` of the shapegroup (made at the first call), turned and sized (unequally or
@@ -765,10 +765,10 @@ class SceneMaker:
         gives its XML and description."""
         if self.group is None:
             self.group = self.shapegroup()
-        group_xml, group_bound, group_text, uniform = self.group
+        group_xml, group_bound, group_text, has_sphere = self.group
         size = self.uniform(0.35, 0.7)
         factors = [size / group_bound] * 3
-        if not uniform and self.r.random() < 0.5:
+        if not has_sphere and self.r.random() < 0.5:
             factors = [f * self.uniform(0.6, 1.0) for f in factors]
             if self.r.random() < 0.4:
                 factors[0] = -factors[0]
