@@ -11,8 +11,10 @@ and writes the EXR. "Cold" removes `~/.cache/caustic/{pruned,variants}` (pruned 
 `~/.cache/nvidia` and `~/.nv` (the NVIDIA driver's shader cache) before caustic's run and `~/.drjit`
 (Dr.Jit's kernel cache) before Mitsuba's; "warm" runs the same command again at once.
 
-Prints one Markdown table (seconds, and Mitsuba's time over caustic's: above 1, caustic first) and
-checks that every image was written. Usage (from the repository root, on the machine measured):
+Prints one Markdown table: seconds until the image file exists, caustic's whole process in brackets
+(with `auto`, a process whose CPU completed the image then waits for the GPU's build to end, so that
+the next render uses it), and Mitsuba's time over caustic's time to its image (above 1: caustic
+first). Mitsuba's process ends as its image is written. Usage (from the repository root, on the machine measured):
     python3 scripts/first-image.py --caustic target/release/caustic --shared ../shared
     python3 scripts/first-image.py --scenes scenes/cbox/cbox.xml,docs/scenes/bsdf_dielectric_glass.xml --gpu-only
 Scenes are Mitsuba scene files, relative to SHARED/scenes/mitsuba (or absolute).
@@ -43,15 +45,24 @@ def clear(paths):
         shutil.rmtree(os.path.expanduser(p), ignore_errors=True)
 
 
-def timed(command, env=None):
-    """Seconds the whole process took, or None with its last lines printed where it failed."""
+def timed(command, out=None):
+    """Seconds the whole process took (None, its last lines printed, where it failed), and the
+    seconds until `out` existed (outputs are renamed into place once complete), polled every 10 ms."""
+    if out and os.path.exists(out):
+        os.remove(out)
     t = time.perf_counter()
-    run = subprocess.run(command, capture_output=True, text=True, env=env)
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    written = None
+    while process.poll() is None:
+        if written is None and out and os.path.exists(out):
+            written = time.perf_counter() - t
+        time.sleep(0.01)
     seconds = time.perf_counter() - t
-    if run.returncode != 0:
-        print(f"failed: {' '.join(command)}\n{(run.stdout + run.stderr)[-800:]}", file=sys.stderr)
-        return None
-    return seconds
+    log = process.stdout.read()
+    if process.returncode != 0:
+        print(f"failed ({process.returncode}): {' '.join(command)}\n{log[-800:]}", file=sys.stderr)
+        return None, written
+    return seconds, written if written is not None else seconds
 
 
 def fmt(x):
@@ -88,14 +99,22 @@ def main():
         caustic = [args.caustic, "render", path, "--spp", str(args.spp), "-q", "-o", out]
         mitsuba = [args.python, "-c", MITSUBA_RENDER, args.variant, path, str(args.spp), out]
         clear(MITSUBA_CACHES)
-        m_cold, m_warm = timed(mitsuba), timed(mitsuba)
+        (m_cold, _), (m_warm, _) = timed(mitsuba), timed(mitsuba)
         clear(CAUSTIC_CACHES)
-        c_cold = timed(caustic)
-        c_warm = timed(caustic)
-        row = [name, fmt(m_cold), fmt(c_cold), ratio(m_cold, c_cold), fmt(m_warm), fmt(c_warm), ratio(m_warm, c_warm)]
+        c_cold, c_cold_image = timed(caustic, out)
+        c_warm, c_warm_image = timed(caustic, out)
+        row = [
+            name,
+            fmt(m_cold),
+            f"{fmt(c_cold_image)} ({fmt(c_cold)})",
+            ratio(m_cold, c_cold_image),
+            fmt(m_warm),
+            f"{fmt(c_warm_image)} ({fmt(c_warm)})",
+            ratio(m_warm, c_warm_image),
+        ]
         if args.gpu_only:
             clear(CAUSTIC_CACHES)
-            row.append(fmt(timed(caustic + ["--backend", "gpu"])))
+            row.append(fmt(timed(caustic + ["--backend", "gpu"])[0]))
         rows.append("| " + " | ".join(row) + " |")
         print(rows[-1], file=sys.stderr, flush=True)
     shutil.rmtree(scratch, ignore_errors=True)

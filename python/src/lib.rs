@@ -1,5 +1,5 @@
 //! `import caustic`: Mitsuba 3 scenes in, numpy arrays out, through the same library functions the
-//! command line calls (`caustic::load::load_scene_with`, `session::build_scene`, `backend::create_starting`,
+//! command line calls (`caustic::load::load_scene_with`, `session::build_scene`, `backend::create_on`,
 //! `passes::render_observed`, `session::develop`, `Film::save`, `compare::compare`,
 //! `convergence::measure_warmed_up`). Nothing here loads, builds, renders or compares by itself: it
 //! converts arguments and arrays (a scene dictionary into the XML the loader reads: `dict`), keeps a
@@ -206,7 +206,7 @@ impl Scene {
 
     fn prepare(&self, setup: Setup) -> anyhow::Result<Kept> {
         let buffers = session::build_scene(self.scene.clone(), &self.path, setup.integrator, setup.film)?;
-        let backend = backend::create_starting(setup.backend, &setup.gpus, &buffers)
+        let backend = backend::create_on(setup.backend, &setup.gpus, &buffers)
             .with_context(|| format!("{}: its sensor's film", self.path.display()))?;
         Ok(Kept { setup, buffers, backend })
     }

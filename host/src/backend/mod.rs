@@ -46,8 +46,8 @@ pub trait Backend {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum BackendChoice {
-    /// The GPU when a hardware adapter exists, else the CPU. A render (`render`, Python's
-    /// `Scene.render`) starts on the CPU while the GPU's pipelines are built (`create_starting`).
+    /// The GPU when a hardware adapter exists, else the CPU. The `render` command starts on the CPU
+    /// while the GPU's pipelines are built (`create_starting`).
     Auto,
     /// wgpu (Vulkan); accepts software adapters such as lavapipe.
     Gpu,
@@ -174,7 +174,7 @@ pub fn create_on(
     Ok(Box::new(pool::Pool::new(devices, Accumulation::new(pixels, batched))?))
 }
 
-/// `create_on` for a render that someone waits on (the `render` command, Python's `Scene.render`):
+/// `create_on` for a render that someone waits on (the `render` command):
 /// with `Auto` and a hardware GPU, the GPUs' devices are built on their own threads while a CPU
 /// stand-in renders (`pool::Pool::starting`), so that a scene the GPU has never compiled shows its
 /// first image at the CPU's pace rather than after the build (tens of seconds on an H200: README,

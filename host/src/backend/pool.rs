@@ -7,7 +7,8 @@
 //! meeting a scene whose kernel it has not compiled spends tens of seconds building its pipelines
 //! (`backend::prune`, the driver), and a CPU stand-in renders meanwhile, so that the first image
 //! comes at the CPU's pace instead of after the build. Once a built device joins, the stand-in
-//! takes no more passes (unless every built device is lost); what it rendered stays in the sum.
+//! takes no more passes (unless every built device is lost); what it rendered stays in the sum. A
+//! render the stand-in completes is written before the pool waits for the build to end (`Drop`).
 use super::accumulation::Accumulation;
 use super::schedule::{Event, Lanes, Lost, SampleRange};
 use super::Backend;
@@ -349,17 +350,23 @@ impl Lanes for Pool {
 }
 
 impl Drop for Pool {
-    /// Ends every lane's thread: a lane still building its device is left to finish the build and
-    /// end by itself (a render that the stand-in completed does not wait tens of seconds for it).
+    /// Ends every lane's thread. A lane still building its device is waited for (the render it was
+    /// built for is complete and written by now): a process that exits with a thread inside the
+    /// GPU driver's compiler crashed there on an H200 (2026-11-29), and the finished build leaves the
+    /// pruned kernel and the driver's pipeline cache on disk, so that the scene's next render starts
+    /// on the GPU.
     fn drop(&mut self) {
+        if self.lanes.iter().any(|l| !l.ready && l.commands.is_some()) {
+            eprintln!(
+                "note: waiting for the GPU's pipelines to finish building (cached for the next render)"
+            );
+        }
         for lane in &mut self.lanes {
             lane.commands = None;
         }
         for lane in &mut self.lanes {
             if let Some(t) = lane.thread.take() {
-                if lane.ready {
-                    let _ = t.join();
-                }
+                let _ = t.join();
             }
         }
     }
