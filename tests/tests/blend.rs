@@ -230,7 +230,7 @@ fn specialization_keeps_blends() {
     let specialised = buffers::build(&scene).expect("builds");
     assert!(features::has(specialised.features, features::BLEND));
     let mut general = specialised.clone();
-    general.features = features::ALL;
+    general.features = caustic::prepare::features::all_paths_as(specialised.features);
     let (a, b) = (
         render_buffers(&specialised, BackendChoice::Cpu, 16, 5),
         render_buffers(&general, BackendChoice::Cpu, 16, 5),

@@ -23,10 +23,11 @@ pub(super) fn features_of(
     if params.camera.kind == CAMERA_IRRADIANCE_METER {
         features |= features::IRRADIANCE_METER;
     }
-    // Not paths to specialize but how the buffers are laid out and which per-pixel loop runs: set
-    // exactly when they are two-level and when the integrator is `direct` (also under
+    // Not paths to specialize but how the buffers are laid out, which per-pixel loop runs and how
+    // shading frames are oriented: set exactly when they are two-level, when the integrator is
+    // `direct` and when the scene has maps or anisotropic roughness (also under
     // `CAUSTIC_SPECIALIZE=0`).
-    features &= !(features::INSTANCING | features::DIRECT_INTEGRATOR);
+    features = every_path(features, materials);
     if instanced {
         features |= features::INSTANCING;
     }
@@ -34,6 +35,29 @@ pub(super) fn features_of(
         features |= features::DIRECT_INTEGRATOR;
     }
     features
+}
+
+/// The bits that say how the buffers are laid out, which loop runs and how frames are oriented.
+const CONVENTIONS: u32 = features::INSTANCING | features::DIRECT_INTEGRATOR | features::TANGENT_FRAMES;
+
+/// Every kernel path, with the conventions of the scene whose own mask is `specialised`: the mask a
+/// scene renders the same image with as with its own (the tests compare the two).
+pub fn all_paths_as(specialised: u32) -> u32 {
+    (features::ALL & !CONVENTIONS) | (specialised & CONVENTIONS)
+}
+
+/// `features` with the bits that are conventions rather than paths set as the scene needs them:
+/// `INSTANCING` and `DIRECT_INTEGRATOR` cleared (the caller sets them), `TANGENT_FRAMES` exactly
+/// where `materials` have a normal or bump map or anisotropic roughness. With it set, every shading
+/// frame's tangent follows dp/du, which turns isotropic models' samples about the normal: the same
+/// image in expectation, other noise. So `features::ALL` (every path) with this gives the image the
+/// scene's own mask gives (`CAUSTIC_SPECIALIZE=0`, and the tests that compare the two).
+pub fn every_path(features: u32, materials: &[Material]) -> u32 {
+    let mut f = features & !CONVENTIONS;
+    if materials.iter().any(|m| m.perturb != 0 || anisotropic(m)) {
+        f |= features::TANGENT_FRAMES;
+    }
+    f
 }
 
 /// The kernel paths a scene can reach: its BSDF models, emitter kinds, textures and integrator.
@@ -64,9 +88,6 @@ fn scene_features(materials: &[Material], lights: &[Light], textures: bool, inte
     }
     if materials.iter().any(|m| m.flags & MATERIAL_MASK != 0 || m.kind == BSDF_THIN_DIELECTRIC) {
         f |= features::MASK;
-    }
-    if materials.iter().any(|m| m.perturb != 0 || anisotropic(m)) {
-        f |= features::TANGENT_FRAMES;
     }
     f
 }

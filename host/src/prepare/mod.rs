@@ -7,7 +7,7 @@ mod attribute_buffers;
 pub mod buffers;
 mod bvh;
 pub mod camera;
-mod features;
+pub mod features;
 pub mod filter_table;
 pub mod instance_buffers;
 pub mod irradiance_meter;
