@@ -132,16 +132,7 @@ pub fn create_on(
     gpus: &GpuSelection,
     buffers: &crate::prepare::buffers::SceneBuffers,
 ) -> Result<Box<dyn Backend + Send>> {
-    let (w, h) = (buffers.params.width, buffers.params.height);
-    crate::system::memory::check(
-        memory::render_need(buffers),
-        crate::system::memory::available(),
-        &format!("a {w}×{h} render"),
-    )?;
-    // (A bad CAUSTIC_PATH_LOOP, CAUSTIC_WORKGROUP or CAUSTIC_CPU_BVH is an error on every backend.)
-    path_loop::requested()?;
-    variant::requested_workgroups()?;
-    cpu::wide_requested()?;
+    checked(buffers)?;
     let cpu = || -> Box<dyn Backend + Send> { Box::new(cpu::CpuBackend::new(buffers.clone())) };
     let hardware_only = match choice {
         BackendChoice::Cpu => return Ok(cpu()),
@@ -169,9 +160,26 @@ pub fn create_on(
     if devices.len() == 1 {
         return Ok(devices.pop().expect("one device"));
     }
+    Ok(Box::new(pool::Pool::new(devices, empty(buffers))?))
+}
+
+/// Checks what every backend needs before it is built: the render's memory on the host (returned,
+/// in bytes), and the environment's settings (a bad CAUSTIC_PATH_LOOP, CAUSTIC_WORKGROUP or
+/// CAUSTIC_CPU_BVH is an error on every backend).
+fn checked(buffers: &crate::prepare::buffers::SceneBuffers) -> Result<u64> {
+    let need = memory::render_need(buffers);
+    let (w, h) = (buffers.params.width, buffers.params.height);
+    crate::system::memory::check(need, crate::system::memory::available(), &format!("a {w}×{h} render"))?;
+    path_loop::requested()?;
+    variant::requested_workgroups()?;
+    cpu::wide_requested()?;
+    Ok(need)
+}
+
+/// An empty accumulation of the render's size and kind, what a pool sums its devices' into.
+fn empty(buffers: &crate::prepare::buffers::SceneBuffers) -> Accumulation {
     let pixels = (buffers.params.width * buffers.params.height) as usize;
-    let batched = accumulation::batch_means(&buffers.params);
-    Ok(Box::new(pool::Pool::new(devices, Accumulation::new(pixels, batched))?))
+    Accumulation::new(pixels, accumulation::batch_means(&buffers.params))
 }
 
 /// `create_on` for a render that someone waits on (the `render` command):
@@ -194,17 +202,12 @@ pub fn create_starting(
     let Ok(indices) = resolve_gpus(gpus, &adapters, true) else {
         return create_on(choice, gpus, buffers);
     };
-    let need = memory::render_need(buffers);
-    let (w, h) = (buffers.params.width, buffers.params.height);
-    crate::system::memory::check(need, crate::system::memory::available(), &format!("a {w}×{h} render"))?;
+    let need = checked(buffers)?;
     // The stand-in holds a second copy of the scene: where that would crowd the host's memory, the
     // GPUs start alone.
     if crate::system::memory::available().is_none_or(|a| need.saturating_mul(3) > a) {
         return create_on(choice, gpus, buffers);
     }
-    path_loop::requested()?;
-    variant::requested_workgroups()?;
-    cpu::wide_requested()?;
     let devices = indices
         .into_iter()
         .map(|i| {
@@ -217,9 +220,7 @@ pub fn create_starting(
         })
         .collect();
     let stand_in = Box::new(stand_in::StandIn::new(buffers.clone())?);
-    let pixels = (w * h) as usize;
-    let batched = accumulation::batch_means(&buffers.params);
-    Ok(Box::new(pool::Pool::starting(stand_in, devices, Accumulation::new(pixels, batched))?))
+    Ok(Box::new(pool::Pool::starting(stand_in, devices, empty(buffers))?))
 }
 
 /// `create_on` with every suitable GPU (today's single adapter where there is one).

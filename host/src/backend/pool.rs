@@ -356,7 +356,7 @@ impl Drop for Pool {
     /// pruned kernel and the driver's pipeline cache on disk, so that the scene's next render starts
     /// on the GPU.
     fn drop(&mut self) {
-        if self.lanes.iter().any(|l| !l.ready && l.commands.is_some()) {
+        if self.pending() {
             eprintln!(
                 "note: waiting for the GPU's pipelines to finish building (cached for the next render)"
             );
