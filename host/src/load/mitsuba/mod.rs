@@ -30,7 +30,7 @@ mod textures;
 mod transform;
 mod xml;
 
-use crate::load::LoadOptions;
+use crate::load::options::LoadOptions;
 use crate::scene::{Integrator, Scene};
 use anyhow::{bail, Context, Result};
 use caustic_kernel::layout::Material;
