@@ -1,7 +1,7 @@
 //! The CPU backend: the kernel linked natively, over all cores, into f32 sums that fold into the
 //! host's f64 totals on the GPU's schedule (`accumulation::Folding`).
 use super::accumulation::{Accumulation, Folding};
-use super::Backend;
+use super::device::Backend;
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::Result;
 use caustic_kernel::layout::{FrameParams, PixelAccum, SceneView};

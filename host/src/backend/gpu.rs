@@ -5,9 +5,9 @@
 //! BENCHMARKS.md, "How the kernel's design was chosen"), and safe because the kernel's own indexing
 //! is bounds-checked Rust.
 use super::accumulation::{Accumulation, Folding};
+use super::device::Backend;
 use super::path_loop::PathLoop;
 use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
-use super::Backend;
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::{anyhow, bail, Context, Result};
 use caustic_kernel::integrator::{splats, traces_camera_paths};

@@ -1,10 +1,12 @@
 //! Rendering backends: the same kernel on the GPU (wgpu compute) or the CPU (rayon), and several
-//! GPUs as one backend (`pool`).
+//! GPUs as one backend (`pool`), all of them a `Backend` (`device`). This module picks and creates
+//! one for a render (`create_on`, `create_starting`).
 //!
 //! Uses `prepare` (the buffers it renders) and `system` (the machine's memory); its tests load
 //! scenes (`load`).
 pub mod accumulation;
 pub mod cpu;
+pub mod device;
 pub mod gpu;
 pub mod kernel_stats;
 pub mod limits;
@@ -19,30 +21,7 @@ pub mod variant;
 
 use accumulation::Accumulation;
 use anyhow::{bail, Result};
-use caustic_kernel::layout::FrameParams;
-use schedule::Lanes;
-
-/// A device that can add samples to an accumulation buffer (one `PixelAccum` per pixel). Light
-/// tracing splats into fixed-point sums that the backend resolves into it after every pass.
-pub trait Backend {
-    /// A short description: backend and adapter.
-    fn describe(&self) -> String;
-    /// Adds `params.sample_count` samples per pixel, starting at sample `params.sample_base`.
-    fn pass(&mut self, params: &FrameParams) -> Result<()>;
-    /// A copy of the accumulation buffer.
-    fn read_accum(&mut self) -> Result<Accumulation>;
-    /// Replaces the accumulation buffer (resuming from a checkpoint); `accum` has its exact size.
-    fn write_accum(&mut self, accum: &Accumulation) -> Result<()>;
-    /// Whether the backend runs as it will from now on: false while it still times its candidate
-    /// pipelines (`variant`). `bench` warms up until it is.
-    fn settled(&self) -> bool {
-        true
-    }
-    /// Several devices that run passes at once (`pool::Pool`); `None` for one device.
-    fn lanes(&mut self) -> Option<&mut dyn Lanes> {
-        None
-    }
-}
+pub use device::Backend;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum BackendChoice {

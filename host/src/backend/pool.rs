@@ -1,7 +1,7 @@
 //! Several devices as one backend: one thread per device, each with its own device, pipelines and
 //! accumulation buffer; the pass loop (`render::passes`) hands passes to whichever device is idle and the
 //! accumulations are summed when read. A device that fails loses only the samples since its sums
-//! were last read back (`schedule::Lost`); the others render them again.
+//! were last read back (`device::Lost`); the others render them again.
 //!
 //! A device may also be built on its thread while the others render (`Pool::starting`): a GPU
 //! meeting a scene whose kernel it has not compiled spends tens of seconds building its pipelines
@@ -10,8 +10,8 @@
 //! takes no more passes (unless every built device is lost); what it rendered stays in the sum. A
 //! render the stand-in completes is written before the pool waits for the build to end (`Drop`).
 use super::accumulation::Accumulation;
-use super::schedule::{Event, Lanes, Lost, SampleRange};
-use super::Backend;
+use super::device::Backend;
+use super::device::{Event, Lanes, Lost, SampleRange};
 use anyhow::{anyhow, bail, Result};
 use caustic_kernel::layout::FrameParams;
 use std::panic::{catch_unwind, AssertUnwindSafe};

@@ -3,54 +3,11 @@
 //! `[0, done)` (what a checkpoint may claim). Random numbers are a function of (seed, pixel, sample,
 //! dimension), so any partition of `[0, spp)` into passes on any devices sums to the one estimator.
 use super::accumulation::Accumulation;
-use anyhow::Error;
-use caustic_kernel::layout::FrameParams;
 use std::collections::BTreeMap;
-use std::time::Duration;
 
-/// A range of sample indices: (first, count).
-pub type SampleRange = (u32, u32);
-
-/// Devices that run passes concurrently: the pass loop starts a pass on an idle lane and waits for
-/// whichever lane finishes first, so a fast device takes more passes than a slow one. A lane may
-/// join late (a GPU whose pipelines are still being built while a CPU renders: `pool::Pool::starting`).
-pub trait Lanes {
-    fn count(&self) -> usize;
-    fn is_alive(&self, lane: usize) -> bool;
-    /// Whether the pass loop may start a pass on `lane` (alive, its device built, and not a stand-in
-    /// that a device built since has relieved).
-    fn takes_passes(&self, lane: usize) -> bool {
-        self.is_alive(lane)
-    }
-    /// Whether a lane is still being built: `finish` will report it, joined or lost.
-    fn pending(&self) -> bool {
-        false
-    }
-    /// Starts a pass on an idle, live lane.
-    fn start(&mut self, lane: usize, params: &FrameParams);
-    /// Waits for the next event: a running pass ended (its lane, how long it took), a lane was lost
-    /// (a running pass's or a build's), or a lane's device was built.
-    fn finish(&mut self) -> Event;
-    /// Samples per pixel each lane has rendered.
-    fn shares(&self) -> Vec<u64>;
-    /// The devices as one backend (only read while no pass runs).
-    fn backend(&mut self) -> &mut dyn super::Backend;
-}
-
-/// What `Lanes::finish` reports.
-pub enum Event {
-    Passed(usize, Duration),
-    Lost(usize, Lost),
-    Joined(usize),
-}
-
-/// A lane that failed: the error, and the sample ranges whose sums died with the device (the pass
-/// it was running and every pass finished since its accumulation was last read back).
-pub struct Lost {
-    pub device: String,
-    pub error: Error,
-    pub ranges: Vec<SampleRange>,
-}
+/// What lanes are and report lives in `device`, beside the `Backend` they make one of; named here
+/// too, as the pass loop's users (the tests) know them.
+pub use super::device::{Event, Lanes, Lost, SampleRange};
 
 /// Which samples are handed out and finished.
 pub struct Samples {

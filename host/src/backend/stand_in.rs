@@ -4,7 +4,7 @@
 //! on others): on the global pool it would take every core and slow the build it stands in for.
 use super::accumulation::Accumulation;
 use super::cpu::CpuBackend;
-use super::Backend;
+use super::device::Backend;
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::Result;
 use caustic_kernel::layout::FrameParams;

@@ -1,24 +1,19 @@
 //! Scene files into a `scene::Scene`: Mitsuba 3 XML (`mitsuba`), OBJ with its MTL library
-//! (`obj_scene`), the mesh files they name (`mesh`) and texture images (`image_io`).
+//! (`obj_scene`), the mesh files they name (`mesh`) and texture images (`image_io`); how a file is
+//! read (`options`).
 //!
 //! Uses `scene` and `system`.
 pub mod image_io;
 pub mod mesh;
 pub mod mitsuba;
 pub mod obj_scene;
+pub mod options;
+
+pub use options::LoadOptions;
 
 use crate::scene::{self, precision};
 use anyhow::Result;
 use std::path::Path;
-
-/// How a scene file is read.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct LoadOptions {
-    /// Refuse a Mitsuba scene that would not render as written (an unknown plugin replaced or left
-    /// out, a property not read) instead of warning: for pipelines that must not produce a wrong
-    /// image silently. The error names the file and line of each such element.
-    pub strict: bool,
-}
 
 /// Loads a scene by its extension: `.xml` (Mitsuba 3) or `.obj` (with its MTL library).
 pub fn load_scene(path: &Path, defines: &[(String, String)]) -> Result<scene::Scene> {

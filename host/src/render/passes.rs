@@ -3,8 +3,8 @@
 //! (`backend::pool`), every idle device takes the next pass (a fast device takes more of them), and
 //! the image is read when the loop has brought all of them to rest.
 use crate::backend::accumulation;
-use crate::backend::schedule::{Event, Lanes, Lost, Samples};
-use crate::backend::Backend;
+use crate::backend::device::{Backend, Event, Lanes, Lost};
+use crate::backend::schedule::Samples;
 use crate::output::film::Film;
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::{bail, Result};

@@ -1,9 +1,10 @@
 //! Mitsuba's `shapegroup` + `instance` in the scene description: each group's shapes kept once, in
 //! the group's space, and the instances that place them (`Instancing`), which `instance_buffers`
 //! turns into a BVH per group under the scene's. Where that does not pay, instances are flattened
-//! into ordinary shapes (`Scene::flatten_instances`): a group placed once costs no less stored once,
-//! and its flattened copy is walked without the detour through a transform.
-use crate::scene::{Geometry, Scene, Shape};
+//! into ordinary shapes, each group's shape `placed` by its instance (`Scene::flatten_instances`): a
+//! group placed once costs no less stored once, and its flattened copy is walked without the detour
+//! through a transform.
+use crate::scene::shape::{Geometry, Shape};
 use anyhow::{bail, Result};
 use glam::{Mat3, Mat4};
 
@@ -46,29 +47,6 @@ fn primitive_count(g: &Geometry) -> usize {
 pub fn invertible(m: Mat4) -> bool {
     let det = Mat3::from_mat4(m).determinant();
     det != 0.0 && det.is_finite() && m.inverse().is_finite()
-}
-
-impl Scene {
-    /// Moves the instances of groups placed fewer than `min_placements` times into `shapes`,
-    /// transformed (all of them with `usize::MAX`: the flattened scene, which renders the same image).
-    pub fn flatten_instances(&mut self, min_placements: usize) -> Result<()> {
-        let mut count = vec![0usize; self.instancing.groups.len()];
-        for i in &self.instancing.instances {
-            count[i.group] += 1;
-        }
-        let mut kept = Vec::new();
-        for i in std::mem::take(&mut self.instancing.instances) {
-            if count[i.group] >= min_placements {
-                kept.push(i);
-                continue;
-            }
-            for shape in &self.instancing.groups[i.group] {
-                self.shapes.push(placed(shape, i.to_world, &i.origin)?);
-            }
-        }
-        self.instancing.instances = kept;
-        Ok(())
-    }
 }
 
 /// `shape` of a group, placed by an instance's `to_world` as an ordinary shape.

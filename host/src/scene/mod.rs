@@ -1,5 +1,5 @@
 //! A renderer-neutral description of a scene, produced by the loaders (`load`: Mitsuba XML, OBJ)
-//! and turned into kernel buffers by `prepare`: its shapes and meshes (`mesh`), instances
+//! and turned into kernel buffers by `prepare`: its shapes (`shape`) and meshes (`mesh`), instances
 //! (`instancing`), sensor, emitters, materials and integrator, the AOVs it asks for, the warnings
 //! its loading gave (`warn`) and where f32 precision ends for it (`precision`).
 //!
@@ -8,9 +8,13 @@ pub mod aov;
 pub mod instancing;
 pub mod mesh;
 pub mod precision;
+pub mod shape;
 
+pub use shape::{Geometry, Shape};
+
+use anyhow::Result;
 use caustic_kernel::layout::{Material, Texture};
-use glam::{Mat3, Mat4, Vec2, Vec3};
+use glam::{Mat3, Mat4, Vec3};
 
 /// Reconstruction filter of the film (Mitsuba's `rfilter`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -231,47 +235,6 @@ pub enum IntegratorKind {
     Ibpt,
 }
 
-#[derive(Clone, Debug)]
-pub enum Geometry {
-    /// World-space triangles, with optional per-corner shading normals.
-    Triangles {
-        triangles: Vec<[Vec3; 3]>,
-        normals: Option<Vec<[Vec3; 3]>>,
-        uvs: Option<Vec<[Vec2; 3]>>,
-        /// Named attributes at the corners (`mesh_attribute` textures read them): only those the
-        /// shape's textures use are kept, so most shapes have none.
-        attributes: Vec<crate::scene::mesh::CornerAttribute>,
-    },
-    Sphere {
-        center: Vec3,
-        radius: f32,
-        /// The orientation of `to_world` (orthonormal, mirrored where its determinant is negative):
-        /// Mitsuba's uv and tangents of a sphere turn with it.
-        frame: Mat3,
-    },
-    /// Mitsuba's analytic disk: `center + a·u + b·v` for `a² + b² ≤ 1`, facing `u × v`.
-    Disk { center: Vec3, u: Vec3, v: Vec3 },
-}
-
-#[derive(Clone, Debug)]
-pub struct Shape {
-    /// Where the shape came from, for messages (file:line or a name).
-    pub origin: String,
-    pub geometry: Geometry,
-    /// Index into `Scene::materials`.
-    pub material: u32,
-    /// Uniform emitted radiance (linear sRGB) of an area emitter on this shape; with
-    /// `emission_texture`, the texture's mean (what selection by power uses).
-    pub emission: Option<[f32; 3]>,
-    /// The texture (index into `Scene::textures`) giving the area emitter's radiance over the
-    /// surface's uv, if textured.
-    pub emission_texture: Option<u32>,
-    /// Mitsuba's `directionalarea`: the emitter sends its radiance along the surface's normal only
-    /// (light tracing alone carries that light; path tracing sees a black surface, as in Mitsuba).
-    pub emission_directional: bool,
-    pub flip_normals: bool,
-}
-
 /// An emitter not attached to a shape.
 #[derive(Clone, Debug)]
 pub enum Emitter {
@@ -369,6 +332,29 @@ pub struct Scene {
     pub aovs: Option<aov::AovSpec>,
     /// Non-fatal problems found while loading (unsupported elements, clamped values), already printed.
     pub warnings: Vec<String>,
+}
+
+impl Scene {
+    /// Moves the instances of groups placed fewer than `min_placements` times into `shapes`,
+    /// transformed (all of them with `usize::MAX`: the flattened scene, which renders the same image).
+    pub fn flatten_instances(&mut self, min_placements: usize) -> Result<()> {
+        let mut count = vec![0usize; self.instancing.groups.len()];
+        for i in &self.instancing.instances {
+            count[i.group] += 1;
+        }
+        let mut kept = Vec::new();
+        for i in std::mem::take(&mut self.instancing.instances) {
+            if count[i.group] >= min_placements {
+                kept.push(i);
+                continue;
+            }
+            for shape in &self.instancing.groups[i.group] {
+                self.shapes.push(instancing::placed(shape, i.to_world, &i.origin)?);
+            }
+        }
+        self.instancing.instances = kept;
+        Ok(())
+    }
 }
 
 /// Prints a loading warning and records it in `warnings` (which becomes `Scene::warnings`). Every

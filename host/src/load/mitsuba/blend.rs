@@ -12,8 +12,8 @@
 //! BSDFs (the kernel picks a side on the surface's own record).
 //! A leaf with a Dirac lobe beside one with a smooth lobe renders differently from Mitsuba
 //! (`caustic_kernel::bsdf::blend`): a substitution, which `--strict` refuses.
+use super::loader::Loader;
 use super::props::{Entry, Props};
-use super::Loader;
 use anyhow::{bail, Result};
 use caustic_kernel::bsdf::{blend, MAX_LEAVES};
 use caustic_kernel::layout::*;

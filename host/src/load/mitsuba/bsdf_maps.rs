@@ -4,8 +4,8 @@
 //! (both on by default). The nested BSDF's record is copied with the map in its `perturb` fields;
 //! `caustic_kernel::bsdf::perturb` renders it. As Mitsuba, a normal map's texture is read as its
 //! `raw` property says (sRGB-decoded unless `raw` is true; Mitsuba's documentation asks for `raw`).
+use super::loader::Loader;
 use super::props::{Entry, Props};
-use super::Loader;
 use anyhow::{bail, Result};
 use caustic_kernel::layout::*;
 

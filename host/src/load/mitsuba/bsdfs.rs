@@ -2,10 +2,10 @@
 //! `dielectric`, `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `principled`,
 //! `principledthin`, `twosided`, `mask`, `blendbsdf` (`blend`) and `pplastic` (`pplastic`); with Mitsuba 3's parameter names and defaults.
 use super::ior;
+use super::loader::Loader;
 use super::props::Props;
 use super::spectrum::SpectrumUse;
 use super::textures::ColorParam;
-use super::Loader;
 use crate::scene::rgba;
 use anyhow::{bail, Result};
 use caustic_kernel::bsdf::principled::{eta_from_specular, PrincipledParams};

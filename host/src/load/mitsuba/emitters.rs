@@ -2,22 +2,13 @@
 //! texture), `point`, `spot`
 //! (with an optional `texture`), `projector`, `directional`, `constant` and `envmap` (at most one
 //! environment emitter per scene, as in Mitsuba).
+use super::loader::{AreaEmission, Loader};
 use super::props::Props;
 use super::spectrum::SpectrumUse;
-use super::Loader;
 use crate::scene::{Emitter, SceneTexture};
 use anyhow::{bail, Result};
 use caustic_kernel::layout::{Texture, NONE, TEXTURE_BITMAP};
 use glam::{Mat3, Vec3};
-
-/// An area emitter's radiance: uniform, or a texture over the surface's uv (`radiance` then holds
-/// its mean); `directional` for Mitsuba's `directionalarea` (along the normal only).
-#[derive(Clone, Copy, Debug)]
-pub struct AreaEmission {
-    pub radiance: [f32; 3],
-    pub texture: Option<u32>,
-    pub directional: bool,
-}
 
 impl Loader {
     /// The radiance of an `<emitter>` nested in a shape, or `None` (with a warning) for other kinds.

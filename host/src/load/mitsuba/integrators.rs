@@ -2,8 +2,8 @@
 //! whose images are the path tracer's), `direct`, `ptracer` (light tracing), `ibpt` (caustic's own: path and
 //! light tracing combined by MIS) and `moment` (its nested integrator; caustic always tracks
 //! the variance), and Mitsuba's `aov` and `depth` (`crate::scene::aov`: outputs rendered beside the image).
+use super::loader::Loader;
 use super::props::Props;
-use super::Loader;
 use crate::scene::{Integrator, IntegratorKind};
 use anyhow::{bail, Result};
 

@@ -5,8 +5,8 @@
 //! attribute of other than one channel: refused here). A shape keeps only the attributes its
 //! textures read. Elsewhere (masks, normal and bump maps, emitters, a mean standing in for a texture)
 //! they are refused with the texture's file and line.
+use super::loader::Loader;
 use super::props::Props;
-use super::Loader;
 use crate::scene::Geometry;
 use anyhow::{bail, Result};
 use caustic_kernel::layout::{

@@ -4,7 +4,8 @@
 //! `blend`, `pplastic` and `bsdf_maps`, normal and bump maps, beside it), `emitters`, `sensors`
 //! (sensor, film, filter, sampler), `integrators`; `transform` and `spectrum` parse values; `props`
 //! gives typed properties with their source locations; `xml` holds the XML primitives all of these
-//! share (locations, attributes, number lists, one-or-three-number vectors) and uses none of them.
+//! share (locations, attributes, number lists, one-or-three-number vectors) and uses none of them;
+//! `loader` holds the state of one load (`Loader`), which each family extends with its plugins.
 //! This module holds the document machinery: `<default>`, `$name` substitution, `-D` overrides,
 //! `<include>`, `<path>`, `id`/`<ref>` (ids unique, as Mitsuba wants them), and one integrator per
 //! scene; `deviations` collects what was substituted or ignored, which `--strict`
@@ -19,6 +20,7 @@ mod deviations;
 mod emitters;
 mod integrators;
 pub mod ior;
+mod loader;
 mod mesh_attributes;
 mod pplastic;
 mod props;
@@ -30,71 +32,16 @@ mod textures;
 mod transform;
 mod xml;
 
-use crate::load::LoadOptions;
-use crate::scene::{Integrator, Scene};
+use crate::load::options::LoadOptions;
+use crate::scene::Scene;
 use anyhow::{bail, Context, Result};
-use caustic_kernel::layout::Material;
-use deviations::Deviations;
-use props::Props;
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-use xml::{Loc, Source};
+use loader::{new_loader, Loader};
+use std::path::Path;
+use xml::Source;
 
 /// The most `<include>` loads one scene may make, repeats counted (Mitsuba's own scenes make a
 /// handful).
 const MAX_INCLUDES: u32 = 10_000;
-
-/// The state of loading one scene (shared by included files).
-pub(crate) struct Loader {
-    /// `<default>` values and `-D` overrides (the latter win).
-    params: HashMap<String, String>,
-    /// Directories searched for relative file names, most recent `<path>` first.
-    search_paths: Vec<PathBuf>,
-    /// Named BSDFs (`id`), as indices into `materials`.
-    named_bsdfs: HashMap<String, u32>,
-    materials: Vec<Material>,
-    shapes: Vec<crate::scene::Shape>,
-    emitters: Vec<crate::scene::Emitter>,
-    textures: Vec<crate::scene::SceneTexture>,
-    /// `Scene::weight_tables`.
-    weight_tables: Vec<[f32; caustic_kernel::bsdf::textured_weights::SLOTS]>,
-    /// Named area emitters (`id`) defined at the top level, for shapes that `<ref>` them.
-    named_area_emitters: HashMap<String, emitters::AreaEmission>,
-    /// `shapegroup`s by id, as indices into `instancing.groups` (their triangles and disks, in the
-    /// group's space) and `group_spheres` (their spheres), for `instance`s to place.
-    shape_groups: HashMap<String, usize>,
-    group_spheres: Vec<Vec<crate::scene::Shape>>,
-    instancing: crate::scene::instancing::Instancing,
-    /// Named textures (`id`), as indices into `textures`.
-    named_textures: HashMap<String, u32>,
-    /// Top-level samplers, films and rfilters with an `id`, kept as their file and their element's
-    /// text (behind as many newlines as it stood below the file's start, so that messages name the
-    /// right line) until a sensor or film `<ref>`s them: Mitsuba resolves such references across
-    /// `<include>`d files (its own sampler scenes define the sampler in one file and ref it in another).
-    pub(crate) named_sensor_parts: HashMap<String, (std::path::PathBuf, String)>,
-    /// The scene's sensor: the first in document order, which Mitsuba renders by default.
-    sensor: Option<crate::scene::Sensor>,
-    /// Where that sensor was given.
-    sensor_loc: Option<Loc>,
-    /// The shape (index into `shapes`) carrying an irradiance meter, and where the meter was given.
-    meter_shape: Option<(usize, Loc)>,
-    integrator: Option<Integrator>,
-    /// The `aov` or `depth` integrator's outputs (`crate::scene::aov`).
-    aovs: Option<crate::scene::aov::AovSpec>,
-    warnings: Vec<String>,
-    /// What the scene asks for that the loaded scene does not do (reported or refused at the end).
-    deviations: Deviations,
-    include_depth: u32,
-    /// Files `<include>`d so far, repeats counted: bounded (`MAX_INCLUDES`), since files that each
-    /// include the next twice ask for 2^depth loads within the depth limit.
-    includes: u32,
-    /// Every `id` given so far, in any file of the scene, with where: Mitsuba refuses a duplicate.
-    ids: HashMap<String, Loc>,
-    /// Where the scene's integrator was given: Mitsuba refuses a second.
-    integrator_loc: Option<Loc>,
-    /// `mesh_attribute` textures a parameter asked for (`mesh_attributes`).
-    attribute_requests: Vec<u32>,
-}
 
 /// Loads a Mitsuba 3 scene; `defines` are `-D name=value` overrides.
 pub fn load(path: &Path, defines: &[(String, String)]) -> Result<Scene> {
@@ -121,38 +68,6 @@ pub fn load_text_with(
     let mut loader = new_loader(defines);
     loader.load_text(name, text, dir)?;
     finish(loader, name, options)
-}
-
-/// A loader with nothing loaded yet; `defines` are `-D name=value` overrides.
-fn new_loader(defines: &[(String, String)]) -> Loader {
-    Loader {
-        params: defines.iter().cloned().collect(),
-        search_paths: Vec::new(),
-        named_bsdfs: HashMap::new(),
-        materials: Vec::new(),
-        shapes: Vec::new(),
-        emitters: Vec::new(),
-        textures: Vec::new(),
-        weight_tables: Vec::new(),
-        named_textures: HashMap::new(),
-        named_sensor_parts: HashMap::new(),
-        named_area_emitters: HashMap::new(),
-        shape_groups: HashMap::new(),
-        group_spheres: Vec::new(),
-        instancing: Default::default(),
-        sensor: None,
-        sensor_loc: None,
-        meter_shape: None,
-        integrator: None,
-        aovs: None,
-        warnings: Vec::new(),
-        deviations: Deviations::default(),
-        include_depth: 0,
-        includes: 0,
-        ids: HashMap::new(),
-        integrator_loc: None,
-        attribute_requests: Vec::new(),
-    }
 }
 
 /// The scene of what `loader` loaded (from `path`, which messages name).
@@ -197,21 +112,6 @@ fn finish(mut loader: Loader, path: &Path, options: LoadOptions) -> Result<Scene
 }
 
 impl Loader {
-    pub(crate) fn warn(&mut self, message: &str) {
-        crate::scene::warn(&mut self.warnings, message.to_string());
-    }
-
-    /// Records an element replaced by a stand-in or left out; `group` names the kind of element
-    /// (`bsdf 'mask'`), so that 500 of them are reported once.
-    pub(crate) fn substituted(&mut self, group: String, loc: &Loc, message: String) {
-        self.deviations.push(deviations::Kind::Substituted, group, loc, message);
-    }
-
-    /// Records a property or nested element that is not read.
-    pub(crate) fn ignored(&mut self, group: String, loc: &Loc, message: String) {
-        self.deviations.push(deviations::Kind::Ignored, group, loc, message);
-    }
-
     fn load_file(&mut self, path: &Path) -> Result<()> {
         let text = crate::system::files::read_to_string(path, "scene file")?;
         let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
@@ -359,82 +259,5 @@ impl Loader {
             }
         }
         Ok(())
-    }
-
-    /// Replaces `$name` references by their values.
-    pub(crate) fn substitute(&self, value: &str, loc: &Loc) -> Result<String> {
-        xml::substitute(&self.params, value, loc)
-    }
-
-    /// Attribute `name` of `node` with its `$name` references substituted, as Mitsuba substitutes in
-    /// every attribute (`<ref id="$material"/>` picks a BSDF by parameter).
-    pub(crate) fn attribute(&self, node: roxmltree::Node, name: &str, loc: &Loc) -> Result<Option<String>> {
-        xml::attribute(node, name, &self.params, loc)
-    }
-
-    /// The scene's parameters as read so far.
-    pub(crate) fn params(&self) -> &xml::Params {
-        &self.params
-    }
-
-    /// Finds a file named in the scene: absolute, or relative to the search paths.
-    pub(crate) fn resolve(&self, name: &str, loc: &Loc) -> Result<PathBuf> {
-        let p = Path::new(name);
-        if p.is_absolute() {
-            if p.exists() {
-                return Ok(p.to_path_buf());
-            }
-        } else {
-            for dir in &self.search_paths {
-                let candidate = dir.join(p);
-                if candidate.exists() {
-                    return Ok(candidate);
-                }
-            }
-        }
-        bail!(
-            "{loc}: file not found: {name} (searched {})",
-            self.search_paths.iter().map(|d| d.display().to_string()).collect::<Vec<_>>().join(", ")
-        )
-    }
-
-    fn resolve_dir(&self, value: &str) -> PathBuf {
-        let p = Path::new(value);
-        if p.is_absolute() {
-            p.to_path_buf()
-        } else {
-            self.search_paths.first().map(|d| d.join(p)).unwrap_or_else(|| p.to_path_buf())
-        }
-    }
-
-    pub(crate) fn props<'a, 'input>(
-        &self,
-        src: &'a Source<'input>,
-        node: roxmltree::Node<'a, 'input>,
-    ) -> Result<Props<'a, 'input>> {
-        Props::collect(self, src, node)
-    }
-
-    /// Records every property and nested element of `props` that the plugin did not read.
-    /// Takes `sensor` (given at `loc`) as the scene's unless one came before it: Mitsuba lists a
-    /// scene's sensors in document order (those in shapes among them) and renders the first.
-    pub(crate) fn set_sensor(&mut self, sensor: crate::scene::Sensor, loc: &Loc) {
-        if let Some(first) = &self.sensor_loc {
-            let message =
-                format!("{loc}: a second sensor; the first, at {first}, is the one rendered (as Mitsuba)");
-            self.warn(&message);
-            return;
-        }
-        if let crate::scene::Projection::IrradianceMeter { shape } = sensor.projection {
-            self.meter_shape = Some((shape, loc.clone()));
-        }
-        self.sensor = Some(sensor);
-        self.sensor_loc = Some(loc.clone());
-    }
-
-    pub(crate) fn warn_unused(&mut self, props: &Props) {
-        for (loc, group, message) in props.unused() {
-            self.ignored(group, &loc, message);
-        }
     }
 }

@@ -5,9 +5,9 @@
 //! `distribution` (Beckmann by default) and `alpha`/`alpha_u`/`alpha_v`. The probability of sampling
 //! the glossy lobe is Mitsuba's: the specular reflectance's mean over the sum of both means (a texture's
 //! mean over its texels, each colour's over its channels).
+use super::loader::Loader;
 use super::props::Props;
 use super::spectrum::SpectrumUse;
-use super::Loader;
 use anyhow::{bail, Result};
 use caustic_kernel::bsdf::pplastic::PARAM_SPECULAR_WEIGHT;
 use caustic_kernel::layout::*;

@@ -1,7 +1,6 @@
 //! Typed access to a plugin element's properties, each remembered with its file:line for messages.
-use super::spectrum::{spectrum_to_rgb, uniform_spectrum_to_rgb, SpectrumUse};
-use super::xml::{expand_value_to_xyz, vector_from_node, Loc, Params, Source, XyzError};
-use super::Loader;
+use super::loader::Loader;
+use super::xml::{vector_from_node, Loc, Params, Source};
 use anyhow::{bail, Context, Result};
 use glam::{Mat4, Vec3};
 use std::cell::RefCell;
@@ -27,7 +26,7 @@ pub struct Props<'a, 'input> {
     pub src: &'a Source<'input>,
     pub entries: Vec<Entry<'a, 'input>>,
     /// The scene's parameters when the element was read, for `$name` in attributes other than `value`.
-    params: Params,
+    pub(super) params: Params,
     used: RefCell<Vec<bool>>,
 }
 
@@ -92,7 +91,7 @@ impl<'a, 'input> Props<'a, 'input> {
 
     /// The properties of the object nested as entry `i` (a spectrum plugin inside a colour
     /// property), read with this element's parameters.
-    fn nested_props(&self, i: usize) -> Result<Props<'a, 'input>> {
+    pub(super) fn nested_props(&self, i: usize) -> Result<Props<'a, 'input>> {
         Props::collect_in(&self.params, None, self.src, self.entries[i].node)
     }
 
@@ -101,7 +100,7 @@ impl<'a, 'input> Props<'a, 'input> {
         self.entries.iter().find(|e| e.name.as_deref() == Some(name)).map(|e| e.tag.as_str())
     }
 
-    fn find(&self, name: &str) -> Option<usize> {
+    pub(super) fn find(&self, name: &str) -> Option<usize> {
         let i = self.entries.iter().position(|e| e.name.as_deref() == Some(name))?;
         self.used.borrow_mut()[i] = true;
         Some(i)
@@ -112,7 +111,7 @@ impl<'a, 'input> Props<'a, 'input> {
         self.entries.iter().any(|e| e.name.as_deref() == Some(name))
     }
 
-    fn value_of(&self, i: usize) -> Result<&str> {
+    pub(super) fn value_of(&self, i: usize) -> Result<&str> {
         let e = &self.entries[i];
         e.value.as_deref().with_context(|| format!("{}: <{}> needs a 'value' attribute", e.loc, e.tag))
     }
@@ -159,33 +158,6 @@ impl<'a, 'input> Props<'a, 'input> {
         let Some(i) = self.find(name) else { return Ok(default) };
         let e = &self.entries[i];
         vector_from_node(e.node, e.value.as_deref(), &self.params, &e.loc)
-    }
-
-    /// A colour-valued property (`rgb`, `spectrum` or `float`), converted as Mitsuba's rgb variants do.
-    pub fn color(&self, name: &str, usage: SpectrumUse, default: [f32; 3]) -> Result<[f32; 3]> {
-        let Some(i) = self.find(name) else { return Ok(default) };
-        let e = &self.entries[i];
-        // `<spectrum type="…">`: a spectrum plugin written out as an object (no `value` attribute).
-        if e.tag == "spectrum" && e.node.attribute("type").is_some() {
-            let rgb = super::spectrum_plugin::to_rgb(&self.nested_props(i)?, usage)?;
-            return checked_color(rgb, name, &e.loc);
-        }
-        let value = self.value_of(i)?;
-        let rgb = match e.tag.as_str() {
-            "rgb" => expand_value_to_xyz(e.node, Some(value), 0.0, &self.params, &e.loc)
-                .map_err(|err| match err {
-                    XyzError::Numbers(err) => err,
-                    // `value` is given, so no x/y/z attribute is read.
-                    XyzError::Count(_) | XyzError::NotANumber(_) => {
-                        anyhow::anyhow!("{}: <rgb> needs 1 or 3 numbers", e.loc)
-                    }
-                })?
-                .to_array(),
-            "float" => [self.float(name, 0.0)?; 3],
-            "spectrum" => parse_spectrum(value, usage, &e.loc)?,
-            other => bail!("{}: '{name}' must be <rgb>, <spectrum> or <float>, not <{other}> (textures are not supported yet)", e.loc),
-        };
-        checked_color(rgb, name, &e.loc)
     }
 
     pub fn transform(&self, name: &str) -> Result<Mat4> {
@@ -241,14 +213,6 @@ impl<'a, 'input> Props<'a, 'input> {
     }
 }
 
-/// A colour property's value, refused where not finite or negative.
-fn checked_color(rgb: [f32; 3], name: &str, loc: &Loc) -> Result<[f32; 3]> {
-    if rgb.iter().any(|c| !c.is_finite() || *c < 0.0) {
-        bail!("{loc}: '{name}' must be finite and non-negative, got {rgb:?}");
-    }
-    Ok(rgb)
-}
-
 /// `<spectrum filename="…"/>` (Mitsuba's irregular spectrum from a file): the file's `wavelength
 /// value` pairs (`spectrum::read_spd`, the format of Mitsuba's `.spd` files) as the
 /// `value="λ:v, …"` they stand for, so that both forms are converted alike.
@@ -263,33 +227,19 @@ fn spectrum_file_value(loader: &Loader, file: &str, has_value: bool, loc: &Loc) 
     Ok(pairs.join(", "))
 }
 
-/// `<spectrum value="0.5"/>` or `value="400:0.1, 500:0.2, …"`.
-fn parse_spectrum(value: &str, usage: SpectrumUse, loc: &Loc) -> Result<[f32; 3]> {
-    if !value.contains(':') {
-        let v: f64 = value
-            .trim()
-            .parse()
-            .map_err(|_| anyhow::anyhow!("{loc}: spectrum value '{value}' is not a number"))?;
-        return Ok(uniform_spectrum_to_rgb(v, usage));
+impl Loader {
+    pub(crate) fn props<'a, 'input>(
+        &self,
+        src: &'a Source<'input>,
+        node: roxmltree::Node<'a, 'input>,
+    ) -> Result<Props<'a, 'input>> {
+        Props::collect(self, src, node)
     }
-    let mut wavelengths = Vec::new();
-    let mut values = Vec::new();
-    for pair in value.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-        let (w, v) =
-            pair.split_once(':').with_context(|| format!("{loc}: '{pair}' is not wavelength:value"))?;
-        let w: f64 =
-            w.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: wavelength '{w}' is not a number"))?;
-        let v: f64 = v.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: value '{v}' is not a number"))?;
-        if let Some(&last) = wavelengths.last() {
-            if w <= last {
-                bail!("{loc}: spectrum wavelengths must increase ({w} after {last})");
-            }
+
+    /// Records every property and nested element of `props` that the plugin did not read.
+    pub(crate) fn warn_unused(&mut self, props: &Props) {
+        for (loc, group, message) in props.unused() {
+            self.ignored(group, &loc, message);
         }
-        wavelengths.push(w);
-        values.push(v);
     }
-    if wavelengths.is_empty() {
-        bail!("{loc}: empty spectrum");
-    }
-    Ok(spectrum_to_rgb(&wavelengths, &values, usage))
 }

@@ -3,9 +3,9 @@
 //! (`hdrfilm`), reconstruction filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`,
 //! `lanczos`) and sampler (`independent`; `stratified`, `multijitter`, `orthogonal` and `ldsampler`
 //! all use caustic's stratified sequence with the sample count Mitsuba would take).
+use super::loader::Loader;
 use super::props::{Entry, Props};
 use super::xml::Source;
-use super::Loader;
 use crate::scene::{look_at, Crop, FilmMode, Filter, Projection, SamplerKind, Sensor};
 use anyhow::{bail, Result};
 use glam::{Mat4, Vec3};

@@ -4,10 +4,10 @@
 //! `shapegroup` and `instance` (stored once: `crate::scene::instancing`) and `merge` hold other shapes.
 //! `flip_normals` travels to the kernel as a flag of the shape, which turns both the geometric and
 //! the shading normal around, as Mitsuba does.
-use super::emitters::AreaEmission;
+use super::loader::AreaEmission;
+use super::loader::Loader;
 use super::props::Props;
 use super::xml::Loc;
-use super::Loader;
 use crate::load::mesh::{self, primitives};
 use crate::scene::instancing::{self, Instance};
 use crate::scene::mesh::{Mesh, Triangles};

@@ -16,10 +16,13 @@
 //!
 //! Every other property inside is refused, as Mitsuba refuses an unreferenced one. The values come
 //! through `Props`, as every plugin's do.
+//!
+//! Colour-valued properties are read here too (`Props::color`: `<rgb>`, `<spectrum value>`, `<float>`
+//! or such a plugin), since the two read each other: an `srgb` or `d65` plugin's `color` is one.
 use super::props::Props;
-use super::spectrum::{spectrum_to_rgb, SpectrumUse};
-use super::xml::parse_numbers;
-use anyhow::{bail, Result};
+use super::spectrum::{spectrum_to_rgb, uniform_spectrum_to_rgb, SpectrumUse};
+use super::xml::{expand_value_to_xyz, parse_numbers, Loc, XyzError};
+use anyhow::{bail, Context, Result};
 use glam::Vec3;
 
 /// Planck's law as Mitsuba's `blackbody` evaluates it: radiance per nanometre at `lambda_nm`.
@@ -136,6 +139,74 @@ fn finish(props: &Props) -> Result<()> {
         Some((loc, group, _)) => bail!("{loc}: {group} does not exist (Mitsuba refuses it)"),
         None => Ok(()),
     }
+}
+
+impl Props<'_, '_> {
+    /// A colour-valued property (`rgb`, `spectrum` or `float`), converted as Mitsuba's rgb variants do.
+    pub fn color(&self, name: &str, usage: SpectrumUse, default: [f32; 3]) -> Result<[f32; 3]> {
+        let Some(i) = self.find(name) else { return Ok(default) };
+        let e = &self.entries[i];
+        // `<spectrum type="…">`: a spectrum plugin written out as an object (no `value` attribute).
+        if e.tag == "spectrum" && e.node.attribute("type").is_some() {
+            let rgb = to_rgb(&self.nested_props(i)?, usage)?;
+            return checked_color(rgb, name, &e.loc);
+        }
+        let value = self.value_of(i)?;
+        let rgb = match e.tag.as_str() {
+            "rgb" => expand_value_to_xyz(e.node, Some(value), 0.0, &self.params, &e.loc)
+                .map_err(|err| match err {
+                    XyzError::Numbers(err) => err,
+                    // `value` is given, so no x/y/z attribute is read.
+                    XyzError::Count(_) | XyzError::NotANumber(_) => {
+                        anyhow::anyhow!("{}: <rgb> needs 1 or 3 numbers", e.loc)
+                    }
+                })?
+                .to_array(),
+            "float" => [self.float(name, 0.0)?; 3],
+            "spectrum" => parse_spectrum(value, usage, &e.loc)?,
+            other => bail!("{}: '{name}' must be <rgb>, <spectrum> or <float>, not <{other}> (textures are not supported yet)", e.loc),
+        };
+        checked_color(rgb, name, &e.loc)
+    }
+}
+
+/// A colour property's value, refused where not finite or negative.
+fn checked_color(rgb: [f32; 3], name: &str, loc: &Loc) -> Result<[f32; 3]> {
+    if rgb.iter().any(|c| !c.is_finite() || *c < 0.0) {
+        bail!("{loc}: '{name}' must be finite and non-negative, got {rgb:?}");
+    }
+    Ok(rgb)
+}
+
+/// `<spectrum value="0.5"/>` or `value="400:0.1, 500:0.2, …"`.
+fn parse_spectrum(value: &str, usage: SpectrumUse, loc: &Loc) -> Result<[f32; 3]> {
+    if !value.contains(':') {
+        let v: f64 = value
+            .trim()
+            .parse()
+            .map_err(|_| anyhow::anyhow!("{loc}: spectrum value '{value}' is not a number"))?;
+        return Ok(uniform_spectrum_to_rgb(v, usage));
+    }
+    let mut wavelengths = Vec::new();
+    let mut values = Vec::new();
+    for pair in value.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let (w, v) =
+            pair.split_once(':').with_context(|| format!("{loc}: '{pair}' is not wavelength:value"))?;
+        let w: f64 =
+            w.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: wavelength '{w}' is not a number"))?;
+        let v: f64 = v.trim().parse().map_err(|_| anyhow::anyhow!("{loc}: value '{v}' is not a number"))?;
+        if let Some(&last) = wavelengths.last() {
+            if w <= last {
+                bail!("{loc}: spectrum wavelengths must increase ({w} after {last})");
+            }
+        }
+        wavelengths.push(w);
+        values.push(v);
+    }
+    if wavelengths.is_empty() {
+        bail!("{loc}: empty spectrum");
+    }
+    Ok(spectrum_to_rgb(&wavelengths, &values, usage))
 }
 
 #[cfg(test)]

@@ -3,10 +3,10 @@
 //! `mesh_attribute` (where it may be read: `mesh_attributes`), and the constant ones (`rawconstant`,
 //! `srgb`, `uniform`, `d65`: one texel). Also colour and scalar parameters that may be a texture.
 use super::bitmap_format;
+use super::loader::Loader;
 use super::props::{Entry, Props};
 use super::spectrum::SpectrumUse;
 use super::spectrum_plugin;
-use super::Loader;
 use crate::scene::rgba;
 use crate::scene::{MeshAttributeRef, SceneTexture};
 use anyhow::{bail, Result};
