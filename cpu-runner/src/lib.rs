@@ -14,23 +14,55 @@ use std::sync::atomic::{AtomicU32, Ordering};
 pub fn render_pass(scene: &SceneView, params: &FrameParams, accum: &mut [PixelAccum], regenerate: bool) {
     let pixels = (params.width * params.height) as usize;
     assert_eq!(accum.len(), pixels, "accumulation buffer does not match the image size");
-    // Bands of TILE rows as work items, each walked in TILE × TILE tiles: neighbouring pixels' rays
-    // one after the other, as the GPU's workgroups run them.
-    let (width, tile) = (params.width as usize, caustic_kernel::layout::TILE as usize);
-    accum.par_chunks_mut(width * tile).enumerate().for_each(|(band, rows)| {
-        let height = rows.len() / width;
-        for x0 in (0..width).step_by(tile) {
-            for dy in 0..height {
-                for x in x0..(x0 + tile).min(width) {
-                    let slot = &mut rows[dy * width + x];
-                    let pixel = ((band * tile + dy) * width + x) as u32;
-                    // (No cells: the film does not splat in this pass.)
-                    let sums = render_pixel(scene, params, pixel, regenerate, &mut PixelCells(&mut []));
-                    *slot = accumulated(*slot, &sums, params.sample_count);
-                }
+    tiles(accum, params.width as usize, 1).into_par_iter().for_each(|tile| {
+        tile.each_pixel(params.width, |pixel, slot| {
+            // (No cells: the film does not splat in this pass.)
+            let sums = render_pixel(scene, params, pixel, regenerate, &mut PixelCells(&mut []));
+            slot[0] = accumulated(slot[0], &sums, params.sample_count);
+        });
+    });
+}
+
+/// One TILE × TILE tile of the image (cut short at its right and bottom edges): its rows' slices of
+/// a per-pixel buffer, `per_pixel` values a pixel.
+struct Tile<'a, T> {
+    x0: usize,
+    y0: usize,
+    per_pixel: usize,
+    rows: Vec<&'a mut [T]>,
+}
+
+impl<T> Tile<'_, T> {
+    /// Calls `f` with each pixel's index and values, row by row: neighbouring pixels' rays one
+    /// after the other, as the GPU's workgroups run them.
+    fn each_pixel(mut self, width: u32, mut f: impl FnMut(u32, &mut [T])) {
+        let per_pixel = self.per_pixel;
+        for (dy, row) in self.rows.iter_mut().enumerate() {
+            for (dx, values) in row.chunks_mut(per_pixel).enumerate() {
+                f(((self.y0 + dy) * width as usize + self.x0 + dx) as u32, values);
             }
         }
-    });
+    }
+}
+
+/// A row-major per-pixel buffer (`per_pixel` values a pixel) cut into the image's tiles, the work
+/// items of a pass. Tiles, not bands of TILE rows: a 256-pixel-high image has only 32 bands, too
+/// few for 16 threads to share evenly (the Cornell box ran at 64% of linear speed-up on 16 threads
+/// with bands; BENCHMARKS.md, "CPU threads").
+fn tiles<T: Send>(buffer: &mut [T], width: usize, per_pixel: usize) -> Vec<Tile<'_, T>> {
+    let tile = caustic_kernel::layout::TILE as usize;
+    let across = width.div_ceil(tile);
+    let mut out: Vec<Tile<'_, T>> = Vec::new();
+    for (y, row) in buffer.chunks_mut(width * per_pixel).enumerate() {
+        if y % tile == 0 {
+            out.extend((0..across).map(|i| Tile { x0: i * tile, y0: y, per_pixel, rows: Vec::new() }));
+        }
+        let band = out.len() - across;
+        for (i, segment) in row.chunks_mut(tile * per_pixel).enumerate() {
+            out[band + i].rows.push(segment);
+        }
+    }
+    out
 }
 
 /// One pixel's cells of the splatting film (its slots, consecutive).
@@ -77,20 +109,10 @@ pub fn film_pass(
     assert_eq!(accum.len(), pixels, "accumulation buffer does not match the image size");
     let stride = words_per_pixel(params) as usize;
     cells.resize(pixels * stride, 0.0);
-    // Tiles as `render_pass` walks them.
-    let (width, tile) = (params.width as usize, caustic_kernel::layout::TILE as usize);
-    cells.par_chunks_mut(width * tile * stride).enumerate().for_each(|(band, rows)| {
-        let height = rows.len() / (width * stride);
-        for x0 in (0..width).step_by(tile) {
-            for dy in 0..height {
-                for x in x0..(x0 + tile).min(width) {
-                    let local = dy * width + x;
-                    let pixel = ((band * tile + dy) * width + x) as u32;
-                    let mut own = PixelCells(&mut rows[local * stride..(local + 1) * stride]);
-                    render_pixel(scene, params, pixel, regenerate, &mut own);
-                }
-            }
-        }
+    tiles(cells, params.width as usize, stride).into_par_iter().for_each(|tile| {
+        tile.each_pixel(params.width, |pixel, own| {
+            render_pixel(scene, params, pixel, regenerate, &mut PixelCells(own));
+        });
     });
     let all = AllCells { values: cells, stride };
     let q = square_scale(params);
