@@ -64,7 +64,7 @@ impl<'a> Accel<'a> {
 /// `Accel::trace` without instances or a wide BVH, and each instance's walk of its group.
 ///
 /// The walk reads the buffers without bounds checks: every child index and leaf range of a BVH
-/// lies inside its buffers (the host's `buffers` module checks each tree it builds, instanced
+/// lies inside its buffers (the host's `prepare::bvh` checks each tree it builds, instanced
 /// groups included), and the stack is pushed only below `STACK_SIZE`. (A check is a compare and a
 /// branch per read, five reads per inner node, in the loop where the GPU spends most of its time.)
 #[inline]

@@ -1,7 +1,7 @@
 //! The one definition of every buffer the host and the kernel share (kajiya's `rust-shaders-shared`):
 //! `#[repr(C)]` structs of 32-bit scalars with explicit padding, uploaded as storage buffers by the GPU
 //! backend and borrowed as slices by the CPU runner. (The host's `scene` module is something else: the
-//! renderer-neutral description the loaders produce, which the host's `buffers` module packs into these.)
+//! renderer-neutral description the loaders produce, which the host's `prepare` folder packs into these.)
 //! Polymorphic records are tagged structs (a `kind` word), since rust-gpu lays out data-carrying enums
 //! in buffers differently from Rust.
 
@@ -256,7 +256,8 @@ pub struct Light {
     /// constant, envmap).
     pub position: [f32; 4],
     /// Spot: `cos cutoff, cos beam_width, cutoff (radians), 1 / (cutoff - beam_width)`; projector:
-    /// `tan(fov_x / 2), tan(fov_y / 2)`, unused, the image's area on the plane z = 1.
+    /// `tan(fov_x / 2), tan(fov_y / 2)`, unused, the image's area on the plane z = 1; envmap: the
+    /// luminance its sampling leaves out of every texel (MIS compensation's offset, else 0).
     pub params: [f32; 4],
     /// Rows of the world-to-local rotation (spot: local +z is the beam axis; directional: local +z is
     /// the direction of travel; envmap: Mitsuba's lat-long frame; projector: local +z is the axis).
@@ -325,7 +326,7 @@ pub struct Texture {
 
 /// One pixel's running sums in the accumulation buffer (32 bytes): what every pass adds to
 /// (`integrator::accumulated`) and what the host folds into its f64 totals every few thousand
-/// samples (the host's `film::Accumulation::fold`), then clears.
+/// samples (the host's `backend::accumulation::Accumulation::fold`), then clears.
 #[repr(C)]
 #[derive(Clone, Copy, Default)]
 #[cfg_attr(not(target_arch = "spirv"), derive(bytemuck::Pod, bytemuck::Zeroable, Debug, PartialEq))]

@@ -85,6 +85,31 @@ pub fn power_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
     1.0 / (1.0 + r * r)
 }
 
+/// A point of [0, 1) with density proportional to the line from `a` at 0 to `b` at 1 (both ≥ 0),
+/// by inverting its CDF `((2 − x)·a·x + b·x²) / (a + b)` in the form that stays accurate when `a`
+/// or `b` is 0; `u` itself (uniform) when both are.
+#[inline]
+pub fn sample_linear(u: f32, a: f32, b: f32) -> f32 {
+    let sum = a + b;
+    if sum > 0.0 {
+        let root = ((1.0 - u) * a * a + u * b * b).sqrt();
+        (u * sum / (a + root)).min(0.99999994)
+    } else {
+        u
+    }
+}
+
+/// The density `sample_linear` draws `x` with: `2·((1 − x)·a + x·b) / (a + b)`, or 1 when both are 0.
+#[inline]
+pub fn linear_pdf(x: f32, a: f32, b: f32) -> f32 {
+    let sum = a + b;
+    if sum > 0.0 {
+        2.0 * ((1.0 - x) * a + x * b) / sum
+    } else {
+        1.0
+    }
+}
+
 /// A sampled 1D table: the index of the chosen bin and the position inside it, rescaled to [0, 1).
 #[derive(Clone, Copy)]
 pub struct TableSample {

@@ -269,6 +269,43 @@ fn light_selection_follows_the_pmf() {
     assert!(p > ALPHA);
 }
 
+/// A point of [0, 1] with linear density (`sample_linear`, inside an envmap's cells) against
+/// `linear_pdf`, whose integral over each bin is the CDF's difference; with either end at zero, both
+/// at zero (uniform) and ends a hundredfold apart.
+#[test]
+fn linear_segment() {
+    const BINS: usize = 64;
+    for (a, b) in [(1.0f32, 1.0f32), (0.0, 1.0), (1.0, 0.0), (0.2, 3.0), (5.0, 0.05), (0.0, 0.0)] {
+        let cdf = |x: f64| {
+            let (a, b) = (a as f64, b as f64);
+            if a + b > 0.0 {
+                ((2.0 - x) * a * x + b * x * x) / (a + b)
+            } else {
+                x
+            }
+        };
+        let mut observed = vec![0.0; BINS];
+        let mut rng = Sampler::new(7, (a * 10.0) as u32, (b * 10.0) as u32);
+        for _ in 0..SAMPLES {
+            let x = sample_linear(rng.next_1d(), a, b);
+            assert!((0.0..1.0).contains(&x), "{x} outside [0, 1) for ({a}, {b})");
+            observed[(x * BINS as f32) as usize] += 1.0;
+        }
+        let expected: Vec<f64> = (0..BINS)
+            .map(|i| (cdf((i + 1) as f64 / BINS as f64) - cdf(i as f64 / BINS as f64)) * SAMPLES as f64)
+            .collect();
+        let p = chi2_p_value(&observed, &expected);
+        println!("linear ({a}, {b}): p = {p:.4}");
+        assert!(p > ALPHA, "linear ({a}, {b}): samples do not follow the density (p = {p:.2e})");
+        // The density it reports is the CDF's derivative.
+        for x in [0.0f32, 0.3, 0.7, 0.999] {
+            let h = 1e-4;
+            let slope = (cdf(x as f64 + h) - cdf(x as f64 - h)) / (2.0 * h);
+            assert!((linear_pdf(x, a, b) as f64 - slope).abs() < 1e-3, "pdf at {x} for ({a}, {b})");
+        }
+    }
+}
+
 #[test]
 fn power_heuristic_is_stable() {
     assert_eq!(power_heuristic(1.0, 0.0), 1.0);

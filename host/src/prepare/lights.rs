@@ -90,9 +90,11 @@ fn rows_of(m: Mat3) -> [[f32; 4]; 3] {
 }
 
 /// An envmap's sampling tables (marginal CDF over the `height - 1` cell rows, then one conditional
-/// CDF of `width` cells per row; see `light::infinite`) and its power per unit scale and area. With
-/// `compensate`, the tables follow the luminance above the texels' mean (`mis_compensation`).
-fn envmap_distribution(t: &Texture, texels: &[f32], compensate: bool) -> (Vec<f32>, f32) {
+/// CDF of `width` cells per row; see `light::infinite`), its power per unit scale and area, and the
+/// luminance its tables leave out of every texel: with `compensate`, they follow the luminance above
+/// the texels' mean (`mis_compensation`), else 0. The kernel samples inside a cell from the same
+/// texel weights, so the offset travels with the light (`Light::params[0]`).
+fn envmap_distribution(t: &Texture, texels: &[f32], compensate: bool) -> (Vec<f32>, f32, f32) {
     let (w, h) = (t.width as usize, t.height as usize);
     let luminances: Vec<f64> =
         texels.chunks_exact(3).map(|c| luminance(Vec3::from_slice(c)).max(0.0) as f64).collect();
@@ -119,7 +121,7 @@ fn envmap_distribution(t: &Texture, texels: &[f32], compensate: bool) -> (Vec<f3
     let cell_solid_angle = (2.0 * PI as f64 / w as f64) * (PI as f64 / (h - 1) as f64);
     let mut table = cdf_of(&marginal);
     table.extend(conditional);
-    (table, (power * cell_solid_angle) as f32)
+    (table, (power * cell_solid_angle) as f32, offset as f32)
 }
 
 /// What MIS compensation subtracts from each texel's luminance: the mean over the texels, or
@@ -201,8 +203,9 @@ pub(super) fn emitter_lights(
                 // directions compensation leaves out: compensation is for NEE beside BSDF sampling.
                 let compensate = *mis_compensation
                     && matches!(scene.integrator.kind, IntegratorKind::Path | IntegratorKind::Direct { .. });
-                let (table, integral) = envmap_distribution(t, texels, compensate);
+                let (table, integral, offset) = envmap_distribution(t, texels, compensate);
                 light.kind = LIGHT_ENVMAP;
+                light.params[0] = offset;
                 light.prim = *texture;
                 light.radiance = [*scale; 4];
                 light.table = tables.len() as u32;
