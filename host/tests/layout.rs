@@ -389,23 +389,27 @@ fn code_without_literals(text: &str) -> String {
     out
 }
 
-/// The byte ranges of the inline modules (`mod tests { … }`) in `code`, innermost last.
-fn inline_modules(code: &str) -> Vec<std::ops::Range<usize>> {
-    let mut ranges = Vec::new();
-    for (at, _) in code.match_indices("mod") {
+/// Every `mod NAME` item in `code`: where `mod` starts, the name, and the text after the name.
+fn mod_items(code: &str) -> impl Iterator<Item = (usize, String, &str)> {
+    code.match_indices("mod").filter_map(move |(at, _)| {
         if code[..at].chars().next_back().is_some_and(is_ident) {
-            continue;
+            return None;
         }
         let rest = &code[at + "mod".len()..];
         if !rest.starts_with(char::is_whitespace) {
-            continue;
+            return None;
         }
         let rest = rest.trim_start();
-        let Some(name) = ident_at(rest) else { continue };
+        let name = ident_at(rest)?;
         let after = rest[name.len()..].trim_start();
-        if !after.starts_with('{') {
-            continue;
-        }
+        Some((at, name, after))
+    })
+}
+
+/// The byte ranges of the inline modules (`mod tests { … }`) in `code`, innermost last.
+fn inline_modules(code: &str) -> Vec<std::ops::Range<usize>> {
+    let mut ranges = Vec::new();
+    for (at, _, after) in mod_items(code).filter(|(_, _, after)| after.starts_with('{')) {
         let open = code.len() - after.len();
         let mut depth = 0usize;
         let mut end = code.len();
@@ -430,23 +434,7 @@ fn inline_modules(code: &str) -> Vec<std::ops::Range<usize>> {
 /// The child modules a file declares (`mod name;`, `pub mod name;`), which its own code may name
 /// without `self::`.
 fn declared_children(code: &str) -> BTreeSet<String> {
-    let mut names = BTreeSet::new();
-    for (at, _) in code.match_indices("mod") {
-        if code[..at].chars().next_back().is_some_and(is_ident) {
-            continue;
-        }
-        let rest = &code[at + "mod".len()..];
-        if !rest.starts_with(char::is_whitespace) {
-            continue;
-        }
-        let rest = rest.trim_start();
-        if let Some(name) = ident_at(rest) {
-            if rest[name.len()..].trim_start().starts_with(';') {
-                names.insert(name);
-            }
-        }
-    }
-    names
+    mod_items(code).filter(|(_, _, after)| after.starts_with(';')).map(|(_, name, _)| name).collect()
 }
 
 /// Every path that starts at `at` in `code` (just after its `crate::`, `super::` or the like), as
