@@ -60,6 +60,37 @@ caustic's like its), no conductor, dielectric or plastic (no light tracer render
 sees in a Dirac reflection: seed 100's smooth silver mesh left caustic's ptracer 2.7% darker than
 volpath and caustic's path, which agree).
 
+Further kinds of the extended generator (each drawn only where its kind is on, so that --without
+naming all of them gives the scenes that came before them, draw for draw): colours written as
+Mitsuba's other colour forms (a `<float>` or `<spectrum value>` grey, a `λ:value` list, the `srgb`,
+`uniform`, `d65` and `rawconstant` plugins) and conductors' `eta`/`k` as `.spd` files of the shared
+scenes' ior folder; textured `specular_transmittance` on `dielectric` and `roughdielectric`, a
+textured isotropic `alpha` (not on `roughplastic`), the dielectrics' `specular_reflectance`,
+conductors' `eta` or `k` a checkerboard of numbers, more of Mitsuba's named conductors (`none`
+among them) and IORs, the plastics' `ext_ior` and `pplastic`'s `eta` (a number or a checkerboard);
+`twosided` around other one-sided BSDFs and `twosided` of two (never in a mask or under a map, as
+caustic refuses); `flip_normals` on objects, a `to_world` written as one `matrix`, OBJ
+`flip_tex_coords`; more mesh files (the binary `bunny.ply`, `matpreview.serialized` by `shape_index`,
+`rectangle.obj`, `uv_sphere.obj`, and `mesh_attribute.ply`, whose diffuse or principled colour
+may be one of its `mesh_attribute`s: Mitsuba's plastics refuse one, wanting its mean); objects gathered in a `merge`; bitmaps' `format` (`uint8` on 8-bit files only:
+Mitsuba dithers where it rounds) and `accel`; `directionalarea` lamps (only a light tracer renders
+their light: the key light under ptracer, an extra one, black, elsewhere; not under ibpt, which
+refuses them); the projector's `focal_length`; cameras' `near_clip` and `far_clip` (no far clip
+under ptracer: Mitsuba 3.9.1's light tracer renders an environment behind it black, its path tracer
+does not) and a crop window; a `radiancemeter` or an `irradiancemeter` (in the floor or an object; a 1x1 film, box
+filter; not under light tracing, which caustic refuses for them); `direct`'s `shading_samples` or
+`emitter_samples`/`bsdf_samples` (more than one emitter sample only without delta lights: Mitsuba
+3.9.1's `direct` gives a delta light's samples weight 1 each, not 1/emitter_samples); caustic's
+`ibpt` (perspective and thinlens cameras, nothing non-reciprocal: no normal or bump map, no
+principledthin) and the `prb` family (absent `max_depth`: 6), both compared with Mitsuba's `path`
+(its `volpath` with null interfaces; its scalar variants have no `prb`);
+`moment` around `path` or `direct` (the first three channels of Mitsuba's image are the image); and
+the `depth` integrator. Left out: caustic's own BSDFs (`phong`, `fuzzymetal`) and dispersion (no
+Mitsuba counterpart), the `regular`, `irregular` and `blackbody` spectrum plugins (Mitsuba's rgb
+variants refuse to render them), `aov` (its channels beyond the image need a comparison of their
+own: tests/tests/aov.rs), `samples_per_pass` (no change to the image), and ply in big-endian
+binary (no such file here).
+
 Files are named by absolute path: tests/data and scenes/meshes of this repository, and the shared
 Mitsuba scenes in $CAUSTIC_SHARED (default ../shared), whose files are left out where missing.
 Kept clear of too, faults of Mitsuba 3.9.1 (its renderers disagreeing with each other, or
@@ -187,6 +218,25 @@ EXTENDED = {
     "null": "null BSDF on objects, emissive objects and area lamps (not under ptracer)",
     "thindielectric": "thindielectric, mostly tinted, more often on rectangles and disks; ptracer: int_ior = "
                       "ext_ior (--without: none at all)",
+    "spectra": "colours as <float>, <spectrum> greys and lists, srgb/uniform/d65/rawconstant; conductors' "
+               ".spd files",
+    "material-params": "textured specular_transmittance and isotropic alpha, dielectrics' specular_reflectance, "
+                       "textured conductor eta/k, more named conductors and IORs, plastics' ext_ior, pplastic's eta",
+    "twosided-pairs": "twosided around other one-sided BSDFs, and twosided of two (front, back)",
+    "shape-options": "flip_normals on objects, to_world as one matrix, OBJ flip_tex_coords",
+    "mesh-files": "bunny.ply (binary), matpreview.serialized (shape_index), rectangle.obj, uv_sphere.obj, "
+                  "mesh_attribute.ply and its mesh_attribute textures",
+    "merge": "objects inside a merge",
+    "bitmap-format": "bitmaps' format and accel",
+    "directionalarea": "directionalarea lamps (the key light under ptracer; not under ibpt)",
+    "projector-focal": "the projector's focal_length",
+    "clip-crop": "cameras' near_clip and far_clip, and a crop window",
+    "meters": "radiancemeter and irradiancemeter (1x1 film; not under ptracer or ibpt)",
+    "direct-samples": "direct's shading_samples or emitter_samples/bsdf_samples",
+    "ibpt": "caustic's ibpt, compared with Mitsuba's path (volpath with null interfaces)",
+    "prb": "prb, prb_basic and prb_projective, compared with Mitsuba's path",
+    "moment": "moment around path or direct",
+    "depth": "the depth integrator",
 }
 
 # Files the extended generator uses, by absolute path (the saved scenes render from anywhere): the
@@ -211,14 +261,44 @@ ENVIRONMENT_IMAGES = EMISSION_IMAGES + [path for path in [shared_scene_file("tex
                                         if os.path.exists(path)]
 NORMAL_MAP = test_data("normalmap_normals.png")  # 16x16 waves of the tangent-space normal
 HEIGHT_MAP = test_data("normalmap_height.png")  # 16x16 grey crossed sines
-# Meshes: plugin, file, the centre and radius of a sphere that holds it, whether it has uv.
+# 8-bit files, which `format` uint8 keeps as they are (Mitsuba dithers what it rounds, caustic does not).
+EIGHT_BIT_IMAGES = {test_data("normalmap_height.png"), test_data("normalmap_normals.png"),
+                    test_data("bitmap_format_8.png"), shared_scene_file("textures/flower.bmp")}
+# A mesh file: plugin, file, the centre and radius of a sphere that holds it, whether it has uv,
+# whether it is flat (its interpolated normals are the faces'), its shape_index (serialized files).
+MeshFile = collections.namedtuple("MeshFile", "plugin path centre radius uv flat shape_index",
+                                  defaults=(False, None))
 MESHES = [mesh for mesh in [
-    ("obj", test_data("aov_mesh.obj"), (0, 0, 0), 0.35, True),  # a 64-face sphere with normals and uv
-    ("obj", os.path.join(REPOSITORY, "scenes", "meshes", "prism.obj"), (0, 0, 0), 0.69, False),
-    ("ply", shared_scene_file("meshes/sphere.ply"), (0, 0, 0), 128.0, False),
-    ("ply", shared_scene_file("meshes/teapot.ply"), (0.21, 0, 1.58), 4.1, False),
-    ("obj", shared_scene_file("meshes/cbox/smallbox.obj"), (186, 82.5, 168.5), 169.0, False),
-] if os.path.exists(mesh[1])]
+    MeshFile("obj", test_data("aov_mesh.obj"), (0, 0, 0), 0.35, True),  # a 64-face sphere with normals and uv
+    MeshFile("obj", os.path.join(REPOSITORY, "scenes", "meshes", "prism.obj"), (0, 0, 0), 0.69, False),
+    MeshFile("ply", shared_scene_file("meshes/sphere.ply"), (0, 0, 0), 128.0, False),
+    MeshFile("ply", shared_scene_file("meshes/teapot.ply"), (0.21, 0, 1.58), 4.1, False),
+    MeshFile("obj", shared_scene_file("meshes/cbox/smallbox.obj"), (186, 82.5, 168.5), 169.0, False),
+] if os.path.exists(mesh.path)]
+# A 4x4 grid of 18 triangles on [-1, 1]² with a vertex colour (r g b) and face attributes wear_x (one
+# channel) and tint_r/g/b: face_wear, face_tint_color (mesh_attribute.py).
+ATTRIBUTE_MESH = test_data("mesh_attribute.ply")
+ATTRIBUTES = [("vertex_color", 3), ("face_tint_color", 3), ("face_wear", 1)]
+# Feature "mesh-files": a binary (little-endian) PLY, the three meshes of a serialized file, more OBJs.
+MATPREVIEW = shared_scene_file("meshes/matpreview.serialized")
+MORE_MESHES = [mesh for mesh in [
+    MeshFile("ply", shared_scene_file("meshes/bunny.ply"), (-0.0168, 0.1102, -0.0015), 0.105, False),
+    MeshFile("serialized", MATPREVIEW, (0.0645, -0.1886, 0.6482), 1.414, True, shape_index=0),  # the backdrop
+    MeshFile("serialized", MATPREVIEW, (0, 0, 0.8279), 1.265, True, shape_index=1),
+    MeshFile("serialized", MATPREVIEW, (-0.1085, 0, -0.0817), 1.715, True, shape_index=2),
+    MeshFile("obj", shared_scene_file("meshes/rectangle.obj"), (0, 0, 0), 1.415, True, flat=True),
+    MeshFile("obj", test_data("uv_sphere.obj"), (0, 0, 0), 1.0, True),
+    MeshFile("ply", ATTRIBUTE_MESH, (0, 0, 0), 1.415, False, flat=True),
+] if os.path.exists(mesh.path)]
+# Feature "material-params": more of Mitsuba's named conductors and IORs (all above 1.3: none is the
+# exterior's air).
+MORE_CONDUCTORS = ["none", "W", "Cu_palik", "Ni_palik", "TiN", "Hg", "a-C", "Mo", "Rh", "Cu2O"]
+MORE_IORS = ["acetone", "ethanol", "carbon tetrachloride", "glycerol", "benzene", "silicone oil", "bromine",
+             "water ice", "fused quartz", "sodium chloride", "amber", "pet"]
+# Feature "spectra": conductors whose eta and k the shared scenes' ior folder holds as .spd files.
+IOR_FOLDER = os.path.join(SHARED, "scenes", "mitsuba", "ior")
+SPD_CONDUCTORS = [name for name in ["Au", "Cu", "Al", "Ag", "Cr", "W"]
+                  if all(os.path.exists(os.path.join(IOR_FOLDER, f"{name}.{part}.spd")) for part in ["eta", "k"])]
 
 
 # --- XML helpers ---------------------------------------------------------------------------------
@@ -281,6 +361,38 @@ def lookat(origin, target, up):
     return f'<lookat origin="{vec(origin)}" target="{vec(target)}" up="{vec(up)}"/>'
 
 
+def transform_matrix(ops):
+    """The 4x4 matrix of `ops`, each ("scale", v), ("rotate", axis, degrees) or ("translate", v),
+    composed in order as Mitsuba composes a <transform>'s elements (each applied after the ones
+    before it); the axis of a rotation is normalised."""
+    m = np.eye(4)
+    for op in ops:
+        step = np.eye(4)
+        if op[0] == "scale":
+            step[:3, :3] = np.diag(op[1])
+        elif op[0] == "translate":
+            step[:3, 3] = op[1]
+        else:
+            a = np.array(op[1], dtype=float) / np.linalg.norm(op[1])
+            angle = math.radians(op[2])
+            cross = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+            step[:3, :3] = (math.cos(angle) * np.eye(3) + math.sin(angle) * cross
+                            + (1 - math.cos(angle)) * np.outer(a, a))
+        m = step @ m
+    return m
+
+
+def placement(ops, as_matrix=False):
+    """A to_world of `ops` (see `transform_matrix`): their elements, or where `as_matrix` the same
+    transform as one <matrix> (rows in order, as Mitsuba reads it)."""
+    if as_matrix:
+        values = " ".join(f"{x:.9g}" for x in transform_matrix(ops).flatten())
+        return f'<transform name="to_world"><matrix value="{values}"/></transform>'
+    xml = {"scale": lambda op: scale(op[1]), "rotate": lambda op: rotate(op[1], op[2]),
+           "translate": lambda op: translate(op[1])}
+    return to_world(*[xml[op[0]](op) for op in ops])
+
+
 # --- The random scene ----------------------------------------------------------------------------
 
 # What a shape's surface allows: `flat` (principledthin), `uv` (normal and bump maps), `smooth`
@@ -288,8 +400,8 @@ def lookat(origin, target, up):
 # Mitsuba from the shading normal).
 Surface = collections.namedtuple("Surface", "flat uv smooth")
 # A shape's plugin, what the description calls it, its bounding radius, a function of its centre
-# that gives its XML children, and its surface.
-Shape = collections.namedtuple("Shape", "plugin label bound geometry surface")
+# that gives its XML children, its surface, and whether its colours may be mesh attributes.
+Shape = collections.namedtuple("Shape", "plugin label bound geometry surface attributes", defaults=(False,))
 
 OBJECT_MATERIALS = ["diffuse", "twosided", "plastic", "roughplastic", "conductor", "roughconductor",
                     "dielectric", "roughdielectric", "thindielectric"]
@@ -297,6 +409,8 @@ FLOOR_MATERIALS = ["diffuse", "diffuse", "twosided", "roughplastic", "roughcondu
 # blendbsdf's children: smooth lobes only (a Dirac lobe beside a smooth one renders differently by
 # design), one-sided (a two-sided child beside a one-sided one is refused).
 BLEND_MATERIALS = ["diffuse", "roughplastic", "roughconductor", "roughdielectric"]
+# What a `twosided` may hold (feature "twosided-pairs"): one-sided models that transmit nothing.
+TWOSIDED_MATERIALS = ["diffuse", "plastic", "roughplastic", "conductor", "roughconductor", "pplastic"]
 
 
 @functools.lru_cache(maxsize=None)
@@ -330,6 +444,16 @@ class SceneMaker:
         # caustic's light tracer like its): normal and bump maps, principledthin.
         self.clear_panes = False
         self.sphere_turned = False  # whether the last sphere drawn is turned by its to_world
+        # ibpt (feature "ibpt"): nothing non-reciprocal (normal and bump maps, principledthin), whose
+        # light-traced estimate is another image than the path-traced one; perspective and thinlens.
+        self.ibpt = False
+        self.moment = False  # the integrator inside a `moment` (feature "moment")
+        self.direct_counts = False  # direct's sample counts, drawn once the lights are known
+        self.delta_lights = False  # a point, spot, projector or directional light
+        self.meter = None  # an irradiancemeter's XML, waiting for its shape (feature "meters")
+        self.meter_on_object = False  # whether an object (else the floor) holds it
+        self.attributes = False  # whether the BSDF being drawn is on mesh_attribute.ply
+        self.last_matrix = False  # whether the shape drawn last writes its to_world as a matrix
 
     def has(self, feature):
         return feature in self.features
@@ -349,6 +473,44 @@ class SceneMaker:
         phi = self.uniform(0, 2 * math.pi)
         s = math.sqrt(1 - z * z)
         return [s * math.cos(phi), s * math.sin(phi), z]
+
+    def colour_value(self, name, value, use="reflectance"):
+        """The colour `value` as an <rgb>, or (feature "spectra", sometimes) in another form Mitsuba
+        reads as a colour: a <float> or <spectrum value> grey of its mean, a `λ:value` list about that
+        mean, or the `uniform` (that grey), `d65` (colour x scale), `rawconstant` or (a colour in [0, 1],
+        not an IOR) `srgb` plugin. `use`: reflectance, emission or ior (no bound). Its XML and a note
+        (None for an <rgb>)."""
+        if not (self.has("spectra") and self.r.random() < 0.15):
+            return rgb(name, value), None
+        forms = ["float", "grey", "list", "uniform", "d65", "rawconstant"]
+        if use != "ior" and max(value) <= 1:
+            forms.append("srgb")
+        form = self.r.choice(forms)
+        grey = sum(value) / 3
+        if form == "float":
+            return flt(name, grey), "float"
+        if form == "grey":
+            return f'<spectrum name="{name}" value="{num(grey)}"/>', "grey"
+        if form == "list":
+            # Over the visible range at least (outside the listed range the spectrum is 0).
+            wavelengths = ([self.r.randrange(360, 451, 10)] + sorted(self.r.sample(range(460, 650, 10),
+                                                                                  self.r.randint(0, 4)))
+                           + [self.r.randrange(650, 831, 10)])
+            values = [grey * self.uniform(0.5, 1.5) for _ in wavelengths]
+            if use == "reflectance":
+                values = [min(v, 0.95) for v in values]
+            text = ", ".join(f"{w}:{num(v)}" for w, v in zip(wavelengths, values))
+            return f'<spectrum name="{name}" value="{text}"/>', "spectrum"
+        if form == "uniform":
+            return element("spectrum", "uniform", [flt("value", grey)], name=name), "uniform"
+        if form == "d65":
+            peak = max(value)
+            return (element("spectrum", "d65", [rgb("color", [c / peak for c in value]), flt("scale", peak)],
+                            name=name), "d65")
+        if form == "rawconstant":
+            return element("spectrum", "rawconstant", [f'<vector name="value" value="{vec(value)}"/>'],
+                           name=name), "raw"
+        return element("spectrum", "srgb", [rgb("color", value)], name=name), "srgb"
 
     # Textures.
     def uv_transform(self):
@@ -384,20 +546,49 @@ class SceneMaker:
                 x, y = self.uniform(-0.5, 0.5), self.uniform(-0.5, 0.5)
                 ops.append(f'<translate x="{num(x)}" y="{num(y)}"/>')
             children.append('<transform name="to_uv">' + "".join(ops) + "</transform>")
+        if self.has("bitmap-format"):
+            # uint8 only where it keeps the texels: Mitsuba dithers what it rounds, caustic rounds.
+            formats = ["auto", "variant", "fp16", "float16"] + (["uint8"] if path in EIGHT_BIT_IMAGES else [])
+            if self.r.random() < 0.4:
+                storage = self.r.choice(formats)
+                children.append(string("format", storage))
+                notes.append(storage)
+            if self.r.random() < 0.2:
+                accel = self.r.random() < 0.5
+                children.append(boolean("accel", accel))
+                notes.append(f"accel={str(accel).lower()}")
         return element("texture", "bitmap", children, name=name), "bitmap(" + "/".join(notes) + ")"
 
     # Materials.
     def reflectance(self, name, textured_chance=0.3):
         """A colour parameter: an RGB, or (sometimes) a checkerboard of two colours, or (feature
-        "bitmap") an image."""
+        "bitmap") an image; on mesh_attribute.ply, more often than not one of its attributes."""
+        if self.attributes:
+            textured_chance = max(textured_chance, 0.7)
         if self.r.random() < textured_chance:
+            # On mesh_attribute.ply (feature "mesh-files"), diffuse's and principled(thin)'s colour:
+            # not a transmittance (caustic does not read one from a mesh attribute), nor a plastic's
+            # diffuse_reflectance (Mitsuba 3.9.1 takes its mean, which a mesh attribute has not).
+            if self.attributes and name in ("reflectance", "base_color") and self.r.random() < 0.6:
+                return self.mesh_attribute(name)
             if self.has("bitmap") and self.r.random() < 0.4:
                 return self.bitmap(name, self.r.choice(REFLECTANCE_IMAGES))
-            children = [rgb("color0", self.colour()), rgb("color1", self.colour())]
+            children = [self.colour_value("color0", self.colour())[0], self.colour_value("color1", self.colour())[0]]
             if self.r.random() < 0.6:
                 children.append(self.uv_transform())
             return element("texture", "checkerboard", children, name=name), "checker"
-        return rgb(name, self.colour()), None
+        return self.colour_value(name, self.colour())
+
+    def mesh_attribute(self, name):
+        """A `mesh_attribute` texture of mesh_attribute.ply's: a colour, or the one-channel wear (a
+        grey), sometimes scaled."""
+        attribute, channels = self.r.choice(ATTRIBUTES)
+        children, notes = [string("name", attribute)], [attribute]
+        if channels == 1 or self.r.random() < 0.3:
+            factor = self.uniform(0.3, 1.0)
+            children.append(flt("scale", factor))
+            notes.append(f"x{num(factor)}")
+        return element("texture", "mesh_attribute", children, name=name), f"attribute({'/'.join(notes)})"
 
     def weight(self, name, lo, hi, textured_chance=0.3):
         """A scalar parameter: a number in [lo, hi], or (sometimes) a checkerboard of two."""
@@ -410,7 +601,7 @@ class SceneMaker:
 
     def ior(self, name="int_ior"):
         if self.r.random() < 0.4:
-            value = self.r.choice(NAMED_IORS)
+            value = self.r.choice(NAMED_IORS + (MORE_IORS if self.has("material-params") else []))
             return string(name, value), value
         value = self.uniform(1.3, 2.0)
         return flt(name, value), num(value)
@@ -437,22 +628,41 @@ class SceneMaker:
             return children, f"{distribution[0]}({'/'.join(notes)})"
         alpha = self.uniform(0.05, 0.6)
         distribution = self.r.choice(["ggx", "beckmann"])
+        if anisotropic and self.has("material-params") and self.r.random() < 0.2:
+            # A textured isotropic alpha (not roughplastic's, which Mitsuba refuses as a texture).
+            texture, _ = self.weight("alpha", 0.05, 0.6, textured_chance=1.0)
+            return [string("distribution", distribution), texture], f"{distribution[0]}(alpha=checker)"
         return [string("distribution", distribution), flt("alpha", alpha)], f"{distribution[0]}{num(alpha)}"
 
     def conductor_ior(self):
+        """A named conductor or explicit eta and k (feature "material-params": more names, or eta or
+        k a checkerboard of numbers; "spectra": eta and k as .spd files, or in other colour forms)."""
         if self.r.random() < 0.65:
-            material = self.r.choice(NAMED_CONDUCTORS)
+            material = self.r.choice(NAMED_CONDUCTORS + (MORE_CONDUCTORS if self.has("material-params") else []))
+            if SPD_CONDUCTORS and self.has("spectra") and self.r.random() < 0.25:
+                material = self.r.choice(SPD_CONDUCTORS)
+                files = [f'<spectrum name="{part}" filename="{os.path.join(IOR_FOLDER, f"{material}.{part}.spd")}"/>'
+                         for part in ["eta", "k"]]
+                return files, f"{material}.spd"
             return [string("material", material)], material
         eta = [self.uniform(0.15, 1.8) for _ in range(3)]
         k = [self.uniform(1.5, 5.0) for _ in range(3)]
-        return [rgb("eta", eta), rgb("k", k)], "eta/k"
+        if self.has("material-params") and self.r.random() < 0.3:
+            if self.r.random() < 0.5:
+                texture, _ = self.weight("eta", 0.15, 1.8, textured_chance=1.0)
+                return [texture, rgb("k", k)], "eta=checker/k"
+            texture, _ = self.weight("k", 1.5, 5.0, textured_chance=1.0)
+            return [rgb("eta", eta), texture], "eta/k=checker"
+        (eta_xml, eta_note), (k_xml, k_note) = self.colour_value("eta", eta, "ior"), self.colour_value("k", k, "ior")
+        notes = [note for note in [eta_note, k_note] if note]
+        return [eta_xml, k_xml], "eta/k" + (f"({','.join(notes)})" if notes else "")
 
     def materials(self, base, surface):
         """`base` and the extended BSDFs that suit `surface`. Objects (not the floor) get more thin
         dielectrics where flat (panes); without feature "thindielectric" the extended generator
         draws no thin dielectric at all."""
         kinds = base + [k for k in ["principled", "pplastic", "blendbsdf"] if self.has(k)]
-        if surface.flat and self.has("principledthin") and not self.clear_panes:
+        if surface.flat and self.has("principledthin") and not (self.clear_panes or self.ibpt):
             kinds.append("principledthin")
         if surface.smooth:
             kinds = [k for k in kinds if k != "twosided"]
@@ -476,7 +686,9 @@ class SceneMaker:
         if not nulls:
             kinds = [k for k in kinds if k != "thindielectric"]
         bsdf, text = self.surface_bsdf(kinds, surface)
-        if nulls and self.has("mask") and not self.light_tracing and self.r.random() < 0.12:
+        # No mask around a twosided of two BSDFs: caustic refuses it.
+        if (nulls and self.has("mask") and not self.light_tracing and not text.startswith("twosided-pair")
+                and self.r.random() < 0.12):
             return self.mask(bsdf, text)
         return bsdf, text
 
@@ -511,15 +723,21 @@ class SceneMaker:
             tint, tex = self.reflectance("specular_transmittance", textured_chance=0.25)
             children.append(tint)
             notes.append(f"T={tex}" if tex else "tinted")
+        if self.has("material-params") and self.r.random() < 0.2:
+            children.append(self.colour_value("specular_reflectance", self.colour(0.5, 1.0))[0])
+            notes.append("R")
         return element("bsdf", "thindielectric", children), f"thindielectric({','.join(notes)})"
 
     def surface_bsdf(self, kinds, surface):
         """`bsdf(kinds)`, on a shape with uv sometimes under a normal or bump map (not a thin
         dielectric: Mitsuba 3.9.1's normalmap and bumpmap do not pass on eval_null_transmission, so
-        its volpath's shadow rays stop at them while its sampled paths cross)."""
+        its volpath's shadow rays stop at them while its sampled paths cross; nor a twosided of two
+        BSDFs, which caustic refuses under a map)."""
         bsdf, text = self.bsdf(kinds)
-        maps = [kind for kind in ["normalmap", "bumpmap"] if self.has(kind)] if surface.uv and not self.clear_panes else []
-        if maps and not text.startswith("thindielectric") and self.r.random() < 0.2:
+        reciprocal_only = self.clear_panes or self.ibpt
+        maps = [kind for kind in ["normalmap", "bumpmap"] if self.has(kind)]
+        maps = maps if surface.uv and not reciprocal_only else []
+        if maps and not text.startswith(("thindielectric", "twosided-pair")) and self.r.random() < 0.2:
             return self.perturbed(self.r.choice(maps), bsdf, text)
         return bsdf, text
 
@@ -582,11 +800,17 @@ class SceneMaker:
         refl, tex = self.reflectance("diffuse_reflectance")
         children, notes = [refl], [tex] if tex else []
         if self.r.random() < 0.25:
-            children.append(rgb("specular_reflectance", self.colour(0.5, 1.0)))
+            children.append(self.colour_value("specular_reflectance", self.colour(0.5, 1.0))[0])
         if self.r.random() < 0.5:
             ior, ior_text = self.ior()
             children.append(ior)
             notes.append(ior_text)
+        elif self.has("material-params") and self.r.random() < 0.5:
+            # Its relative index as `eta` (not with int_ior/ext_ior, as Mitsuba): a number or a
+            # checkerboard (its luminance, Mitsuba's eval_1).
+            eta, eta_text = self.weight("eta", 1.3, 2.0, textured_chance=0.4)
+            children.append(eta)
+            notes.append(eta_text)
         rough, rough_text = self.roughness(anisotropic=True)
         return element("bsdf", "pplastic", children + rough), f"pplastic({','.join(notes + [rough_text])})"
 
@@ -623,6 +847,8 @@ class SceneMaker:
             refl, tex = self.reflectance("reflectance")
             return element("bsdf", "diffuse", [refl]), "diffuse" + (f"({tex})" if tex else "")
         if kind == "twosided":
+            if self.has("twosided-pairs") and self.r.random() < 0.5:
+                return self.two_sided()
             refl, tex = self.reflectance("reflectance")
             inner = element("bsdf", "diffuse", [refl])
             return element("bsdf", "twosided", [inner]), "twosided(diffuse" + (f",{tex})" if tex else ")")
@@ -632,7 +858,12 @@ class SceneMaker:
             children = [refl, ior, boolean("nonlinear", self.r.random() < 0.3)]
             notes = [ior_text] + ([tex] if tex else [])
             if self.r.random() < 0.25:
-                children.append(rgb("specular_reflectance", self.colour(0.5, 1.0)))
+                children.append(self.colour_value("specular_reflectance", self.colour(0.5, 1.0))[0])
+            if self.has("material-params") and self.r.random() < 0.2:
+                # Below every interior index drawn (1.31 and up): no index-matched plastic.
+                ext = self.uniform(1.0, 1.25)
+                children.append(flt("ext_ior", ext))
+                notes.append(f"ext={num(ext)}")
             if kind == "roughplastic":
                 rough, rough_text = self.roughness()
                 children += rough
@@ -642,7 +873,7 @@ class SceneMaker:
             children, notes = self.conductor_ior()
             notes = [notes]
             if self.r.random() < 0.25:
-                children.append(rgb("specular_reflectance", self.colour(0.5, 1.0)))
+                children.append(self.colour_value("specular_reflectance", self.colour(0.5, 1.0))[0])
             if kind == "roughconductor":
                 rough, rough_text = self.roughness(anisotropic=True)
                 children += rough
@@ -657,15 +888,41 @@ class SceneMaker:
             children.append(ext)
             notes.append(f"ext={ext_text}")
         if self.r.random() < 0.25:
-            children.append(rgb("specular_transmittance", self.colour(0.4, 1.0)))
+            if self.has("material-params") and self.r.random() < 0.4:
+                tint, tex = self.reflectance("specular_transmittance", textured_chance=1.0)
+                children.append(tint)
+                notes.append(f"T={tex}")
+            else:
+                children.append(self.colour_value("specular_transmittance", self.colour(0.4, 1.0))[0])
+        if self.has("material-params") and self.r.random() < 0.2:
+            children.append(self.colour_value("specular_reflectance", self.colour(0.5, 1.0))[0])
+            notes.append("R")
         if kind == "roughdielectric":
             rough, rough_text = self.roughness(anisotropic=True)
             children += rough
             notes.append(rough_text)
         return element("bsdf", kind, children), f"{kind}({','.join(notes)})"
 
+    def two_sided(self):
+        """`twosided` (feature "twosided-pairs") around one of TWOSIDED_MATERIALS, or two of them: the
+        first on the front, the second on the back."""
+        kinds = [k for k in TWOSIDED_MATERIALS if k != "pplastic" or self.has("pplastic")]
+        if self.clear_panes:  # as `materials`
+            kinds = [k for k in kinds if k not in ("conductor", "plastic")]
+        sides = [self.bsdf(kinds) for _ in range(self.r.choice([1, 2]))]
+        xml = element("bsdf", "twosided", [bsdf for bsdf, _ in sides])
+        if len(sides) == 1:
+            return xml, f"twosided({sides[0][1]})"
+        return xml, f"twosided-pair({sides[0][1]}|{sides[1][1]})"
+
     # Geometry. Each maker draws a shape's size and orientation and returns its bounding radius and a
     # function that gives the shape's XML children for a centre, so that a place can be found for it.
+    def matrix_form(self):
+        """Whether the shape being drawn writes its to_world as one `matrix` (feature
+        "shape-options", sometimes)."""
+        self.last_matrix = self.has("shape-options") and self.r.random() < 0.2
+        return self.last_matrix
+
     def sphere(self):
         radius = self.uniform(0.25, 0.6)
         self.sphere_turned = False
@@ -673,24 +930,31 @@ class SceneMaker:
             return radius, lambda c: [point("center", c), flt("radius", radius)]
         if self.has("sphere-frames") and self.r.random() < 0.7:
             self.sphere_turned = True
-            turn = rotate(self.unit_vector(), self.uniform(0, 360))
-            return radius, lambda c: [to_world(scale([radius] * 3), turn, translate(c))]
-        return radius, lambda c: [to_world(scale([radius] * 3), translate(c))]
+            axis, angle = self.unit_vector(), self.uniform(0, 360)
+            as_matrix = self.matrix_form()
+            return radius, lambda c: [placement([("scale", [radius] * 3), ("rotate", axis, angle), ("translate", c)],
+                                                as_matrix)]
+        as_matrix = self.matrix_form()
+        return radius, lambda c: [placement([("scale", [radius] * 3), ("translate", c)], as_matrix)]
 
     def flat(self, kind):
         sx, sy = self.uniform(0.3, 0.7), self.uniform(0.3, 0.7)
         if kind == "disk" and self.r.random() < 0.5:
             sy = sx
-        turn = rotate(self.unit_vector(), self.uniform(0, 360))
+        axis, angle = self.unit_vector(), self.uniform(0, 360)
         bound = math.hypot(sx, sy) if kind == "rectangle" else max(sx, sy)
-        return bound, lambda c: [to_world(scale([sx, sy, 1]), turn, translate(c))]
+        as_matrix = self.matrix_form()
+        return bound, lambda c: [placement([("scale", [sx, sy, 1]), ("rotate", axis, angle), ("translate", c)],
+                                           as_matrix)]
 
     def cube(self):
         s = [self.uniform(0.2, 0.45) for _ in range(3)]
         if self.r.random() < 0.4:
             s = [s[0]] * 3
-        turn = rotate(self.unit_vector(), self.uniform(0, 360))
-        return math.sqrt(sum(x * x for x in s)), lambda c: [to_world(scale(s), turn, translate(c))]
+        axis, angle = self.unit_vector(), self.uniform(0, 360)
+        as_matrix = self.matrix_form()
+        return math.sqrt(sum(x * x for x in s)), lambda c: [
+            placement([("scale", s), ("rotate", axis, angle), ("translate", c)], as_matrix)]
 
     def cylinder(self):
         radius, half = self.uniform(0.15, 0.4), self.uniform(0.2, 0.5)
@@ -701,44 +965,63 @@ class SceneMaker:
                                      point("p1", [c[i] + half * axis[i] for i in range(3)]),
                                      flt("radius", radius)]
         # The default cylinder runs from z = 0 to 1 with radius 1: centre it, size it, turn it, place it.
-        turn = rotate(self.unit_vector(), self.uniform(0, 360))
-        return bound, lambda c: [to_world(translate([0, 0, -0.5]), scale([radius, radius, 2 * half]),
-                                          turn, translate(c))]
+        axis, angle = self.unit_vector(), self.uniform(0, 360)
+        as_matrix = self.matrix_form()
+        return bound, lambda c: [placement([("translate", [0, 0, -0.5]), ("scale", [radius, radius, 2 * half]),
+                                            ("rotate", axis, angle), ("translate", c)], as_matrix)]
 
     def mesh(self):
-        """An `obj` or `ply` of MESHES, centred, sized (sometimes unequally), turned; its own or
-        (sometimes) face normals."""
-        plugin, path, centre, radius, uv = self.r.choice(MESHES)
+        """A mesh of MESHES (feature "meshes") or MORE_MESHES ("mesh-files"), centred, sized
+        (sometimes unequally), turned; its own or (sometimes) face normals; an OBJ with uv sometimes
+        without flip_tex_coords ("shape-options")."""
+        pool = (MESHES if self.has("meshes") else []) + (MORE_MESHES if self.has("mesh-files") else [])
+        mesh = self.r.choice(pool)
         size = self.uniform(0.3, 0.55)
-        factors = [size / radius] * 3
+        factors = [size / mesh.radius] * 3
         if self.r.random() < 0.4:
             factors = [f * self.uniform(0.6, 1.0) for f in factors]
-        turn = rotate(self.unit_vector(), self.uniform(0, 360))
-        children = [string("filename", path)]
+        axis, angle = self.unit_vector(), self.uniform(0, 360)
+        children = [string("filename", mesh.path)]
+        name = os.path.splitext(os.path.basename(mesh.path))[0]
+        notes = []
+        if mesh.shape_index is not None:
+            children.append(integer("shape_index", mesh.shape_index))
+            name += f"#{mesh.shape_index}"
         face_normals = self.r.random() < 0.3
         if face_normals:
             children.append(boolean("face_normals", True))
-        label = f"{plugin}({os.path.splitext(os.path.basename(path))[0]}{',faces' if face_normals else ''})"
-        centring = [translate([-x for x in centre])] if any(centre) else []
-        geometry = lambda c: children + [to_world(*centring, scale(factors), turn, translate(c))]
-        return Shape(plugin, label, size, geometry, Surface(flat=False, uv=uv, smooth=not face_normals))
+            notes.append("faces")
+        if mesh.plugin == "obj" and mesh.uv and self.has("shape-options") and self.r.random() < 0.3:
+            children.append(boolean("flip_tex_coords", False))
+            notes.append("unflipped-uv")
+        as_matrix = self.matrix_form()
+        label = f"{mesh.plugin}({name}{''.join(',' + note for note in notes)})"
+        centring = [("translate", [-x for x in mesh.centre])] if any(mesh.centre) else []
+        geometry = lambda c: children + [placement(centring + [("scale", factors), ("rotate", axis, angle),
+                                                               ("translate", c)], as_matrix)]
+        surface = Surface(flat=mesh.flat, uv=mesh.uv, smooth=not face_normals and not mesh.flat)
+        return Shape(mesh.plugin, label, size, geometry, surface, attributes=mesh.path == ATTRIBUTE_MESH)
 
     def shape_geometry(self, kind):
+        self.last_matrix = False
         if kind == "mesh":
-            return self.mesh()
-        if kind == "sphere":
-            bound, geometry = self.sphere()
-        elif kind in ("rectangle", "disk"):
-            bound, geometry = self.flat(kind)
-        elif kind == "cube":
-            bound, geometry = self.cube()
+            shape = self.mesh()
         else:
-            bound, geometry = self.cylinder()
-        flat = kind in ("rectangle", "disk")
-        return Shape(kind, kind, bound, geometry, Surface(flat=flat, uv=True, smooth=False))
+            if kind == "sphere":
+                bound, geometry = self.sphere()
+            elif kind in ("rectangle", "disk"):
+                bound, geometry = self.flat(kind)
+            elif kind == "cube":
+                bound, geometry = self.cube()
+            else:
+                bound, geometry = self.cylinder()
+            flat = kind in ("rectangle", "disk")
+            shape = Shape(kind, kind, bound, geometry, Surface(flat=flat, uv=True, smooth=False))
+        return shape._replace(label=shape.label + "[matrix]") if self.last_matrix else shape
 
     def shape_kinds(self):
-        return (["sphere", "rectangle", "disk", "cube", "cylinder"] + (["mesh"] if self.has("meshes") else [])
+        meshes = self.has("meshes") or self.has("mesh-files")
+        return (["sphere", "rectangle", "disk", "cube", "cylinder"] + (["mesh"] if meshes else [])
                 + (["instance"] if self.has("instances") and not self.path_hides_emitters else []))
 
     def shapegroup(self):
@@ -777,20 +1060,26 @@ class SceneMaker:
             factors = [f * self.uniform(0.6, 1.0) for f in factors]
             if self.r.random() < 0.4:
                 factors[0] = -factors[0]
-        turn = rotate(self.unit_vector(), self.uniform(0, 360))
+        axis, angle = self.unit_vector(), self.uniform(0, 360)
         notes = ",mirrored" if factors[0] < 0 else "" if factors[0] == factors[1] == factors[2] else ",unequal"
+        as_matrix = self.matrix_form()
+        notes += ",matrix" if as_matrix else ""
 
         def place(c):
             if group_xml not in self.definitions:
                 self.definitions.append(group_xml)
-            children = ['<ref id="group"/>', to_world(scale(factors), turn, translate(c))]
+            children = ['<ref id="group"/>',
+                        placement([("scale", factors), ("rotate", axis, angle), ("translate", c)], as_matrix)]
             return element("shape", "instance", children), f"instance[{group_text}{notes}]"
         return size, place
 
     def place_objects(self):
-        """2-4 shapes floating above the floor around the origin, their bounding spheres apart."""
+        """2-4 shapes floating above the floor around the origin, their bounding spheres apart; some
+        (feature "shape-options") with flipped normals, some (feature "merge") inside a `merge`; one
+        (feature "meters") may hold the irradiancemeter."""
         placed = self.placed
         shapes = []
+        mergeable = []  # whether each of `shapes` may go into a merge: no instance, emitter or sensor
         emissive_left = 1 if self.r.random() < 0.2 else 0
         if self.features and self.hides_emitters:
             # Mitsuba 3.9.1 renders what a camera ray meets past a skipped emitter wrongly (see the
@@ -814,6 +1103,7 @@ class SceneMaker:
             if kind == "instance":
                 xml, text = place(c)
                 shapes.append(xml)
+                mergeable.append(False)
                 self.parts.append(text)
                 continue
             children = shape.geometry(c)
@@ -824,24 +1114,44 @@ class SceneMaker:
                     self.null_interfaces = True
                     children.append(element("bsdf", "null", []))
                 else:
-                    children.append(element("bsdf", "diffuse", [rgb("reflectance", self.colour())]))
+                    children.append(element("bsdf", "diffuse", [self.colour_value("reflectance", self.colour())[0]]))
                 power = self.uniform(0.5, 3.0)
                 # Mitsuba samples a textured emitter in uv space, which takes a one-to-one uv map:
-                # not a cube's (six faces on one square: it samples one) nor a mesh's without uv.
+                # not a cube's (six faces on one square: it samples one) nor a mesh's without uv (nor,
+                # unchecked, matpreview.serialized's).
                 # Nor a turned cylinder's or sphere's: their eval_parameterization casts a ray from
                 # the world-space point along the object-space direction, which misses the point.
                 turned = kind == "cylinder" or (kind == "sphere" and self.sphere_turned)
-                if shape.surface.uv and kind != "cube" and not turned:
+                if shape.surface.uv and kind != "cube" and not turned and shape.plugin != "serialized":
                     radiance, tex = self.radiance("radiance", power, images=True)
                 else:
-                    radiance, tex = rgb("radiance", self.tint(power)), None
+                    radiance, tex = self.colour_value("radiance", self.tint(power), "emission")
                 children.append(element("emitter", "area", [radiance]))
                 shapes.append(element("shape", shape.plugin, children))
+                mergeable.append(False)
                 self.parts.append(f"{shape.label}:{'null+' if null else ''}emitter" + (f"({tex})" if tex else ""))
                 continue
+            self.attributes = shape.attributes
             bsdf, text = self.object_bsdf(shape.surface)
+            self.attributes = False
+            label, meter = shape.label, False
+            if self.has("shape-options") and self.r.random() < 0.12:
+                children.append(boolean("flip_normals", True))
+                label += "(flipped)"
+            elif self.meter and self.meter_on_object and kind in ("sphere", "rectangle", "disk", "cube"):
+                children.append(self.meter)
+                self.meter, meter = None, True
+                label += "(irradiancemeter)"
             shapes.append(element("shape", shape.plugin, children + [bsdf]))
-            self.parts.append(f"{shape.label}:{text}")
+            mergeable.append(not meter)
+            self.parts.append(f"{label}:{text}")
+        if self.has("merge") and self.r.random() < 0.25:
+            candidates = [i for i, ok in enumerate(mergeable) if ok]
+            if candidates:
+                chosen = sorted(self.r.sample(candidates, self.r.randint(1, len(candidates))))
+                merged = element("shape", "merge", [shapes[i] for i in chosen])
+                shapes = [merged if i == chosen[0] else xml for i, xml in enumerate(shapes) if i not in chosen[1:]]
+                self.parts.append(f"merge of {len(chosen)}")
         return shapes
 
     def floor(self):
@@ -869,7 +1179,7 @@ class SceneMaker:
             if not self.light_tracing:
                 a, b = power * self.uniform(0.6, 1.0), power * self.uniform(0.2, 1.0)
                 return self.emission_checkerboard(name, a, b), "checker"
-        return rgb(name, self.tint(power)), None
+        return self.colour_value(name, self.tint(power), "emission")
 
     def emitted_image(self, name):
         """A texture for a spot's `texture` or a projector's `irradiance`: an HDR image or (not under
@@ -890,10 +1200,12 @@ class SceneMaker:
             if all(math.dist(position, c) > bound + 0.6 for c, bound in self.placed):
                 break
         distance2 = sum(x * x for x in position)
+        if kind in ("point", "spot", "projector", "directional"):
+            self.delta_lights = True
         if kind == "point":
             self.parts.append("point")
-            return element("emitter", "point", [point("position", position),
-                                                rgb("intensity", self.tint(irradiance * distance2))])
+            intensity, _ = self.colour_value("intensity", self.tint(irradiance * distance2), "emission")
+            return element("emitter", "point", [point("position", position), intensity])
         if kind == "spot":
             target = [self.uniform(-0.7, 0.7), self.uniform(-0.7, 0.7), 0]
             cutoff = self.uniform(20, 60)
@@ -907,18 +1219,24 @@ class SceneMaker:
                 intensity = [x / mean for x in intensity]
                 children.append(texture)
                 notes.append(text)
-            children[1] = rgb("intensity", intensity)
+            children[1] = self.colour_value("intensity", intensity, "emission")[0]
             self.parts.append(f"spot({','.join(notes)})")
             return element("emitter", "spot", children)
         if kind == "projector":
             target = [self.uniform(-0.7, 0.7), self.uniform(-0.7, 0.7), 0]
             fov = self.uniform(20, 50)
-            children = [to_world(lookat(position, target, [0, 1, 0])), flt("fov", fov)]
-            notes = [f"fov={num(fov)}"]
-            if self.r.random() < 0.3:
-                axis = self.r.choice(["x", "y", "diagonal", "smaller", "larger"])
-                children.append(string("fov_axis", axis))
-                notes.append(axis)
+            if self.has("projector-focal") and self.r.random() < 0.3:
+                # A 35 mm-equivalent focal length (fov_axis is then not read, so none is given).
+                focal = self.r.randint(35, 120)
+                children = [to_world(lookat(position, target, [0, 1, 0])), string("focal_length", f"{focal}mm")]
+                notes = [f"{focal}mm"]
+            else:
+                children = [to_world(lookat(position, target, [0, 1, 0])), flt("fov", fov)]
+                notes = [f"fov={num(fov)}"]
+                if self.r.random() < 0.3:
+                    axis = self.r.choice(["x", "y", "diagonal", "smaller", "larger"])
+                    children.append(string("fov_axis", axis))
+                    notes.append(axis)
             # Mitsuba's projector gives pi * irradiance * scale / d^2 at distance d.
             power = irradiance * math.dist(position, target) ** 2 / math.pi
             if self.r.random() < 0.5:
@@ -926,19 +1244,21 @@ class SceneMaker:
                 children += [texture, flt("scale", power / mean)]
                 notes.append(text)
             else:
-                children += [rgb("irradiance", self.tint(1.0)), flt("scale", power)]
+                children += [self.colour_value("irradiance", self.tint(1.0), "emission")[0], flt("scale", power)]
             self.parts.append(f"projector({','.join(notes)})")
             return element("emitter", "projector", children)
         if kind == "directional":
             theta, phi = math.radians(self.uniform(0, 60)), self.uniform(0, 2 * math.pi)
             direction = [math.sin(theta) * math.cos(phi), math.sin(theta) * math.sin(phi), -math.cos(theta)]
             self.parts.append("directional")
-            return element("emitter", "directional", [f'<vector name="direction" value="{vec(direction)}"/>',
-                                                      rgb("irradiance", self.tint(irradiance))])
+            return element("emitter", "directional", [
+                f'<vector name="direction" value="{vec(direction)}"/>',
+                self.colour_value("irradiance", self.tint(irradiance), "emission")[0]])
         if kind == "constant":
             self.has_environment = True
             self.parts.append("constant")
-            return element("emitter", "constant", [rgb("radiance", self.tint(irradiance / math.pi))])
+            return element("emitter", "constant",
+                           [self.colour_value("radiance", self.tint(irradiance / math.pi), "emission")[0]])
         if kind == "envmap":
             self.has_environment = True
             path = self.r.choice(ENVIRONMENT_IMAGES)
@@ -954,6 +1274,20 @@ class SceneMaker:
                     notes.append("mis_compensation")
             self.parts.append(f"envmap({','.join(notes)})")
             return element("emitter", "envmap", children)
+        if kind == "directionalarea":
+            # A flat lamp facing down (feature "directionalarea"), a little tilted, that emits along
+            # its normal only: its irradiance across the beam is its radiance. Only a light tracer
+            # renders its light (the camera and shading points never meet its one direction).
+            shape = self.r.choice(["rectangle", "disk"])
+            size = self.uniform(0.8, 1.8) if key else self.uniform(0.3, 1.0)
+            tilt = rotate(self.unit_vector(), self.uniform(0, 10))
+            geometry = [to_world(scale([size, size, 1]), rotate([1, 0, 0], 180), tilt, translate(position))]
+            radiance, tex = self.radiance("radiance", irradiance, images=True)
+            children = geometry + [element("emitter", "directionalarea", [radiance])]
+            if self.r.random() < 0.5:
+                children.append(element("bsdf", "diffuse", [self.colour_value("reflectance", self.colour())[0]]))
+            self.parts.append(f"directionalarea-{shape}" + (f"({tex})" if tex else ""))
+            return element("shape", shape, children)
         # An area lamp above the scene: a sphere, or a rectangle or disk facing down.
         shape = self.r.choice(["sphere", "rectangle", "disk"])
         size = self.uniform(0.15, 0.45)
@@ -968,7 +1302,7 @@ class SceneMaker:
         children = geometry + [element("emitter", "area", [radiance])]
         note = ""
         if self.r.random() < 0.5:
-            children.append(element("bsdf", "diffuse", [rgb("reflectance", self.colour())]))
+            children.append(element("bsdf", "diffuse", [self.colour_value("reflectance", self.colour())[0]]))
         elif self.has("null") and not self.light_tracing and self.r.random() < 0.4:
             self.null_interfaces = True
             children.append(element("bsdf", "null", []))
@@ -978,11 +1312,18 @@ class SceneMaker:
 
     def lights(self):
         extra = [kind for kind in ["projector", "envmap"] if self.has(kind)]
-        key = self.r.choice(["area", "area", "point", "spot", "directional", "constant"] + extra)
+        # directionalarea: the key light only under ptracer (the only integrator that renders its
+        # light); never under ibpt, which caustic refuses it under.
+        directional_area = self.has("directionalarea") and not self.ibpt
+        keys = ["area", "area", "point", "spot", "directional", "constant"] + extra
+        if directional_area and self.light_tracing:
+            keys += ["directionalarea"] * 2
+        key = self.r.choice(keys)
         emitters = [self.light(key, True)]
         for _ in range(self.r.choice([0, 0, 1, 2])):
             kinds = ["area", "point", "spot", "directional"] + ([] if self.has_environment else ["constant"])
             kinds += [kind for kind in extra if kind == "projector" or not self.has_environment]
+            kinds += ["directionalarea"] if directional_area else []
             emitters.append(self.light(self.r.choice(kinds), False))
         return emitters
 
@@ -996,8 +1337,9 @@ class SceneMaker:
                   distance * math.sin(elevation)]
         target = [self.uniform(-0.3, 0.3), self.uniform(-0.3, 0.3), self.uniform(0.2, 0.6)]
         view = lookat(origin, target, [0, 0, 1])
-        # caustic's light tracing has no orthographic camera.
-        kinds = ["perspective", "perspective", "thinlens"] + ([] if self.light_tracing else ["orthographic"])
+        # caustic's light tracing (ptracer, ibpt) has no orthographic camera.
+        kinds = ["perspective", "perspective", "thinlens"]
+        kinds += [] if self.light_tracing or self.ibpt else ["orthographic"]
         kind = self.r.choice(kinds)
         children = []
         if kind == "orthographic":
@@ -1046,8 +1388,6 @@ class SceneMaker:
             filter_children += [flt("B", self.uniform(0, 1)), flt("C", self.uniform(0, 1))]
         if rfilter == "lanczos" and self.r.random() < 0.5:
             filter_children.append(integer("lobes", self.r.choice([2, 4])))
-        film = element("film", "hdrfilm", [integer("width", width), integer("height", height),
-                                           element("rfilter", rfilter, filter_children)])
         sampler_kind = self.r.choice(["independent", "independent", "stratified"])
         if self.has("samplers") and self.r.random() < 0.3:
             sampler_kind = self.r.choice(["multijitter", "orthogonal", "ldsampler"])
@@ -1056,6 +1396,44 @@ class SceneMaker:
             # at 512 spp: 529).
             sampler_kind = "independent"
         sampler = element("sampler", sampler_kind, [integer("sample_count", 16)])
+        # A radiance or irradiance meter (feature "meters"): one pixel, the box filter (Mitsuba advises
+        # a filter no wider). Not under light tracing (caustic refuses them there) nor depth.
+        if (self.has("meters") and not (self.light_tracing or self.ibpt) and self.integrator_kind != "depth"
+                and self.r.random() < 0.12):
+            meter = self.r.choice(["radiancemeter", "irradiancemeter"])
+            film = element("film", "hdrfilm", [integer("width", 1), integer("height", 1),
+                                               element("rfilter", "box", [])])
+            self.parts.insert(0, f"{meter} 1x1 box {sampler_kind}")
+            if meter == "irradiancemeter":
+                # Nested in an object or (where none takes it) the floor: see place_objects and xml.
+                self.meter = element("sensor", meter, [film, sampler])
+                self.meter_on_object = self.r.random() < 0.5
+                return ""
+            aim = [t + self.uniform(-0.5, 0.5) for t in target]
+            direction = [a - o for a, o in zip(aim, origin)]
+            return element("sensor", meter, [point("origin", origin),
+                                              f'<vector name="direction" value="{vec(direction)}"/>', film, sampler])
+        film_children = [integer("width", width), integer("height", height)]
+        if self.has("clip-crop"):
+            if self.r.random() < 0.3:
+                # The near plane sometimes cuts into the objects; the far plane sometimes cuts off the
+                # floor. No far plane under ptracer: Mitsuba 3.9.1's light tracer connects an
+                # environment to the camera from a point the far plane cuts off (a constant sky behind
+                # a far_clip of 4 rendered black there, white in its path tracer).
+                near = self.uniform(0.01, distance - 1.0)
+                children.append(flt("near_clip", near))
+                lens += f",near={num(near)}"
+                if not self.light_tracing and self.r.random() < 0.5:
+                    far = self.uniform(max(near + 0.5, distance - 1.0), distance + 4.0)
+                    children.append(flt("far_clip", far))
+                    lens += f",far={num(far)}"
+            if self.r.random() < 0.25:
+                crop_width, crop_height = self.r.randint(4, width), self.r.randint(4, height)
+                x, y = self.r.randint(0, width - crop_width), self.r.randint(0, height - crop_height)
+                film_children += [integer("crop_offset_x", x), integer("crop_offset_y", y),
+                                  integer("crop_width", crop_width), integer("crop_height", crop_height)]
+                lens += f",crop={crop_width}x{crop_height}+{x}+{y}"
+        film = element("film", "hdrfilm", film_children + [element("rfilter", rfilter, filter_children)])
         self.parts.insert(0, f"{kind}({lens}) {width}x{height} {rfilter} {sampler_kind}")
         return element("sensor", kind, children + [film, sampler])
 
@@ -1071,6 +1449,11 @@ class SceneMaker:
     def integrator(self):
         children = []
         notes = []
+        if self.has("depth") and self.r.random() < 0.04:
+            # The distance to the first hit (feature "depth"): no other parameter.
+            self.parts.insert(0, "depth")
+            self.integrator_kind, self.integrator_children, self.integrator_notes = "depth", [], []
+            return self.integrator_element()
         if self.has("ptracer") and self.r.random() < 0.15:
             kind = "ptracer"
             self.light_tracing = True
@@ -1078,20 +1461,60 @@ class SceneMaker:
             self.clear_panes = self.has("thindielectric") and self.r.random() < 0.5
         elif self.r.random() < 0.75:
             kind = "path"
+            # caustic's ibpt and Mitsuba's prb family, compared with Mitsuba's path (reference_integrator).
+            if self.has("ibpt") and self.r.random() < 0.15:
+                kind = "ibpt"
+                self.ibpt = True
+            elif self.has("prb") and self.r.random() < 0.1:
+                kind = self.r.choice(["prb", "prb_basic", "prb_projective"])
             self.depths(children, notes)
+            if kind.startswith("prb") and self.r.random() < 0.3:
+                children.pop(0)  # max_depth: the prb family's default, 6
+                notes[0] = "depth=default"
         else:
             # One emitter and one BSDF sample: Mitsuba's `direct` is known to differ from caustic's
-            # with more emitter samples and delta emitters.
+            # with more emitter samples and delta emitters (it weighs each sample of a delta light 1,
+            # not 1/emitter_samples). Feature "direct-samples": other counts, drawn in `xml` once the
+            # lights are known.
             kind = "direct"
-            children += [integer("emitter_samples", 1), integer("bsdf_samples", 1)]
+            if self.has("direct-samples") and self.r.random() < 0.5:
+                self.direct_counts = True
+            else:
+                children += [integer("emitter_samples", 1), integer("bsdf_samples", 1)]
         if self.r.random() < 0.15:
             children.append(boolean("hide_emitters", True))
             notes.append("hide_emitters")
-            self.path_hides_emitters = kind == "path"
+            # Mitsuba's path renders the reference of ibpt and the prb family.
+            self.path_hides_emitters = kind == "path" or kind == "ibpt" or kind.startswith("prb")
             self.hides_emitters = True
-        self.parts.insert(0, f"{kind}({','.join(notes)})" if notes else kind)
-        self.integrator_kind, self.integrator_children = kind, children
-        return element("integrator", kind, children)
+        self.moment = self.has("moment") and kind in ("path", "direct") and self.r.random() < 0.1
+        self.integrator_kind, self.integrator_children, self.integrator_notes = kind, children, notes
+        self.parts.insert(0, self.integrator_text())
+        return self.integrator_element()
+
+    def integrator_text(self):
+        kind, notes = self.integrator_kind, self.integrator_notes
+        text = f"{kind}({','.join(notes)})" if notes else kind
+        return f"moment[{text}]" if self.moment else text
+
+    def integrator_element(self, kind=None, children=None):
+        """The scene's integrator (or `kind` with `children`), inside a `moment` where the scene's is."""
+        xml = element("integrator", kind or self.integrator_kind,
+                      self.integrator_children if children is None else children)
+        return element("integrator", "moment", [xml]) if self.moment else xml
+
+    def direct_sample_counts(self):
+        """Feature "direct-samples": direct's shading_samples, or emitter_samples and bsdf_samples (not
+        both 0); more than one emitter sample only where no light is a delta light (Mitsuba 3.9.1
+        weighs each sample of one 1, not 1/emitter_samples: the light comes out that many times)."""
+        most = 1 if self.delta_lights else 4
+        if most > 1 and self.r.random() < 0.3:
+            n = self.r.randint(1, most)
+            return [integer("shading_samples", n)], [f"shading_samples={n}"]
+        emitter_samples = self.r.randint(0, most)
+        bsdf_samples = self.r.randint(0 if emitter_samples else 1, 4)
+        return ([integer("emitter_samples", emitter_samples), integer("bsdf_samples", bsdf_samples)],
+                [f"emitter_samples={emitter_samples}", f"bsdf_samples={bsdf_samples}"])
 
     def reference_integrator(self):
         """The integrator of Mitsuba's reference, where it is not the scene's: caustic renders masks,
@@ -1100,14 +1523,21 @@ class SceneMaker:
         Mitsuba's `volpath` renders them and its `path`, `direct` and `ptracer` do not. So with any of
         them in the scene, `path` and `ptracer` are compared with `volpath` at the same max_depth,
         rr_depth and hide_emitters, and `direct` with `volpath` at max_depth 2 (its estimand, as in
-        tests/tests/mask.rs and thin_null.rs). None where the scene has no null interface."""
-        if not self.null_interfaces:
+        tests/tests/mask.rs and thin_null.rs). caustic's `ibpt` and the `prb` family (which Mitsuba's
+        scalar variants do not have) are compared with Mitsuba's `path` (a prb's absent max_depth: 6),
+        or `volpath` as above. Inside a `moment` where the scene's is. None where it is the scene's."""
+        kind, children = self.integrator_kind, self.integrator_children
+        if kind == "depth":
             return None
-        if self.integrator_kind == "direct":
-            children = [integer("max_depth", 2)] + ([boolean("hide_emitters", True)] if self.hides_emitters else [])
-        else:
-            children = self.integrator_children
-        return element("integrator", "volpath", children)
+        if kind.startswith("prb") and not any('name="max_depth"' in child for child in children):
+            children = [integer("max_depth", 6)] + children
+        if self.null_interfaces:
+            if kind == "direct":
+                children = [integer("max_depth", 2)] + ([boolean("hide_emitters", True)] if self.hides_emitters else [])
+            return self.integrator_element("volpath", children)
+        if kind == "ibpt" or kind.startswith("prb"):
+            return self.integrator_element("path", children)
+        return None
 
     def xml(self):
         """The scene's XML, and Mitsuba's (None where it is the same: see `reference_integrator`)."""
@@ -1116,7 +1546,18 @@ class SceneMaker:
         floor = self.floor()
         shapes = self.place_objects()
         emitters = self.lights()
-        rest = [sensor, floor] + self.definitions + shapes + emitters
+        if self.direct_counts:
+            counts, notes = self.direct_sample_counts()
+            self.integrator_children = counts + self.integrator_children
+            self.integrator_notes = notes + self.integrator_notes
+            self.parts[1] = self.integrator_text()  # after the sensor's
+            integrator = self.integrator_element()
+        if self.meter:  # an irradiancemeter that no object took: the floor's
+            floor = floor[:-len("</shape>")] + self.meter + "</shape>"
+            self.meter = None
+            at = next(i for i, part in enumerate(self.parts) if part.startswith("floor:"))
+            self.parts[at] = self.parts[at].replace("floor:", "floor(irradiancemeter):", 1)
+        rest = [part for part in [sensor, floor] + self.definitions + shapes + emitters if part]
 
         def scene(integrator):
             body = "\n    ".join([integrator] + rest)
@@ -1295,8 +1736,8 @@ def main():
         with open(xml_path, "w") as f:
             f.write(f"<!-- random-scenes.py seed {seed}: {description} -->\n{xml}")
         scene_files = [xml_path]
-        if reference_xml:  # Mitsuba renders the null interfaces' scene with volpath
-            description += " | ref=volpath"
+        if reference_xml:  # Mitsuba renders with volpath (null interfaces) or path (ibpt, prb)
+            description += " | ref=" + ("volpath" if '"volpath"' in reference_xml else "path")
             scene_files.append(stem + "-reference.xml")
             with open(scene_files[1], "w") as f:
                 f.write(f"<!-- random-scenes.py seed {seed}, Mitsuba's reference: {description} -->\n"
