@@ -1516,12 +1516,14 @@ class SceneMaker:
     def direct_sample_counts(self):
         """Feature "direct-samples": direct's shading_samples, or emitter_samples and bsdf_samples (not
         both 0); more than one emitter sample only where no light is a delta light (Mitsuba 3.9.1
-        weighs each sample of one 1, not 1/emitter_samples: the light comes out that many times)."""
+        weighs each sample of one 1, not 1/emitter_samples: the light comes out that many times), and
+        none only where none is (with no emitter sample a delta light renders black, while the
+        `volpath` reference of a scene with null interfaces lights it: seeds 326 and 374)."""
         most = 1 if self.delta_lights else 4
         if most > 1 and self.r.random() < 0.3:
             n = self.r.randint(1, most)
             return [integer("shading_samples", n)], [f"shading_samples={n}"]
-        emitter_samples = self.r.randint(0, most)
+        emitter_samples = self.r.randint(1 if self.delta_lights else 0, most)
         bsdf_samples = self.r.randint(0 if emitter_samples else 1, 4)
         return ([integer("emitter_samples", emitter_samples), integer("bsdf_samples", bsdf_samples)],
                 [f"emitter_samples={emitter_samples}", f"bsdf_samples={bsdf_samples}"])
