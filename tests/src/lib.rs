@@ -142,6 +142,15 @@ pub fn max_abs_difference(a: &Film, b: &Film) -> f32 {
         .fold(0.0f32, f32::max)
 }
 
+/// How many pixels of `a` differ from `b`'s in some channel by more than `relative · (1 + |a|)`.
+pub fn pixels_differing(a: &Film, b: &Film, relative: f32) -> usize {
+    a.rgb
+        .iter()
+        .zip(&b.rgb)
+        .filter(|(p, q)| (0..3).any(|c| (p[c] - q[c]).abs() > relative * (1.0 + p[c].abs())))
+        .count()
+}
+
 /// A file of `tests/data` (small scenes and the Mitsuba references their scripts write).
 pub fn test_data(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("data").join(name)

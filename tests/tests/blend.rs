@@ -238,12 +238,7 @@ fn specialization_keeps_blends() {
     // Within f32 rounding, as cross_backend's specialization test: the CPU backend sizes its passes by
     // time, so under a loaded machine the two renders may sum their samples in different groups
     // (bit-for-bit equality failed beside the other tests of this file, and passed alone).
-    let differ = a
-        .rgb
-        .iter()
-        .zip(&b.rgb)
-        .filter(|(p, q)| (0..3).any(|c| (p[c] - q[c]).abs() > 1e-5 * (1.0 + p[c].abs())))
-        .count();
+    let differ = pixels_differing(&a, &b, 1e-5);
     assert_eq!(differ, 0, "the full kernel renders {differ} pixels of the blends differently");
     assert!(a.rgb.iter().any(|p| p[0] > 0.0), "a black image");
 }

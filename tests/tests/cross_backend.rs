@@ -20,12 +20,7 @@ fn gpu_and_cpu_agree_on_the_cornell_box() {
         cpu.rgb.iter().zip(&gpu.rgb).flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs())).collect();
     let max = diffs.iter().cloned().fold(0.0f32, f32::max);
     let mean = diffs.iter().map(|&d| d as f64).sum::<f64>() / diffs.len() as f64;
-    let divergent = cpu
-        .rgb
-        .iter()
-        .zip(&gpu.rgb)
-        .filter(|(a, b)| (0..3).any(|c| (a[c] - b[c]).abs() > 1e-3 * (1.0 + a[c].abs())))
-        .count();
+    let divergent = pixels_differing(&cpu, &gpu, 1e-3);
     println!("same seed: max |cpu - gpu| = {max:.3e}, mean = {mean:.3e}, pixels differing by > 1e-3: {divergent} of {}", cpu.rgb.len());
     // Rounding differences can send a few paths different ways; nearly all pixels must be equal.
     assert!(mean < 1e-4, "mean difference {mean:.3e} is more than rounding");
@@ -70,12 +65,7 @@ fn gpu_and_cpu_agree_on_every_feature() {
             Some(caustic::scene::Crop { x: w / 2 - 24, y: h / 2 - 24, width: 48, height: 48 });
         let cpu = render_scene(&scene, BackendChoice::Cpu, 4, 3);
         let gpu = render_scene(&scene, BackendChoice::Gpu, 4, 3);
-        let divergent = cpu
-            .rgb
-            .iter()
-            .zip(&gpu.rgb)
-            .filter(|(a, b)| (0..3).any(|c| (a[c] - b[c]).abs() > 1e-3 * (1.0 + a[c].abs())))
-            .count();
+        let divergent = pixels_differing(&cpu, &gpu, 1e-3);
         let mean: f64 = cpu
             .rgb
             .iter()
@@ -116,12 +106,7 @@ fn specialization_changes_nothing_but_speed() {
         // checked against its unpruned one in `prune.rs`.
         let choice = BackendChoice::Cpu;
         let (a, b) = (render_buffers(&specialised, choice, 4, 5), render_buffers(&general, choice, 4, 5));
-        let differ = a
-            .rgb
-            .iter()
-            .zip(&b.rgb)
-            .filter(|(p, q)| (0..3).any(|c| (p[c] - q[c]).abs() > 1e-5 * (1.0 + p[c].abs())))
-            .count();
+        let differ = pixels_differing(&a, &b, 1e-5);
         println!("{file} {choice:?}: {differ} of {} pixels differ", a.rgb.len());
         // The CPU takes the same branches either way: bit for bit.
         assert_eq!(differ, 0, "{file} {choice:?}: {differ} pixels differ with the full kernel");

@@ -37,12 +37,7 @@ fn a_pruned_kernel_renders_the_specialised_image() {
     let entries = std::fs::read_dir(cache.join("caustic").join("pruned")).expect("the cache exists").count();
     std::fs::remove_dir_all(&cache).ok();
 
-    let differ = specialised
-        .rgb
-        .iter()
-        .zip(&pruned_image.rgb)
-        .filter(|(p, q)| (0..3).any(|c| (p[c] - q[c]).abs() > 1e-5 * (1.0 + p[c].abs())))
-        .count();
+    let differ = pixels_differing(&specialised, &pruned_image, 1e-5);
     println!("{differ} of {} pixels differ; {entries} cached module(s)", specialised.rgb.len());
     // As `cross_backend`'s specialization test: the driver compiles two pipelines and may contract
     // floating point differently, so a few paths may diverge; a wrong path would change most pixels.
