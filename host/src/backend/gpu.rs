@@ -7,6 +7,7 @@
 use super::accumulation::{Accumulation, Folding};
 use super::device::Backend;
 use super::path_loop::PathLoop;
+use super::spirv::{declares_spec_constant, set_workgroup_size};
 use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::{anyhow, bail, Context, Result};
@@ -18,7 +19,7 @@ use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 /// The kernel compiled by `shaders-build` (committed; CI checks it matches the source).
-static KERNEL_SPV: &[u8] = include_bytes!("../../shaders/caustic-kernel.spv");
+pub(crate) static KERNEL_SPV: &[u8] = include_bytes!("../../shaders/caustic-kernel.spv");
 /// Camera paths (and IBPT's camera half); light paths (ptracer, IBPT's light half).
 const CAMERA_ENTRY: &str = "entry::render";
 const LIGHT_ENTRY: &str = "entry::light";
@@ -114,7 +115,7 @@ impl GpuBackend {
         .context("cannot open the GPU device")?;
 
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let (words, built_in) = kernel_words()?;
+        let words = kernel_words()?;
         let integrator = buffers.params.integrator;
         let software = info.device_type == wgpu::DeviceType::Cpu;
         // The camera pipelines to build and time (`variant`): on a hardware GPU the path tracer's two
@@ -140,7 +141,7 @@ impl GpuBackend {
         let trial = resumed.unwrap_or_else(|| Trial::new(candidates.len()));
         // The light and resolve entry points take the first loop's module, in the kernel's own
         // workgroup size.
-        let loops = LoopModules::of(&words, built_in, buffers.features, &candidates);
+        let loops = LoopModules::of(&words, buffers.features, &candidates);
         // One explicit layout for both entry points (each uses a subset of the bindings).
         let entry = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
             binding,
@@ -533,10 +534,8 @@ impl PipelineFactory {
 pub(crate) struct LoopModules(Vec<(PathLoop, Vec<u32>, bool)>);
 
 impl LoopModules {
-    /// Each candidate loop's module, pruned on a thread of its own: a new scene's first render waits
-    /// for the slowest prune instead of their sum (spirv-opt is single-threaded, 25–30 s a module on
-    /// the H200's host; BENCHMARKS.md, "First render of a new scene").
-    pub(crate) fn of(words: &[u32], built_in: bool, features: u32, candidates: &[Variant]) -> Self {
+    /// Each candidate loop's module, pruned on a thread of its own.
+    pub(crate) fn of(words: &[u32], features: u32, candidates: &[Variant]) -> Self {
         let prune = super::prune::wanted();
         let mut wanted: Vec<PathLoop> = Vec::new();
         for c in candidates {
@@ -547,7 +546,7 @@ impl LoopModules {
         let loops = std::thread::scope(|threads| {
             let handles: Vec<_> = wanted
                 .iter()
-                .map(|&l| threads.spawn(move || scene_module(words, built_in, prune, features, l)))
+                .map(|&l| threads.spawn(move || scene_module(words, prune, features, l)))
                 .collect();
             let modules = handles.into_iter().map(|h| h.join().expect("pruning a loop's module panicked"));
             wanted.iter().zip(modules).map(|(&l, (module, open))| (l, module, open)).collect()
@@ -565,69 +564,31 @@ impl LoopModules {
     }
 }
 
-/// The kernel's SPIR-V words, and whether they are the built-in module. `CAUSTIC_KERNEL_SPV` runs
-/// another build of the kernel (driver investigations, A/B timings).
-pub(crate) fn kernel_words() -> Result<(Vec<u32>, bool)> {
+/// The kernel's SPIR-V words. `CAUSTIC_KERNEL_SPV` runs another build of the kernel (driver
+/// investigations, A/B timings).
+pub(crate) fn kernel_words() -> Result<Vec<u32>> {
     Ok(match std::env::var_os("CAUSTIC_KERNEL_SPV") {
         Some(path) => {
             let bytes = std::fs::read(&path)
                 .with_context(|| format!("cannot read CAUSTIC_KERNEL_SPV={}", path.to_string_lossy()))?;
-            (bytemuck::pod_collect_to_vec(&bytes), false)
+            bytemuck::pod_collect_to_vec(&bytes)
         }
-        None => (bytemuck::pod_collect_to_vec(KERNEL_SPV), true),
+        None => bytemuck::pod_collect_to_vec(KERNEL_SPV),
     })
 }
 
 /// The module a scene's pipelines are built from, for path loop `choice`: pruned to the scene's
-/// feature mask where `prune` and spirv-opt allow, else the kernel itself; and whether its
+/// feature mask where `prune` wants and can, else the kernel itself; and whether its
 /// specialization constants are still open (then the pipeline sets them).
-fn scene_module(
-    words: &[u32],
-    built_in: bool,
-    prune: bool,
-    features: u32,
-    choice: PathLoop,
-) -> (Vec<u32>, bool) {
+fn scene_module(words: &[u32], prune: bool, features: u32, choice: PathLoop) -> (Vec<u32>, bool) {
     let specialisable = declares_spec_constant(words, 0);
     if specialisable && prune {
-        if let Some(pruned) = super::prune::pruned(words, features, choice.spec_value(), built_in) {
+        if let Some(pruned) = super::prune::pruned(words, features, choice.spec_value()) {
             let open = declares_spec_constant(&pruned, 0);
             return (pruned, open);
         }
     }
     (words.to_vec(), specialisable)
-}
-
-/// Where each instruction of a SPIR-V module starts, with its opcode and word count: five header
-/// words, then instructions, each with its word count in the high half-word and its opcode in the
-/// low. A zero count (a broken module) ends the walk.
-pub(crate) fn instructions(words: &[u32]) -> impl Iterator<Item = (usize, u32, usize)> + '_ {
-    let mut at = 5;
-    std::iter::from_fn(move || {
-        let first = *words.get(at)?;
-        let count = (first >> 16) as usize;
-        if count == 0 {
-            return None;
-        }
-        let found = (at, first & 0xffff, count);
-        at += count;
-        Some(found)
-    })
-}
-
-/// Rewrites every entry point's `LocalSize` execution mode to `size` × 1.
-fn set_workgroup_size(words: &mut [u32], size: [u32; 2]) {
-    const OP_EXECUTION_MODE: u32 = 16;
-    const LOCAL_SIZE: u32 = 17;
-    let found: Vec<usize> = instructions(words)
-        .filter(|&(at, op, count)| {
-            op == OP_EXECUTION_MODE && count == 6 && words.get(at + 2) == Some(&LOCAL_SIZE)
-        })
-        .map(|(at, _, _)| at)
-        .collect();
-    for at in found {
-        words[at + 3..at + 6].copy_from_slice(&[size[0], size[1], 1]);
-    }
 }
 
 /// The camera, light and resolve entry points' names, for `kernel_stats`.
@@ -647,52 +608,8 @@ pub(crate) const BINDINGS: [u32; 10] = [
     binding::SPLAT,
 ];
 
-/// Whether a SPIR-V module decorates a specialization constant with `id` (`OpDecorate %c SpecId id`).
-pub(crate) fn declares_spec_constant(words: &[u32], id: u32) -> bool {
-    const OP_DECORATE: u32 = 71;
-    const DECORATION_SPEC_ID: u32 = 1;
-    instructions(words).any(|(at, op, _)| {
-        op == OP_DECORATE && words.get(at + 2) == Some(&DECORATION_SPEC_ID) && words.get(at + 3) == Some(&id)
-    })
-}
-
 /// `CAUSTIC_TRIAL_LOG` set: the trial's passes on standard error (each dispatch's candidate, samples
 /// per pixel and time), to see what a choice was made from.
 fn trial_log() -> bool {
     std::env::var_os("CAUSTIC_TRIAL_LOG").is_some()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    use caustic_kernel::layout::TILE;
-
-    #[test]
-    fn the_committed_kernel_declares_its_two_constants() {
-        let words: Vec<u32> = bytemuck::pod_collect_to_vec(KERNEL_SPV);
-        assert!(declares_spec_constant(&words, SPEC_FEATURES));
-        assert!(declares_spec_constant(&words, SPEC_REGENERATE));
-        assert!(!declares_spec_constant(&words, 2));
-        // A module without decorations (header only) and a truncated one declare nothing.
-        assert!(!declares_spec_constant(&words[..5], 0));
-        assert!(!declares_spec_constant(&[0x0723_0203, 0, 0, 0, 0, 0], 0));
-    }
-
-    #[test]
-    fn every_entry_point_gets_the_workgroup_size() {
-        let local_sizes = |words: &[u32]| -> Vec<[u32; 3]> {
-            instructions(words)
-                .filter(|&(at, op, count)| op == 16 && count == 6 && words[at + 2] == 17)
-                .map(|(at, _, _)| [words[at + 3], words[at + 4], words[at + 5]])
-                .collect()
-        };
-        let mut words: Vec<u32> = bytemuck::pod_collect_to_vec(KERNEL_SPV);
-        assert_eq!(local_sizes(&words), vec![[TILE, TILE, 1]; ENTRY_POINTS.len()]);
-        let before = words.clone();
-        set_workgroup_size(&mut words, [32, 16]);
-        assert_eq!(local_sizes(&words), vec![[32, 16, 1]; ENTRY_POINTS.len()]);
-        let changed = words.iter().zip(&before).filter(|(a, b)| a != b).count();
-        assert_eq!(changed, 2 * ENTRY_POINTS.len(), "the sizes alone change");
-    }
 }

@@ -283,7 +283,7 @@ pub struct PipelineReport {
 pub fn scene(features: u32, integrator: u32, with_statistics: bool) -> Result<Vec<PipelineReport>> {
     use super::gpu::{kernel_words, LoopModules, ENTRY_POINTS};
     use caustic_kernel::integrator::{splats, traces_camera_paths};
-    let (words, built_in) = kernel_words()?;
+    let words = kernel_words()?;
     let candidates = variant::candidates(integrator == INTEGRATOR_PATH, false)?;
     let mut wanted: Vec<(&'static str, Variant)> = Vec::new();
     if traces_camera_paths(integrator) {
@@ -294,7 +294,7 @@ pub fn scene(features: u32, integrator: u32, with_statistics: bool) -> Result<Ve
     }
     // Every loop's module first: pruning is what takes long, and a later failure should not waste it.
     let variants: Vec<Variant> = wanted.iter().map(|w| w.1).collect();
-    let modules = LoopModules::of(&words, built_in, features, &variants);
+    let modules = LoopModules::of(&words, features, &variants);
     // One device for every pipeline; without an adapter that reports statistics, why not (the
     // modules alone, for `--write-spirv`), unless they were asked for.
     let vulkan = match Vulkan::new() {
@@ -323,20 +323,21 @@ pub fn scene(features: u32, integrator: u32, with_statistics: bool) -> Result<Ve
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::backend::gpu::{declares_spec_constant, kernel_words};
+    use crate::backend::gpu::kernel_words;
+    use crate::backend::spirv::declares_spec_constant;
 
     /// What the driver gets: naga's module, for the one entry point, with the constants set. (The
     /// statistics themselves need an adapter that reports them, which CI's lavapipe does not.)
     #[test]
     fn the_driver_gets_one_entry_point_with_its_constants_set() {
-        let (words, _) = kernel_words().unwrap();
+        let words = kernel_words().unwrap();
         assert!(declares_spec_constant(&words, 0));
         let module = through_naga(&words, "entry::resolve", [0, 1]).unwrap();
         assert_eq!(module[0], 0x0723_0203);
         assert!(!declares_spec_constant(&module, 0) && !declares_spec_constant(&module, 1));
         const OP_ENTRY_POINT: u32 = 15;
         let entry_points =
-            crate::backend::gpu::instructions(&module).filter(|i| i.1 == OP_ENTRY_POINT).count();
+            crate::backend::spirv::instructions(&module).filter(|i| i.1 == OP_ENTRY_POINT).count();
         assert_eq!(entry_points, 1);
         assert!(through_naga(&words, "entry::nowhere", [0, 1]).is_err());
     }

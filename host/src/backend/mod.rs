@@ -16,6 +16,7 @@ pub mod pool;
 pub mod prune;
 pub mod runtime_dir;
 pub mod schedule;
+pub mod spirv;
 pub mod stand_in;
 pub mod variant;
 
