@@ -22,13 +22,28 @@ fn a_pruned_kernel_renders_the_specialised_image() {
     let pruned =
         caustic::backend::prune::pruned(&words, buffers.features, regenerate).expect("the kernel prunes");
     assert!(pruned.len() < words.len() / 10, "pruned {} words of {}", pruned.len(), words.len());
-    // Vulkan's own validator, where it is installed (CI installs it: .ci/run); naga, which wgpu
-    // reads modules with, checks every feature's module in `prune`'s unit tests.
+    // Vulkan's own validator, where it is installed (CI installs it: .ci/run), on this module and on
+    // every single feature's, none and all, under both loops; naga, which wgpu reads modules with,
+    // checks the same in `prune`'s unit tests.
     let file = std::env::temp_dir().join(format!("caustic-pruned-{}.spv", std::process::id()));
-    std::fs::write(&file, bytemuck::cast_slice(&pruned)).unwrap();
-    match std::process::Command::new("spirv-val").arg("--target-env").arg("vulkan1.2").arg(&file).output() {
-        Ok(out) => assert!(out.status.success(), "spirv-val: {}", String::from_utf8_lossy(&out.stderr)),
-        Err(_) => eprintln!("spirv-val is not installed: the module is not checked by it"),
+    let masks = (0..32).map(|bit| 1u32 << bit).chain([0, u32::MAX]);
+    let modules = masks.flat_map(|mask| [(mask, 0), (mask, 1)]).chain([(buffers.features, regenerate)]);
+    for (mask, path_loop) in modules {
+        let module = caustic::backend::prune::pruned(&words, mask, path_loop).expect("the kernel prunes");
+        std::fs::write(&file, bytemuck::cast_slice(&module)).unwrap();
+        let run =
+            std::process::Command::new("spirv-val").arg("--target-env").arg("vulkan1.2").arg(&file).output();
+        match run {
+            Ok(out) => assert!(
+                out.status.success(),
+                "mask {mask:#x}, loop {path_loop}: spirv-val: {}",
+                String::from_utf8_lossy(&out.stderr)
+            ),
+            Err(_) => {
+                eprintln!("spirv-val is not installed: the modules are not checked by it");
+                break;
+            }
+        }
     }
 
     std::env::set_var("CAUSTIC_PRUNE", "0");

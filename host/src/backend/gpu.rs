@@ -492,6 +492,7 @@ impl PipelineFactory {
     /// Entry point `entry` of path loop `path_loop`'s module in workgroups of `size`.
     fn build(&self, path_loop: PathLoop, size: [u32; 2], entry: &str) -> wgpu::ComputePipeline {
         let (words, specialisable) = self.loops.module(path_loop, size);
+        let (clock, length) = (Instant::now(), words.len());
         // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are
         // bounds-checked in the source, but for the BVH walk's, whose indices the host checks
         // when it builds the tree (`prepare::bvh::inside_buffers`); dropping naga's runtime checks is
@@ -514,7 +515,8 @@ impl PipelineFactory {
             (SPEC_REGENERATE.to_string(), path_loop.spec_value() as f64),
         ];
         let constants: &[(&str, f64)] = &spec_constants.each_ref().map(|(k, v)| (k.as_str(), *v));
-        self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        let read = clock.elapsed().as_secs_f64();
+        let pipeline = self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(entry),
             layout: Some(&self.layout),
             module: &module,
@@ -524,7 +526,17 @@ impl PipelineFactory {
                 ..Default::default()
             },
             cache: None,
-        })
+        });
+        if trial_log() {
+            let total = clock.elapsed().as_secs_f64();
+            eprintln!(
+                "build: {entry} {path_loop:?} {}x{}: module of {length} words read in {read:.2} s, pipeline in {:.2} s",
+                size[0],
+                size[1],
+                total - read
+            );
+        }
+        pipeline
     }
 }
 
@@ -546,7 +558,20 @@ impl LoopModules {
         let loops = std::thread::scope(|threads| {
             let handles: Vec<_> = wanted
                 .iter()
-                .map(|&l| threads.spawn(move || scene_module(words, prune, features, l)))
+                .map(|&l| {
+                    threads.spawn(move || {
+                        let clock = Instant::now();
+                        let module = scene_module(words, prune, features, l);
+                        if trial_log() {
+                            let seconds = clock.elapsed().as_secs_f64();
+                            eprintln!(
+                                "build: {l:?} loop's module, {} words, in {seconds:.2} s",
+                                module.0.len()
+                            );
+                        }
+                        module
+                    })
+                })
                 .collect();
             let modules = handles.into_iter().map(|h| h.join().expect("pruning a loop's module panicked"));
             wanted.iter().zip(modules).map(|(&l, (module, open))| (l, module, open)).collect()
@@ -609,7 +634,8 @@ pub(crate) const BINDINGS: [u32; 10] = [
 ];
 
 /// `CAUSTIC_TRIAL_LOG` set: the trial's passes on standard error (each dispatch's candidate, samples
-/// per pixel and time), to see what a choice was made from.
+/// per pixel and time), to see what a choice was made from, and the time each module and pipeline
+/// took to build.
 fn trial_log() -> bool {
     std::env::var_os("CAUSTIC_TRIAL_LOG").is_some()
 }

@@ -184,6 +184,8 @@ struct Block {
     first: usize,
     last: usize,
     merge: Option<usize>,
+    /// Where a selection header whose construct the analysis emptied branches instead (`analyse`).
+    collapse: Option<u32>,
 }
 
 /// What becomes of a block.
@@ -193,6 +195,35 @@ enum Fate {
     Unreachable,
     BranchTo(u32),
     Gone,
+}
+
+/// Global instructions the rewrite adds (undefs for phis, boolean constants for decided branches),
+/// with the ids it gives them from the module's bound up.
+struct NewGlobals {
+    words: Vec<u32>,
+    next_id: u32,
+    made: HashMap<(u32, u32, u32), u32>,
+}
+
+impl NewGlobals {
+    /// The id of `OpUndef` (`op::UNDEF`, `value` 0) or a boolean constant of type `ty`, made once.
+    fn get(&mut self, op: u32, ty: u32) -> u32 {
+        let next = &mut self.next_id;
+        let words = &mut self.words;
+        *self.made.entry((op, ty, 0)).or_insert_with(|| {
+            words.extend_from_slice(&[3 << 16 | op, ty, *next]);
+            *next += 1;
+            *next - 1
+        })
+    }
+
+    fn undef(&mut self, ty: u32) -> u32 {
+        self.get(op::UNDEF, ty)
+    }
+
+    fn boolean(&mut self, ty: u32, value: bool) -> u32 {
+        self.get(if value { op::CONSTANT_TRUE } else { op::CONSTANT_FALSE }, ty)
+    }
 }
 
 struct Module<'a> {
@@ -281,8 +312,7 @@ fn prune(words: &[u32], frozen: &[(u32, u32)]) -> Option<Vec<u32>> {
     // Functions: each one's blocks, analysed, then written.
     let mut bodies: Vec<u32> = Vec::new();
     let mut removed = vec![false; bound];
-    let mut undefs: Vec<(u32, u32)> = Vec::new();
-    let mut next_id = bound as u32;
+    let mut globals = NewGlobals { words: Vec::new(), next_id: bound as u32, made: HashMap::new() };
     let mut at = first_function;
     while at < m.insts.len() {
         if m.insts[at].op != op::FUNCTION {
@@ -290,15 +320,16 @@ fn prune(words: &[u32], frozen: &[(u32, u32)]) -> Option<Vec<u32>> {
         }
         let end = at + m.insts[at..].iter().position(|i| i.op == op::FUNCTION_END)?;
         let blocks = m.blocks(at + 1, end)?;
-        let fates = m.analyse(&blocks)?;
-        m.write(at, end, &blocks, &fates, &mut removed, &mut undefs, &mut next_id, &mut bodies)?;
+        let mut blocks = blocks;
+        let fates = m.analyse(&mut blocks)?;
+        m.write(at, end, &blocks, &fates, &mut removed, &mut globals, &mut bodies)?;
         at = end + 1;
     }
 
     // The module: header with the new bound, globals less debug and what names removed ids, the
-    // frozen constants, the undefs the phis need, then the bodies.
+    // frozen constants, the globals the rewrite made, then the bodies.
     let mut out = Vec::with_capacity(words.len() / 4);
-    out.extend_from_slice(&[words[0], words[1], words[2], next_id, words[4]]);
+    out.extend_from_slice(&[words[0], words[1], words[2], globals.next_id, words[4]]);
     for i in &m.insts[..first_function] {
         let w = &words[i.at..i.at + i.len];
         let targets_removed = matches!(i.op, OP_DECORATE | op::DECORATE_ID | op::DECORATE_STRING)
@@ -331,9 +362,7 @@ fn prune(words: &[u32], frozen: &[(u32, u32)]) -> Option<Vec<u32>> {
             }
         }
     }
-    for (ty, id) in undefs {
-        out.extend_from_slice(&[3 << 16 | op::UNDEF, ty, id]);
-    }
+    out.extend_from_slice(&globals.words);
     out.extend_from_slice(&bodies);
     Some(out)
 }
@@ -358,7 +387,7 @@ impl Module<'_> {
                     if current.is_some() || w.len() != 2 {
                         return None;
                     }
-                    current = Some(Block { label: w[1], first: i, last: i, merge: None });
+                    current = Some(Block { label: w[1], first: i, last: i, merge: None, collapse: None });
                     continue;
                 }
                 _ if current.is_none() => return None,
@@ -390,7 +419,7 @@ impl Module<'_> {
 
     /// Sparse conditional constant propagation over one function's blocks, to a fixed point; then
     /// what becomes of each block.
-    fn analyse(&mut self, blocks: &[Block]) -> Option<Vec<Fate>> {
+    fn analyse(&mut self, blocks: &mut [Block]) -> Option<Vec<Fate>> {
         let index: HashMap<u32, usize> = blocks.iter().enumerate().map(|(k, b)| (b.label, k)).collect();
         let mut runs = vec![false; blocks.len()];
         let mut edges: HashSet<(u32, u32)> = HashSet::new();
@@ -457,6 +486,36 @@ impl Module<'_> {
             }
         }
 
+        // Selections decided for an empty side: their merge block, or a block that only branches
+        // there. Their header then branches to it unconditionally, without the merge: no block is
+        // left in the construct that could break out to its merge.
+        for k in 0..blocks.len() {
+            let b = &blocks[k];
+            let Some(merge) = b.merge.filter(|&m| runs[k] && self.insts[m].op == op::SELECTION_MERGE) else {
+                continue;
+            };
+            let w = self.w(b.last);
+            let decided = self.insts[b.last].op == op::BRANCH_CONDITIONAL
+                && matches!(self.value.get(w[1] as usize), Some(Value::Known(_)));
+            let merge_block = self.w(merge)[1];
+            let taken = self.taken(b.last);
+            let empty = |t: u32| {
+                t == merge_block
+                    || index.get(&t).is_some_and(|&j| {
+                        let side = &blocks[j];
+                        side.merge.is_none()
+                            && (side.first + 1..side.last)
+                                .all(|i| matches!(self.insts[i].op, op::LINE | op::NO_LINE))
+                            && self.insts[side.last].op == op::BRANCH
+                            && self.w(side.last)[1] == merge_block
+                    })
+            };
+            if decided && taken.len() == 1 && empty(taken[0]) {
+                blocks[k].collapse = Some(taken[0]);
+            }
+        }
+        let blocks: &[Block] = blocks;
+
         // Fates: blocks that run are kept; of the others, those a kept block still names become
         // stubs (back edges of kept loops branch to their header), the rest go.
         let mut fates: Vec<Fate> = runs.iter().map(|&r| if r { Fate::Kept } else { Fate::Gone }).collect();
@@ -488,8 +547,8 @@ impl Module<'_> {
             if !runs[k] {
                 continue;
             }
-            let mut named = self.targets(b.last);
-            if let Some(merge) = b.merge {
+            let mut named = self.kept_targets(b);
+            if let Some(merge) = b.merge.filter(|_| b.collapse.is_none()) {
                 let w = self.w(merge);
                 named.push(*w.get(1)?);
                 if self.insts[merge].op == op::LOOP_MERGE {
@@ -501,6 +560,14 @@ impl Module<'_> {
             }
         }
         Some(fates)
+    }
+
+    /// Every block a kept block's terminator names once rewritten.
+    fn kept_targets(&self, b: &Block) -> Vec<u32> {
+        match b.collapse {
+            Some(side) => vec![side],
+            None => self.targets(b.last),
+        }
     }
 
     /// Every block a terminator names.
@@ -648,6 +715,63 @@ impl Module<'_> {
         folded.map_or(Value::Varying, |v| Value::Known(v & mask(out_width)))
     }
 
+    /// Which results of the kept blocks are used (by index of id), marking the others `removed`:
+    /// marked from every instruction with an effect (stores, atomics, calls, merges, terminators),
+    /// through every word of a used instruction that names a result of the function (a literal
+    /// that happens to equal one only keeps a dead value). A decided branch's condition and a
+    /// decided select's condition are not uses: the rewrite replaces them.
+    fn live(&self, blocks: &[Block], fates: &[Fate], removed: &mut [bool]) -> Vec<bool> {
+        let mut defined: HashMap<u32, usize> = HashMap::new();
+        let mut work: Vec<usize> = Vec::new();
+        for (b, _) in blocks.iter().zip(fates).filter(|(_, f)| **f == Fate::Kept) {
+            for i in b.first + 1..=b.last {
+                let op = self.insts[i].op;
+                if body_result(op) {
+                    defined.insert(self.w(i)[2], i);
+                }
+                let effect = matches!(op, 57 | 227 | 229..=242)
+                    || (body_no_result(op) && op != op::LINE && op != op::NO_LINE);
+                if effect {
+                    work.push(i);
+                }
+            }
+        }
+        let mut live = vec![false; removed.len()];
+        let decided = |id: u32| matches!(self.value.get(id as usize), Some(Value::Known(_)));
+        while let Some(i) = work.pop() {
+            let (op, w) = (self.insts[i].op, self.w(i));
+            let skip = match op {
+                op::BRANCH_CONDITIONAL if decided(w[1]) => 2,
+                op::SELECT if decided(w[3]) => 4,
+                _ if body_result(op) => 3,
+                _ => 1,
+            };
+            let picked = (op == op::SELECT && skip == 4).then(|| {
+                if self.value[w[3] as usize] == Value::Known(0) {
+                    w[5]
+                } else {
+                    w[4]
+                }
+            });
+            let uses: Vec<u32> = match picked {
+                Some(p) => vec![p],
+                None => w[skip.min(w.len())..].to_vec(),
+            };
+            for id in uses {
+                if let Some(&d) = defined.get(&id) {
+                    if !live[id as usize] {
+                        live[id as usize] = true;
+                        work.push(d);
+                    }
+                }
+            }
+        }
+        for (&id, _) in defined.iter().filter(|(&id, _)| !live[id as usize]) {
+            removed[id as usize] = true;
+        }
+        live
+    }
+
     /// Writes function `from..=end` (its `OpFunction` to its `OpFunctionEnd`) with the blocks' fates
     /// into `out`: records the ids it no longer defines in `removed`, and the undefs its phis need.
     #[allow(clippy::too_many_arguments)]
@@ -658,8 +782,7 @@ impl Module<'_> {
         blocks: &[Block],
         fates: &[Fate],
         removed: &mut [bool],
-        undefs: &mut Vec<(u32, u32)>,
-        next_id: &mut u32,
+        globals: &mut NewGlobals,
         out: &mut Vec<u32>,
     ) -> Option<()> {
         // Ids defined in blocks whose contents go (a stub keeps its label alone).
@@ -680,7 +803,7 @@ impl Module<'_> {
         let mut preds: HashMap<u32, Vec<u32>> = HashMap::new();
         for (b, fate) in blocks.iter().zip(fates) {
             let successors = match fate {
-                Fate::Kept => self.targets(b.last),
+                Fate::Kept => self.kept_targets(b),
                 Fate::BranchTo(header) => vec![*header],
                 _ => Vec::new(),
             };
@@ -691,13 +814,10 @@ impl Module<'_> {
                 }
             }
         }
-        let mut undef = |ty: u32, undefs: &mut Vec<(u32, u32)>| -> u32 {
-            if let Some(&(_, id)) = undefs.iter().find(|u| u.0 == ty) {
-                return id;
-            }
-            *next_id += 1;
-            undefs.push((ty, *next_id - 1));
-            *next_id - 1
+        let live = self.live(blocks, fates, removed);
+        let known = |id: u32| match self.value.get(id as usize) {
+            Some(Value::Known(v)) => Some(*v != 0),
+            _ => None,
         };
 
         for i in from..blocks[0].first {
@@ -717,13 +837,38 @@ impl Module<'_> {
                 Fate::Kept => {
                     let none = Vec::new();
                     let parents = preds.get(&b.label).unwrap_or(&none);
+                    let collapsed = b.collapse;
                     for i in b.first..=b.last {
                         let (op, w) = (self.insts[i].op, self.w(i));
                         if op == op::LINE || op == op::NO_LINE {
                             continue;
                         }
+                        if let Some(side) = collapsed.filter(|_| i == b.last || Some(i) == b.merge) {
+                            if i == b.last {
+                                out.extend_from_slice(&[2 << 16 | op::BRANCH, side]);
+                            }
+                            continue;
+                        }
+                        if body_result(op) && !live[w[2] as usize] {
+                            continue;
+                        }
+                        match (op, w.get(1).and_then(|&c| known(c)), w.get(3).and_then(|&c| known(c))) {
+                            // A decided branch: on a constant, its condition's computation dead.
+                            (op::BRANCH_CONDITIONAL, Some(c), _) => {
+                                let ty = self.type_of[w[1] as usize];
+                                out.extend_from_slice(w);
+                                let at = out.len() - w.len() + 1;
+                                out[at] = globals.boolean(ty, c);
+                            }
+                            // A decided select: a copy of the operand it picks.
+                            (op::SELECT, _, Some(c)) => {
+                                let picked = if c { w[4] } else { w[5] };
+                                out.extend_from_slice(&[4 << 16 | op::COPY_OBJECT, w[1], w[2], picked]);
+                            }
+                            (op::PHI, _, _) => {}
+                            _ => out.extend_from_slice(w),
+                        }
                         if op != op::PHI {
-                            out.extend_from_slice(w);
                             continue;
                         }
                         let start = out.len();
@@ -739,7 +884,7 @@ impl Module<'_> {
                                 continue;
                             }
                             let defined = value != 0 && !removed.get(value as usize).copied().unwrap_or(true);
-                            entries.push((if defined { value } else { undef(w[1], undefs) }, p));
+                            entries.push((if defined { value } else { globals.undef(w[1]) }, p));
                         }
                         for (value, p) in entries {
                             out.extend_from_slice(&[value, p]);
@@ -810,7 +955,8 @@ mod tests {
     }
 
     /// A compute module around `body` (ids 1-8 are taken: void, its function type, u32, bool, the
-    /// spec constant 0 (SpecId 0), the constants 1 and 0, the entry point).
+    /// spec constant 0 (SpecId 0), the constants 1 and 0, the entry point; 20 and 21: a workgroup
+    /// u32 variable and its pointer type, where a body stores what it computes).
     fn module(body: &[Vec<u32>]) -> Vec<u32> {
         let mut w = vec![MAGIC, 0x0001_0300, 0, 40, 0];
         w.extend(inst(17, &[1])); // OpCapability Shader
@@ -825,6 +971,8 @@ mod tests {
         w.extend(inst(op::SPEC_CONSTANT, &[3, 5, u32::MAX]));
         w.extend(inst(op::CONSTANT, &[3, 6, 1]));
         w.extend(inst(op::CONSTANT, &[3, 7, 0]));
+        w.extend(inst(32, &[20, 4, 3])); // OpTypePointer %20 Workgroup %3
+        w.extend(inst(59, &[20, 21, 4])); // OpVariable %20 %21 Workgroup
         w.extend(inst(op::FUNCTION, &[1, 8, 0, 2]));
         for i in body {
             w.extend_from_slice(i);
@@ -853,33 +1001,77 @@ mod tests {
         words[at + 3..at + len].to_vec()
     }
 
-    /// `if features & 1 != 0 { x = 1 + 1 }` and a phi of x or 0 after it.
-    fn selection() -> Vec<u32> {
-        module(&[
+    /// `x = if features & 1 != 0 { 1 + 1 } else { 0 }`, the else block `1 - 1` where `with_else`,
+    /// and x stored after it.
+    fn selection(with_else: bool) -> Vec<u32> {
+        selection_with(with_else, true)
+    }
+
+    /// As `selection`, the else block empty (a branch to the merge, as rust-gpu writes an `if`
+    /// without `else`) unless `else_code`.
+    fn selection_with(with_else: bool, else_code: bool) -> Vec<u32> {
+        let otherwise = if with_else { 16 } else { 13 };
+        let mut body = vec![
             inst(op::LABEL, &[9]),
             inst(op::BITWISE_AND, &[3, 10, 5, 6]),
             inst(op::I_NOT_EQUAL, &[4, 11, 10, 7]),
             inst(op::SELECTION_MERGE, &[13, 0]),
-            inst(op::BRANCH_CONDITIONAL, &[11, 12, 13]),
+            inst(op::BRANCH_CONDITIONAL, &[11, 12, otherwise]),
             inst(op::LABEL, &[12]),
             inst(op::I_ADD, &[3, 14, 6, 6]),
             inst(op::BRANCH, &[13]),
+        ];
+        if with_else {
+            body.push(inst(op::LABEL, &[16]));
+            body.extend(else_code.then(|| inst(op::I_SUB, &[3, 17, 6, 6])));
+            body.push(inst(op::BRANCH, &[13]));
+        }
+        let (value, parent) = match (with_else, else_code) {
+            (true, true) => (17, 16),
+            (true, false) => (7, 16),
+            _ => (7, 9),
+        };
+        body.extend([
             inst(op::LABEL, &[13]),
-            inst(op::PHI, &[3, 15, 14, 12, 7, 9]),
-            inst(253, &[]), // OpReturn
-        ])
+            inst(op::PHI, &[3, 15, 14, 12, value, parent]),
+            inst(62, &[21, 15]), // OpStore %21 %15
+            inst(253, &[]),      // OpReturn
+        ]);
+        module(&body)
     }
 
     #[test]
-    fn a_branch_the_mask_disables_leaves_a_stub() {
-        let off = pruned(&selection(), 0, 0).unwrap();
+    fn a_selection_the_mask_empties_goes() {
+        let off = pruned(&selection(false), 0, 0).unwrap();
         let blocks = blocks_of(&off);
-        assert_eq!(blocks[1], (12, vec![op::UNREACHABLE]), "the disabled side: a label and OpUnreachable");
+        assert_eq!(blocks, vec![(9, vec![op::BRANCH]), (13, vec![op::PHI, 62, 253])], "header to merge");
         assert_eq!(phi_of(&off), vec![7, 9], "the phi keeps the predecessor that remains");
         assert!(!declares_spec_constant(&off, 0));
-        let on = pruned(&selection(), 1, 0).unwrap();
+        let on = pruned(&selection(false), 1, 0).unwrap();
         assert_eq!(blocks_of(&on)[1], (12, vec![op::I_ADD, op::BRANCH]), "the enabled side stays whole");
         assert_eq!(phi_of(&on), vec![14, 12, 7, 9]);
+        // An empty else block: the header branches to it, and it to the merge.
+        let off = pruned(&selection_with(true, false), 0, 0).unwrap();
+        let expected = vec![(9, vec![op::BRANCH]), (16, vec![op::BRANCH]), (13, vec![op::PHI, 62, 253])];
+        assert_eq!(blocks_of(&off), expected);
+        assert_eq!(phi_of(&off), vec![7, 16]);
+    }
+
+    #[test]
+    fn a_side_the_mask_disables_leaves_a_stub() {
+        for (mask, dead, live, value) in [(0, 12, 16, 17), (1, 16, 12, 14)] {
+            let pruned = pruned(&selection(true), mask, 0).unwrap();
+            let blocks = blocks_of(&pruned);
+            let stub = blocks.iter().find(|b| b.0 == dead).unwrap();
+            assert_eq!(stub.1, vec![op::UNREACHABLE], "the disabled side: a label and OpUnreachable");
+            assert_eq!(phi_of(&pruned), vec![value, live], "the phi keeps the predecessor that remains");
+            // The header stays, its branch on a constant; what computed its condition is gone.
+            assert_eq!(blocks[0], (9, vec![op::SELECTION_MERGE, op::BRANCH_CONDITIONAL]));
+            let (at, _, _) = instructions(&pruned).find(|i| i.1 == op::BRANCH_CONDITIONAL).unwrap();
+            let kind = if mask == 0 { op::CONSTANT_FALSE } else { op::CONSTANT_TRUE };
+            let constant = instructions(&pruned).find(|i| i.1 == kind).expect("a boolean constant");
+            assert_eq!((pruned[constant.0 + 1], pruned[constant.0 + 2]), (4, pruned[at + 1]));
+        }
     }
 
     /// `loop { i = phi(0, i + 1); if features & 1 == 0 { break } }`: the continue block runs only
@@ -893,6 +1085,7 @@ mod tests {
             inst(op::LOOP_MERGE, &[19, 18, 0]),
             inst(op::BRANCH, &[17]),
             inst(op::LABEL, &[17]),
+            inst(62, &[21, 15]), // OpStore %21 %15
             inst(op::BITWISE_AND, &[3, 10, 5, 6]),
             inst(op::I_NOT_EQUAL, &[4, 11, 10, 7]),
             inst(op::BRANCH_CONDITIONAL, &[11, 18, 19]),
@@ -900,7 +1093,8 @@ mod tests {
             inst(op::I_ADD, &[3, 14, 15, 6]),
             inst(op::BRANCH, &[16]),
             inst(op::LABEL, &[19]),
-            inst(253, &[]), // OpReturn
+            inst(62, &[21, 15]), // OpStore %21 %15
+            inst(253, &[]),      // OpReturn
         ])
     }
 
@@ -922,8 +1116,8 @@ mod tests {
 
     #[test]
     fn only_modules_it_knows_are_pruned() {
-        assert!(pruned(&selection(), 0, 0).is_some());
-        let mut unknown = selection();
+        assert!(pruned(&selection(false), 0, 0).is_some());
+        let mut unknown = selection(false);
         // An instruction this does not know, in a body (opcode 9999, three words).
         let at = instructions(&unknown).find(|i| i.1 == op::I_ADD).unwrap().0;
         unknown.splice(at..at, inst(9999, &[3, 30]));
