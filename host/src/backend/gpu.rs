@@ -7,7 +7,7 @@
 use super::accumulation::{Accumulation, Folding};
 use super::device::Backend;
 use super::path_loop::PathLoop;
-use super::spirv::{declares_spec_constant, set_workgroup_size};
+use super::spirv::{declares_spec_constant, set_workgroup_size, KERNEL_SPV};
 use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::{anyhow, bail, Context, Result};
@@ -18,8 +18,6 @@ use caustic_kernel::layout::{
 use std::time::Instant;
 use wgpu::util::DeviceExt;
 
-/// The kernel compiled by `shaders-build` (committed; CI checks it matches the source).
-pub(crate) static KERNEL_SPV: &[u8] = include_bytes!("../../shaders/caustic-kernel.spv");
 /// Camera paths (and IBPT's camera half); light paths (ptracer, IBPT's light half).
 const CAMERA_ENTRY: &str = "entry::render";
 const LIGHT_ENTRY: &str = "entry::light";
