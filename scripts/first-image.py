@@ -7,7 +7,7 @@ For each scene: caustic `render SCENE --spp N -o out.exr` with the default backe
 machine with a GPU, a CPU stand-in renders while the GPU's pipelines are built; `backend::create_starting`)
 and, with --gpu-only, with `--backend gpu` too (the GPU alone, waiting for its build); Mitsuba 3
 (`--variant`, `cuda_ad_rgb` by default) in a fresh Python process that loads the scene, renders N spp
-and writes the EXR. "Cold" removes `~/.cache/caustic/{pruned,variants}` (pruned kernels, pipeline trial decisions),
+and writes the EXR. "Cold" removes `~/.cache/caustic/variants` (pipeline trial decisions; `pruned`, where an older build kept pruned kernels),
 `~/.cache/nvidia` and `~/.nv` (the NVIDIA driver's shader cache) before caustic's run and `~/.drjit`
 (Dr.Jit's kernel cache) before Mitsuba's; "warm" runs the same command again at once.
 

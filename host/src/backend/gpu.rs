@@ -39,8 +39,11 @@ pub struct GpuBackend {
     /// Every candidate, in the trial's order; `camera_pipelines` holds the first of them until the
     /// trial begins, then all.
     candidates: Vec<Variant>,
-    /// What builds the rest, until it has.
+    /// What builds the rest, until the trial begins (`begin_building`).
     factory: Option<PipelineFactory>,
+    /// The rest, building on a thread of their own once the trial begins: passes meanwhile run
+    /// the first candidate, unmeasured (`pass`).
+    building: Option<std::thread::JoinHandle<Vec<Result<wgpu::ComputePipeline, String>>>>,
     light_pipeline: Option<wgpu::ComputePipeline>,
     bind_group: wgpu::BindGroup,
     params_buffer: wgpu::Buffer,
@@ -251,6 +254,7 @@ impl GpuBackend {
             decision: decision_key.filter(|_| candidates.len() > 1).map(|key| (decisions, key)),
             kept: kept.is_some(),
             factory: (camera_pipelines.len() < candidates.len()).then_some(factory),
+            building: None,
             candidates,
             camera_pipelines,
             trial,
@@ -341,13 +345,14 @@ impl Backend for GpuBackend {
 
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
         if self.trial.running() && self.factory.is_some() {
-            let clock = Instant::now();
-            self.build_candidates()?;
-            if trial_log() {
-                eprintln!("trial: built the candidates in {:.2} s", clock.elapsed().as_secs_f64());
-            }
+            self.begin_building();
         }
-        let choice = self.trial.next();
+        if self.building.as_ref().is_some_and(|b| b.is_finished()) {
+            self.finish_building()?;
+        }
+        // (While the others build, the first candidate renders and the trial waits.)
+        let waiting = self.building.is_some();
+        let choice = if waiting { 0 } else { self.trial.next() };
         let mut chunk = *params;
         let end = chunk.sample_base + chunk.sample_count;
         let clock = Instant::now();
@@ -358,8 +363,10 @@ impl Backend for GpuBackend {
         }
         // (`dispatch` waits for the GPU: the clock measures the samples alone.)
         let elapsed = clock.elapsed();
-        let undecided = self.trial.decided().is_none();
-        self.trial.record(choice, params.sample_count, elapsed);
+        let undecided = self.trial.decided().is_none() && !waiting;
+        if !waiting {
+            self.trial.record(choice, params.sample_count, elapsed);
+        }
         if undecided && trial_log() {
             eprintln!(
                 "trial: #{choice} {} spp {:.1} ms -> {:?}",
@@ -394,32 +401,48 @@ impl Backend for GpuBackend {
 }
 
 impl GpuBackend {
-    /// Compiles the camera pipelines of the candidates not built yet (once the trial begins),
-    /// each on a thread of its own: the driver compiles them side by side where it can (wgpu's error
-    /// scopes are per thread, so each thread checks its own).
-    fn build_candidates(&mut self) -> Result<()> {
-        let Some(factory) = self.factory.take() else { return Ok(()) };
+    /// Starts compiling the camera pipelines of the candidates not built yet (once the trial
+    /// begins) on a thread, which builds each on a thread of its own: the driver compiles them side
+    /// by side where it can (wgpu's error scopes are per thread, so each thread checks its own), and
+    /// the render goes on meanwhile (a driver may take 20 s a pipeline: BENCHMARKS.md, "Pruning
+    /// without spirv-opt").
+    fn begin_building(&mut self) {
+        let Some(factory) = self.factory.take() else { return };
         let todo = self.candidates[self.camera_pipelines.len()..].to_vec();
-        let built: Vec<Result<wgpu::ComputePipeline, String>> = std::thread::scope(|threads| {
-            let factory = &factory;
-            let handles: Vec<_> = todo
-                .iter()
-                .map(|&v| {
-                    threads.spawn(move || {
-                        let scope = factory.device.push_error_scope(wgpu::ErrorFilter::Validation);
-                        let pipeline = factory.build(v.path_loop, v.workgroup, CAMERA_ENTRY);
-                        match pollster::block_on(scope.pop()) {
-                            Some(e) => Err(e.to_string()),
-                            None => Ok(pipeline),
-                        }
+        let clock = Instant::now();
+        self.building = Some(std::thread::spawn(move || {
+            let built = std::thread::scope(|threads| {
+                let factory = &factory;
+                let handles: Vec<_> = todo
+                    .iter()
+                    .map(|&v| {
+                        threads.spawn(move || {
+                            let scope = factory.device.push_error_scope(wgpu::ErrorFilter::Validation);
+                            let pipeline = factory.build(v.path_loop, v.workgroup, CAMERA_ENTRY);
+                            match pollster::block_on(scope.pop()) {
+                                Some(e) => Err(e.to_string()),
+                                None => Ok(pipeline),
+                            }
+                        })
                     })
-                })
-                .collect();
-            handles
-                .into_iter()
-                .map(|h| h.join().unwrap_or_else(|_| Err("a pipeline's build panicked".to_string())))
-                .collect()
-        });
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| h.join().unwrap_or_else(|_| Err("a pipeline's build panicked".to_string())))
+                    .collect()
+            });
+            if trial_log() {
+                eprintln!("trial: built the candidates in {:.2} s", clock.elapsed().as_secs_f64());
+            }
+            built
+        }));
+    }
+
+    /// Takes the candidates' pipelines once built (waiting for them, if they are not).
+    fn finish_building(&mut self) -> Result<()> {
+        let Some(building) = self.building.take() else { return Ok(()) };
+        let built = building.join().map_err(|_| anyhow!("the pipelines' build panicked"))?;
+        let todo = self.candidates[self.camera_pipelines.len()..].to_vec();
         for (v, pipeline) in todo.into_iter().zip(built) {
             match pipeline {
                 Ok(p) => self.camera_pipelines.push((v, p)),
@@ -474,6 +497,17 @@ impl GpuBackend {
         encoder.clear_buffer(&self.accum_buffer, 0, None);
         self.queue.submit([encoder.finish()]);
         self.wait()
+    }
+}
+
+impl Drop for GpuBackend {
+    /// A build of the trial's candidates still running ends first: a process that exited while
+    /// its build thread was inside the NVIDIA driver's compiler crashed there (as `pool`'s `Drop`
+    /// says).
+    fn drop(&mut self) {
+        if let Some(building) = self.building.take() {
+            let _ = building.join();
+        }
     }
 }
 

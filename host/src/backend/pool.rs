@@ -353,8 +353,7 @@ impl Drop for Pool {
     /// Ends every lane's thread. A lane still building its device is waited for (the render it was
     /// built for is complete and written by now): a process that exits with a thread inside the
     /// GPU driver's compiler crashed there on an H200 (2026-11-29), and the finished build leaves the
-    /// pruned kernel and the driver's pipeline cache on disk, so that the scene's next render starts
-    /// on the GPU.
+    /// driver's pipeline cache on disk, so that the scene's next render starts on the GPU.
     fn drop(&mut self) {
         if self.pending() {
             eprintln!(

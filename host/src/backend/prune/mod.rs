@@ -321,7 +321,9 @@ mod tests {
             inst(op::LABEL, &[13]),
             inst(op::PHI, &[3, 15, 14, 12, value, parent]),
             inst(62, &[21, 15]), // OpStore %21 %15
-            inst(253, &[]),      // OpReturn
+            // OpAtomicIAdd %3 %22 %21 (scope: device, semantics: none) %6, its result unused.
+            inst(234, &[3, 22, 21, 6, 7, 6]),
+            inst(253, &[]), // OpReturn
         ]);
         module(&body)
     }
@@ -330,7 +332,7 @@ mod tests {
     fn a_selection_the_mask_empties_goes() {
         let off = pruned(&selection(false), 0, 0).unwrap();
         let blocks = blocks_of(&off);
-        assert_eq!(blocks, vec![(9, vec![op::BRANCH]), (13, vec![op::PHI, 62, 253])], "header to merge");
+        assert_eq!(blocks, vec![(9, vec![op::BRANCH]), (13, vec![op::PHI, 62, 234, 253])], "header to merge");
         assert_eq!(phi_of(&off), vec![7, 9], "the phi keeps the predecessor that remains");
         assert!(!declares_spec_constant(&off, 0));
         let on = pruned(&selection(false), 1, 0).unwrap();
@@ -338,7 +340,7 @@ mod tests {
         assert_eq!(phi_of(&on), vec![14, 12, 7, 9]);
         // An empty else block: the header branches to it, and it to the merge.
         let off = pruned(&selection_with(true, false), 0, 0).unwrap();
-        let expected = vec![(9, vec![op::BRANCH]), (16, vec![op::BRANCH]), (13, vec![op::PHI, 62, 253])];
+        let expected = vec![(9, vec![op::BRANCH]), (16, vec![op::BRANCH]), (13, vec![op::PHI, 62, 234, 253])];
         assert_eq!(blocks_of(&off), expected);
         assert_eq!(phi_of(&off), vec![7, 16]);
     }

@@ -42,6 +42,7 @@ impl Module<'_> {
     /// decided select's condition are not uses: the rewrite replaces them.
     pub(super) fn live(&self, blocks: &[Block], fates: &[Fate], removed: &mut [bool]) -> Vec<bool> {
         let mut defined: HashMap<u32, usize> = HashMap::new();
+        let mut live = vec![false; removed.len()];
         let mut work: Vec<usize> = Vec::new();
         for (b, _) in blocks.iter().zip(fates).filter(|(_, f)| **f == Fate::Kept) {
             for i in b.first + 1..=b.last {
@@ -52,11 +53,14 @@ impl Module<'_> {
                 let effect = matches!(op, 57 | 227 | 229..=242)
                     || (body_no_result(op) && op != op::LINE && op != op::NO_LINE);
                 if effect {
+                    // (An atomic's or a call's result may go unused; the instruction stays.)
+                    if body_result(op) {
+                        live[self.w(i)[2] as usize] = true;
+                    }
                     work.push(i);
                 }
             }
         }
-        let mut live = vec![false; removed.len()];
         let decided = |id: u32| matches!(self.value.get(id as usize), Some(Value::Known(_)));
         while let Some(i) = work.pop() {
             let (op, w) = (self.insts[i].op, self.w(i));
