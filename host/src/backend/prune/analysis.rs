@@ -88,7 +88,7 @@ impl Module<'_> {
             let (ty, res) = match op {
                 op::FUNCTION_PARAMETER if current.is_none() => (w[1], w[2]),
                 op::LABEL => {
-                    if current.is_some() || w.len() != 2 {
+                    if current.is_some() || w.len() != 2 || w[1] as usize >= self.type_of.len() {
                         return None;
                     }
                     current = Some(Block { label: w[1], first: i, last: i, merge: None, collapse: None });

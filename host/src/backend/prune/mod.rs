@@ -137,8 +137,7 @@ fn prune(words: &[u32], frozen: &[(u32, u32)]) -> Option<Vec<u32>> {
             return None;
         }
         let end = at + m.insts[at..].iter().position(|i| i.op == op::FUNCTION_END)?;
-        let blocks = m.blocks(at + 1, end)?;
-        let mut blocks = blocks;
+        let mut blocks = m.blocks(at + 1, end)?;
         let fates = m.analyse(&mut blocks)?;
         m.write(at, end, &blocks, &fates, &mut removed, &mut globals, &mut bodies)?;
         at = end + 1;

@@ -86,6 +86,12 @@ pub(super) fn body_no_result(op: u32) -> bool {
         | SELECTION_MERGE | BRANCH..=UNREACHABLE | 256 | 257 | 4416)
 }
 
+/// Instructions whose effect is more than their result: calls, atomics, and every instruction
+/// without a result but lines (stores, copies, barriers, merges, terminators).
+pub(super) fn has_effect(op: u32) -> bool {
+    matches!(op, 57 | 227 | 229..=242) || (body_no_result(op) && op != LINE && op != NO_LINE)
+}
+
 pub(super) fn debug(op: u32) -> bool {
     matches!(
         op,

@@ -2,7 +2,7 @@
 //! branches on constants, emptied selections collapsed, stubs written, phis mended, and the global
 //! instructions that needs (`NewGlobals`).
 use super::analysis::{Block, Fate, Module, Value};
-use super::opcodes::{self as op, body_no_result, body_result};
+use super::opcodes::{self as op, body_result, has_effect};
 use std::collections::HashMap;
 
 /// Global instructions the rewrite adds (undefs for phis, boolean constants for decided branches),
@@ -10,15 +10,15 @@ use std::collections::HashMap;
 pub(super) struct NewGlobals {
     pub(super) words: Vec<u32>,
     pub(super) next_id: u32,
-    pub(super) made: HashMap<(u32, u32, u32), u32>,
+    pub(super) made: HashMap<(u32, u32), u32>,
 }
 
 impl NewGlobals {
-    /// The id of `OpUndef` (`op::UNDEF`, `value` 0) or a boolean constant of type `ty`, made once.
+    /// The id of the instruction `op` (`OpUndef` or a boolean constant) of type `ty`, made once.
     pub(super) fn get(&mut self, op: u32, ty: u32) -> u32 {
         let next = &mut self.next_id;
         let words = &mut self.words;
-        *self.made.entry((op, ty, 0)).or_insert_with(|| {
+        *self.made.entry((op, ty)).or_insert_with(|| {
             words.extend_from_slice(&[3 << 16 | op, ty, *next]);
             *next += 1;
             *next - 1
@@ -50,9 +50,7 @@ impl Module<'_> {
                 if body_result(op) {
                     defined.insert(self.w(i)[2], i);
                 }
-                let effect = matches!(op, 57 | 227 | 229..=242)
-                    || (body_no_result(op) && op != op::LINE && op != op::NO_LINE);
-                if effect {
+                if has_effect(op) {
                     // (An atomic's or a call's result may go unused; the instruction stays.)
                     if body_result(op) {
                         live[self.w(i)[2] as usize] = true;
