@@ -644,6 +644,7 @@ fn scene_module(words: &[u32], prune: bool, features: u32, choice: PathLoop) -> 
             let open = declares_spec_constant(&pruned, 0);
             return (pruned, open);
         }
+        eprintln!("note: caustic cannot prune this kernel module; it runs specialised, unpruned");
     }
     (words.to_vec(), specialisable)
 }
