@@ -1,7 +1,7 @@
 //! What can run: sparse conditional constant propagation over one function's blocks from the
 //! frozen constants (which blocks can run, which integer and boolean values are constants), and
 //! what becomes of each block (`Fate`), as `prune`'s module doc describes.
-use super::opcodes::{self as op, body_no_result, body_result};
+use super::opcodes::{self as op, body_no_result, body_result, well_formed};
 use std::collections::{HashMap, HashSet};
 
 /// What the analysis knows of a value: nothing yet (no path that defines it has been found to run),
@@ -83,7 +83,10 @@ impl Module<'_> {
         let mut blocks = Vec::new();
         let mut current: Option<Block> = None;
         for i in from..end {
-            let Inst { op, .. } = self.insts[i];
+            let Inst { op, len, .. } = self.insts[i];
+            if !well_formed(op, len) {
+                return None;
+            }
             let w = self.w(i);
             let (ty, res) = match op {
                 op::FUNCTION_PARAMETER if current.is_none() => (w[1], w[2]),
@@ -106,7 +109,7 @@ impl Module<'_> {
                     continue;
                 }
                 _ if body_no_result(op) => continue,
-                _ if body_result(op) && w.len() >= 3 => (w[1], w[2]),
+                _ if body_result(op) => (w[1], w[2]),
                 _ => return None,
             };
             let (ty, res) = (ty as usize, res as usize);
@@ -328,7 +331,8 @@ impl Module<'_> {
         let value = |k: usize| {
             w.get(k).and_then(|&id| self.value.get(id as usize)).copied().unwrap_or(Value::Varying)
         };
-        let width_of = |k: usize| match w.get(k).map(|&id| self.scalar[self.type_of[id as usize] as usize]) {
+        let scalar_of = |id: u32| self.type_of.get(id as usize).map(|&ty| self.scalar[ty as usize]);
+        let width_of = |k: usize| match w.get(k).and_then(|&id| scalar_of(id)) {
             Some(Scalar::Int { width, .. }) => width,
             Some(Scalar::Bool) => 1,
             _ => 0,

@@ -97,7 +97,7 @@ fn prune(words: &[u32], frozen: &[(u32, u32)]) -> Option<Vec<u32>> {
             op::TYPE_BOOL => m.scalar[id(1)?] = Scalar::Bool,
             op::TYPE_INT if w.len() == 4 => m.scalar[id(1)?] = Scalar::Int { width: w[2], signed: w[3] != 0 },
             op::CONSTANT_TRUE | op::CONSTANT_FALSE => {
-                m.type_of[id(2)?] = w[1];
+                m.type_of[id(2)?] = id(1)? as u32;
                 m.value[id(2)?] = Value::Known((i.op == op::CONSTANT_TRUE) as u64);
             }
             op::CONSTANT | op::CONSTANT_NULL | op::SPEC_CONSTANT if w.len() >= 3 => {
@@ -105,7 +105,8 @@ fn prune(words: &[u32], frozen: &[(u32, u32)]) -> Option<Vec<u32>> {
                 m.type_of[res] = ty as u32;
                 let literal = match (i.op, w.len()) {
                     (op::CONSTANT_NULL, _) => Some(0),
-                    (op::SPEC_CONSTANT, _) => frozen_value(res as u32).map(u64::from),
+                    (op::SPEC_CONSTANT, 4 | 5) => frozen_value(res as u32).map(u64::from),
+                    (op::SPEC_CONSTANT, _) => None,
                     (_, 4) => Some(w[3] as u64),
                     (_, 5) => Some(w[3] as u64 | (w[4] as u64) << 32),
                     _ => None,
@@ -399,6 +400,31 @@ mod tests {
         let on = pruned(&a_loop(), 1, 0).unwrap();
         assert_eq!(blocks_of(&on)[4], (19, vec![op::UNREACHABLE]));
         assert_eq!(phi_of(&on), vec![7, 9, 14, 18]);
+    }
+
+    /// Any word after the header set to an id past the bound, or any instruction one word short:
+    /// the pruner refuses the module or prunes it, and never panics.
+    #[test]
+    fn a_malformed_module_is_refused_not_a_panic() {
+        for module in [selection(true), a_loop()] {
+            let mut variants: Vec<Vec<u32>> = (5..module.len())
+                .map(|at| {
+                    let mut words = module.clone();
+                    words[at] = u32::MAX;
+                    words
+                })
+                .collect();
+            for (at, op, len) in instructions(&module).filter(|i| i.2 > 1) {
+                let mut words = module.clone();
+                words.remove(at + len - 1);
+                words[at] = ((len - 1) as u32) << 16 | op;
+                variants.push(words);
+            }
+            for words in variants {
+                let _ = pruned(&words, 0, 0);
+                let _ = pruned(&words, 1, 0);
+            }
+        }
     }
 
     #[test]

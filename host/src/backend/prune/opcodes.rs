@@ -86,6 +86,23 @@ pub(super) fn body_no_result(op: u32) -> bool {
         | SELECTION_MERGE | BRANCH..=UNREACHABLE | 256 | 257 | 4416)
 }
 
+/// Whether an instruction of a function body has the words the pruner reads in it: its result
+/// type and id, a merge's blocks, a branch's condition and targets, a switch's selector and
+/// default, a select's three operands, a phi's pairs. (Everything after checks ids against the
+/// bound as it reads them.)
+pub(super) fn well_formed(op: u32, len: usize) -> bool {
+    let least = match op {
+        FUNCTION_PARAMETER | SELECTION_MERGE | SWITCH => 3,
+        LOOP_MERGE | BRANCH_CONDITIONAL => 4,
+        BRANCH => 2,
+        SELECT => 6,
+        PHI => return len >= 3 && len % 2 == 1,
+        _ if body_result(op) => 3,
+        _ => 1,
+    };
+    len >= least
+}
+
 /// Instructions whose effect is more than their result: calls, atomics, and every instruction
 /// without a result but lines (stores, copies, barriers, merges, terminators).
 pub(super) fn has_effect(op: u32) -> bool {
