@@ -132,11 +132,19 @@ def caustic_render(binary, backend, film, path, spp, seed, out):
     return float(found.group(1)), line
 
 
+WARM_UPS = 8  # warm-up renders at most, while the pipeline trial stays undecided
+
+
 def caustic_side(mi, binary, backend, film, path, spp, seeds, reference, scratch, warm_spp):
     out = os.path.join(scratch, "caustic.exr")
     # Warm-up: the GPU backend prunes and compiles its kernel for the scene and times its candidate
-    # pipelines, then keeps its choice (host/src/backend/variant.rs): the timed renders use it.
-    caustic_render(binary, backend, film, path, warm_spp, 10_000, out)
+    # pipelines, then keeps its choice (host/src/backend/variant.rs): the timed renders use it. A
+    # render too short for the trial keeps its measurements and the next resumes them: warm up again
+    # until it has decided (a cheap scene's timed renders otherwise ran the slower candidates too).
+    for _ in range(WARM_UPS):
+        _, line = caustic_render(binary, backend, film, path, warm_spp, 10_000, out)
+        if "undecided" not in line:
+            break
     results, line = [], ""
     for seed in seeds:
         seconds, line = caustic_render(binary, backend, film, path, spp, seed, out)
