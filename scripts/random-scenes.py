@@ -77,7 +77,7 @@ Mitsuba dithers where it rounds) and `accel`; `directionalarea` lamps (only a li
 their light: the key light under ptracer, an extra one, black, elsewhere; not under ibpt, which
 refuses them); the projector's `focal_length`; cameras' `near_clip` and `far_clip` (no far clip
 under ptracer: Mitsuba 3.9.1's light tracer renders an environment behind it black, its path tracer
-does not) and a crop window; a `radiancemeter` or an `irradiancemeter` (in the floor or an object; a 1x1 film, box
+does not; nor a near clip cutting an object: its light tracer's connections still stop there) and a crop window; a `radiancemeter` or an `irradiancemeter` (in the floor or an object; a 1x1 film, box
 filter; not under light tracing, which caustic refuses for them); `direct`'s `shading_samples` or
 `emitter_samples`/`bsdf_samples` (more than one emitter sample only without delta lights: Mitsuba
 3.9.1's `direct` gives a delta light's samples weight 1 each, not 1/emitter_samples); caustic's
@@ -154,6 +154,7 @@ Run with a Python that has mitsuba==3.9.1 and numpy, from the repository root af
     python scripts/random-scenes.py --seeds 0-99 --no-extended       # the original generator
     python scripts/random-scenes.py --seeds 0-59 --without ptracer,envmap
     python scripts/random-scenes.py --seeds 0-59 --without mask,null,thindielectric  # path as is
+    python scripts/random-scenes.py --seeds 0-99 --backend gpu      # the SPIR-V kernel (lavapipe here)
 To look at a failure again by hand, in --out:
     caustic render seed-0007.xml --backend cpu --spp 256 \\
         --strict --variance -o c.exr
@@ -1109,6 +1110,13 @@ class SceneMaker:
             children = shape.geometry(c)
             if emissive_left and kind in ("sphere", "cube", "cylinder", "mesh"):
                 emissive_left = 0
+                if kind == "sphere" and self.sphere_turned and self.light_tracing:
+                    # Mitsuba 3.9.1's sphere samples an emitting point turned by its to_world but
+                    # gives it the unturned normal (sphere.cpp, sample_position: `ps.n = local`), so
+                    # its ptracer, which starts light paths there, mis-lights a turned emitting sphere
+                    # (seed 430's alone under the camera: mean 0.00073 against its path's 0.0394;
+                    # caustic's ptracer agrees with the latter). Unturned, the sphere is the same.
+                    children = [point("center", c), flt("radius", bound)]
                 null = self.has("null") and not self.light_tracing and self.r.random() < 0.3
                 if null:
                     self.null_interfaces = True
@@ -1429,8 +1437,13 @@ class SceneMaker:
                 # The near plane sometimes cuts into the objects; the far plane sometimes cuts off the
                 # floor. No far plane under ptracer: Mitsuba 3.9.1's light tracer connects an
                 # environment to the camera from a point the far plane cuts off (a constant sky behind
-                # a far_clip of 4 rendered black there, white in its path tracer).
-                near = self.uniform(0.01, distance - 1.0)
+                # a far_clip of 4 rendered black there, white in its path tracer). Nor a near plane
+                # that cuts an object under ptracer: Mitsuba 3.9.1's light tracer tests a connection's
+                # whole segment to the lens, so what the plane cuts off still hides what lies behind
+                # it, where camera rays (its path tracer's, every caustic integrator's) see past it
+                # (seed 404's clipped cylinder under ibpt, against `path`). The camera stands 4 or
+                # more from the origin and no object reaches 2.8 from it.
+                near = self.uniform(0.01, min(1.0, distance - 1.0) if self.light_tracing else distance - 1.0)
                 children.append(flt("near_clip", near))
                 lens += f",near={num(near)}"
                 if not self.light_tracing and self.r.random() < 0.5:
@@ -1518,13 +1531,18 @@ class SceneMaker:
         both 0); more than one emitter sample only where no light is a delta light (Mitsuba 3.9.1
         weighs each sample of one 1, not 1/emitter_samples: the light comes out that many times), and
         none only where none is (with no emitter sample a delta light renders black, while the
-        `volpath` reference of a scene with null interfaces lights it: seeds 326 and 374)."""
+        `volpath` reference of a scene with null interfaces lights it: seeds 326 and 374); at least
+        one BSDF sample under that reference."""
         most = 1 if self.delta_lights else 4
         if most > 1 and self.r.random() < 0.3:
             n = self.r.randint(1, most)
             return [integer("shading_samples", n)], [f"shading_samples={n}"]
         emitter_samples = self.r.randint(1 if self.delta_lights else 0, most)
-        bsdf_samples = self.r.randint(0 if emitter_samples else 1, 4)
+        # No BSDF sample only where Mitsuba's `direct` is the reference: with none, light reflected
+        # by a Dirac BSDF (a thin pane's or a conductor's) does not reach the camera, which the
+        # `volpath` reference of a scene with null interfaces renders (seed 427: 98.1% of pixels
+        # passing with none, all with one).
+        bsdf_samples = self.r.randint(0 if emitter_samples and not self.null_interfaces else 1, 4)
         return ([integer("emitter_samples", emitter_samples), integer("bsdf_samples", bsdf_samples)],
                 [f"emitter_samples={emitter_samples}", f"bsdf_samples={bsdf_samples}"])
 
@@ -1620,8 +1638,11 @@ def render_mitsuba(xml_path, spp, batches, first_seed):
     return images.mean(axis=0), variance
 
 
+BACKEND = ["cpu"]  # caustic's backend (--backend)
+
+
 def render_caustic(binary, xml_path, exr_path, spp, seed, env):
-    command = [binary, "render", xml_path, "--backend", "cpu", "--spp", str(spp), "--seed", str(seed),
+    command = [binary, "render", xml_path, "--backend", BACKEND[0], "--spp", str(spp), "--seed", str(seed),
                "--strict", "--variance", "-q", "-o", exr_path]
     out = subprocess.run(command, capture_output=True, text=True, env=env)
     if out.returncode != 0:
@@ -1713,6 +1734,8 @@ def main():
     ap.add_argument("--recheck", type=int, default=4,
                     help="render a failing scene again at this multiple of --spp (0: don't)")
     ap.add_argument("--threads", type=int, default=2, help="threads for each renderer")
+    ap.add_argument("--backend", default="cpu", choices=["cpu", "gpu"],
+                    help="caustic's backend (gpu: the kernel's SPIR-V, on lavapipe where no GPU is)")
     ap.add_argument("--extended", action=argparse.BooleanOptionalAction, default=True,
                     help="add the extended kinds of scene element (--no-extended: the original generator, "
                          "whose seeds make the scenes they made before)")
@@ -1730,10 +1753,11 @@ def main():
     binary = os.path.abspath(args.caustic)
     os.makedirs(args.out, exist_ok=True)
     RENDER_THREADS[0] = args.threads
+    BACKEND[0] = args.backend
     dr.set_thread_count(max(2, args.threads))  # 1 only while rendering: see render_mitsuba
     env = dict(os.environ, RAYON_NUM_THREADS=str(args.threads))
     reference_spp = args.spp * args.ref_factor
-    print(f"caustic {args.spp} spp (cpu) against Mitsuba {mi.__version__} scalar_rgb {reference_spp} spp; "
+    print(f"caustic {args.spp} spp ({args.backend}) against Mitsuba {mi.__version__} scalar_rgb {reference_spp} spp; "
           f"pass: fraction >= {MIN_PASS_FRACTION} and |z| < {MAX_LUMINANCE_Z}", flush=True)
     print("generator: " + ("original (--no-extended)" if not features else "extended" +
           (f" without {', '.join(sorted(without))}" if without else "")), flush=True)

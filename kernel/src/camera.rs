@@ -53,6 +53,10 @@ pub struct CameraConnection {
     /// Unit direction from the point towards the camera.
     pub dir: Vec3,
     pub dist: f32,
+    /// How much of the segment, at the camera's end, lies closer than the near clip plane: camera
+    /// rays start at that plane, so whatever is there hides nothing from them, and a connection's
+    /// shadow ray stops there too (0 without a near clip).
+    pub clipped: f32,
     /// `We·cos θc / d²`: what the connection contributes per unit of `f·cos` arriving at the camera.
     pub importance: f32,
     /// The point of the camera the connection reaches (the pinhole, or a point of the aperture).
@@ -152,7 +156,10 @@ impl Camera {
         let area = 4.0 * self.tan_half_x * self.tan_half_y;
         let importance = 1.0 / (area * cos_theta * cos_theta * cos_theta * dist2);
         let point = self.to_world_point(aperture);
-        Some(CameraConnection { film, dir: (point - p) / dist, dist, importance, point })
+        // Camera rays start where they cross the plane z = near_clip (`generate_ray`): that part of
+        // the segment, a share near_clip / v.z of it, is the camera's own.
+        let clipped = dist * (self.near_clip / v.z);
+        Some(CameraConnection { film, dir: (point - p) / dist, dist, clipped, importance, point })
     }
 
     /// The aperture point (local x, y) of a camera ray starting at world point `origin`.

@@ -123,7 +123,11 @@ fn splat_to_camera<W: AtomicWords>(
     }
     let d = c.point - origin;
     let dist = d.length();
-    let shadow = Ray { origin, dir: d / dist, t_min: 0.0, t_max: dist * (1.0 - SHADOW_EPSILON) };
+    // Up to the near clip plane, as the camera ray that would see the point runs (a surface between
+    // the plane and the lens hides nothing: Mitsuba's `path` sees past it, and its `ptracer`, which
+    // tests the whole segment, does not).
+    let reach = (dist - c.clipped) * (1.0 - SHADOW_EPSILON);
+    let shadow = Ray { origin, dir: d / dist, t_min: 0.0, t_max: reach };
     let transmittance = to_camera(scene, params, accel, &shadow, skip);
     if max_component(transmittance) <= 0.0 {
         return;
