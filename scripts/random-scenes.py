@@ -1734,6 +1734,11 @@ def main():
     ap.add_argument("--recheck", type=int, default=4,
                     help="render a failing scene again at this multiple of --spp (0: don't)")
     ap.add_argument("--threads", type=int, default=2, help="threads for each renderer")
+    ap.add_argument("--variant", default="scalar_rgb",
+                    help="Mitsuba's variant for the references (llvm_ad_rgb evaluates the filter exactly, "
+                         "as caustic does; the scalar variants read it from a 31-bin table, which a "
+                         "sharp highlight under a wide gaussian shows at 1024 spp: seed 296; it needs "
+                         "DRJIT_LIBLLVM_PATH where Debian keeps libLLVM)")
     ap.add_argument("--backend", default="cpu", choices=["cpu", "gpu"],
                     help="caustic's backend (gpu: the kernel's SPIR-V, on lavapipe where no GPU is)")
     ap.add_argument("--extended", action=argparse.BooleanOptionalAction, default=True,
@@ -1753,11 +1758,12 @@ def main():
     binary = os.path.abspath(args.caustic)
     os.makedirs(args.out, exist_ok=True)
     RENDER_THREADS[0] = args.threads
+    mi.set_variant(args.variant)
     BACKEND[0] = args.backend
     dr.set_thread_count(max(2, args.threads))  # 1 only while rendering: see render_mitsuba
     env = dict(os.environ, RAYON_NUM_THREADS=str(args.threads))
     reference_spp = args.spp * args.ref_factor
-    print(f"caustic {args.spp} spp ({args.backend}) against Mitsuba {mi.__version__} scalar_rgb {reference_spp} spp; "
+    print(f"caustic {args.spp} spp ({args.backend}) against Mitsuba {mi.__version__} {args.variant} {reference_spp} spp; "
           f"pass: fraction >= {MIN_PASS_FRACTION} and |z| < {MAX_LUMINANCE_Z}", flush=True)
     print("generator: " + ("original (--no-extended)" if not features else "extended" +
           (f" without {', '.join(sorted(without))}" if without else "")), flush=True)

@@ -10,8 +10,9 @@
 //! sample goes to its own pixel alone. Measured on the Cornell box with the default gaussian filter,
 //! its MSE at equal samples was 7x the splatting film's (BENCHMARKS.md, "The film").
 //! In expectation this is the image Mitsuba's `hdrfilm` develops (sum of w·L over sum of w),
-//! including at the border, where Mitsuba only draws samples inside the image: the filter is
-//! truncated to the image there. The filter comes as a tabulated CDF over `[-radius, radius]` so
+//! including at the border, where Mitsuba only draws samples inside the rendered window (the image,
+//! or its crop window): the filter is truncated to that window there, as the splatting film's
+//! samples are. The filter comes as a tabulated CDF over `[-radius, radius]` so
 //! that every filter shares one code path.
 //!
 //! Filters with negative lobes (`mitchell`, `lanczos`) are sampled in proportion to |w|, and each
@@ -133,8 +134,13 @@ pub fn sample_position(
     // two branches, `integrator::camera_sample`.)
     let (mut dx, mut dy, mut weight) = (u.x - 0.5, u.y - 0.5, 1.0);
     if params.film_reach == 0 {
-        let (x_lo, x_hi) = ((-cx).max(-r), (full_w - cx).min(r));
-        let (y_lo, y_hi) = ((-cy).max(-r), (full_h - cy).min(r));
+        // The filter truncated to the rendered window, where Mitsuba (and the splatting film) draws
+        // samples: at a crop window's edge as at the image's (a crop's edge pixels are not those of
+        // the whole image; random scene 31's depth image, its crop's last row 0.7% apart).
+        let (x0, x1) = window(params.crop_x, params.width);
+        let (y0, y1) = window(params.crop_y, params.height);
+        let (x_lo, x_hi) = ((x0 - cx).max(-r), (x1 - cx).min(r));
+        let (y_lo, y_hi) = ((y0 - cy).max(-r), (y1 - cy).min(r));
         dx = sample_filter_1d(tables, params, u.x, x_lo, x_hi);
         dy = sample_filter_1d(tables, params, u.y, y_lo, y_hi);
         if params.filter_signed != 0 {
@@ -159,41 +165,53 @@ fn filter_density(tables: &[f32], params: &FrameParams, base: u32, x: f32) -> f3
     (tables[(base + i) as usize] - prev) * bins as f32 / (2.0 * r)
 }
 
-/// The filter's mass inside the image along one axis for a pixel centred at `c` in an image `full`
-/// pixels wide: what `sample_position` renormalises the truncated filter by (`base`: the CDF of |w|),
-/// or the signed filter's (`base`: `signed_table`).
-fn axis_mass(tables: &[f32], params: &FrameParams, base: u32, c: f32, full: f32) -> f32 {
+/// The rendered window along one axis, `[start, start + size)` in pixels of the full image.
+#[inline]
+fn window(start: u32, size: u32) -> (f32, f32) {
+    (start as f32, (start + size) as f32)
+}
+
+/// The filter's mass inside the rendered window `[lo, hi)` along one axis for a pixel centred at
+/// `c`: what `sample_position` renormalises the truncated filter by (`base`: the CDF of |w|), or the
+/// signed filter's (`base`: `signed_table`).
+fn axis_mass(tables: &[f32], params: &FrameParams, base: u32, c: f32, (lo, hi): (f32, f32)) -> f32 {
     let r = params.filter_radius;
-    running_sum_at(tables, params, base, (full - c).min(r))
-        - running_sum_at(tables, params, base, (-c).max(-r))
+    running_sum_at(tables, params, base, (hi - c).min(r))
+        - running_sum_at(tables, params, base, (lo - c).max(-r))
 }
 
 /// The density (per unit of pixel area) with which camera samples of pixel (`px`, `py`) of the full
 /// image land at film position `pos` (in pixels of the full image): the reconstruction filter's |w|
-/// centred on the pixel, truncated to the image and renormalised, exactly as `sample_position` draws
-/// it. IBPT's MIS compares the camera and light-tracing strategies through it.
+/// centred on the pixel, truncated to the rendered window and renormalised, exactly as
+/// `sample_position` draws it. IBPT's MIS compares the camera and light-tracing strategies through it.
 pub fn pixel_density(tables: &[f32], params: &FrameParams, pos: Vec2, px: u32, py: u32) -> f32 {
     filter_at(tables, params, params.filter_cdf_offset, pos, px, py)
 }
 
 /// What a light-tracing connection landing at `pos` (pixels of the full image) contributes to pixel
-/// (`px`, `py`) per unit of its value: the filter w centred on the pixel, truncated to the image and
-/// divided by its sum there, so that splats and camera samples (`sample_position`) estimate the same
-/// filtered pixel. Negative on a negative lobe; `pixel_density` where the filter has none.
+/// (`px`, `py`) per unit of its value: the filter w centred on the pixel, truncated to the rendered
+/// window and divided by its sum there, so that splats and camera samples (`sample_position`)
+/// estimate the same filtered pixel. Negative on a negative lobe; `pixel_density` where the filter has none.
 pub fn pixel_weight(tables: &[f32], params: &FrameParams, pos: Vec2, px: u32, py: u32) -> f32 {
     filter_at(tables, params, signed_table(params), pos, px, py)
 }
 
-/// The filter of table `base` centred on pixel (`px`, `py`) at `pos`, over its truncated sum.
+/// The filter of table `base` centred on pixel (`px`, `py`) at `pos`, over its truncated sum: zero
+/// outside the rendered window, where no camera sample lands (a light path's connection landing
+/// there reaches no pixel, or a crop's edge pixels would gain what its camera samples cannot).
 fn filter_at(tables: &[f32], params: &FrameParams, base: u32, pos: Vec2, px: u32, py: u32) -> f32 {
+    let (x0, x1) = window(params.crop_x, params.width);
+    let (y0, y1) = window(params.crop_y, params.height);
+    if !(pos.x >= x0 && pos.x < x1 && pos.y >= y0 && pos.y < y1) {
+        return 0.0;
+    }
     let (cx, cy) = (px as f32 + 0.5, py as f32 + 0.5);
     let fx = filter_density(tables, params, base, pos.x - cx);
     let fy = filter_density(tables, params, base, pos.y - cy);
     if fx == 0.0 || fy == 0.0 {
         return 0.0;
     }
-    let mass = axis_mass(tables, params, base, cx, params.full_width as f32)
-        * axis_mass(tables, params, base, cy, params.full_height as f32);
+    let mass = axis_mass(tables, params, base, cx, (x0, x1)) * axis_mass(tables, params, base, cy, (y0, y1));
     if mass > 0.0 {
         fx * fy / mass
     } else {

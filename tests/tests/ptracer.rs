@@ -431,6 +431,19 @@ fn ptracer_and_ibpt_see_past_the_near_clip_plane_like_path() {
 </scene>"#,
             )
     };
+    // The GPU's connections stop there too: same seed, the same splats as the CPU's.
+    let scene = load_xml(&clipped(corner("ptracer", EMITTERS[0].1, 12)), "clip-gpu");
+    let (cpu, gpu) =
+        (render_scene(&scene, BackendChoice::Cpu, 4, 5), render_scene(&scene, BackendChoice::Gpu, 4, 5));
+    let max_diff = max_abs_difference(&cpu, &gpu);
+    println!(
+        "near clip, ptracer: GPU vs CPU: max |difference| {max_diff:e}, CPU mean {:.5}",
+        image_mean(&cpu)
+    );
+    assert!(
+        image_mean(&cpu) > 1e-2 && max_diff < 1e-3,
+        "near clip: GPU and CPU light tracing differ by {max_diff}"
+    );
     let path = light_tracing_agrees_with_path("near clip", clipped, 1024, 71, [72, 73]);
     assert!(image_mean(&path) > 1e-2, "path tracing does not see past the clipped wall");
 }
