@@ -324,14 +324,16 @@ impl Module<'_> {
     /// What instruction `w` (opcode `op`, with a result type and id) computes from what is known of
     /// its operands.
     pub(super) fn fold(&self, op: u32, w: &[u32]) -> Value {
-        let result = self.scalar[w[1] as usize];
+        // (Ids are below the bound by `blocks`' and the globals' checks; `get` keeps that local.)
+        let result = self.scalar.get(w[1] as usize).copied().unwrap_or(Scalar::Other);
         if result == Scalar::Other {
             return Value::Varying;
         }
         let value = |k: usize| {
             w.get(k).and_then(|&id| self.value.get(id as usize)).copied().unwrap_or(Value::Varying)
         };
-        let scalar_of = |id: u32| self.type_of.get(id as usize).map(|&ty| self.scalar[ty as usize]);
+        let scalar_of =
+            |id: u32| self.type_of.get(id as usize).and_then(|&ty| self.scalar.get(ty as usize)).copied();
         let width_of = |k: usize| match w.get(k).and_then(|&id| scalar_of(id)) {
             Some(Scalar::Int { width, .. }) => width,
             Some(Scalar::Bool) => 1,
