@@ -132,6 +132,27 @@ pub fn render_buffers(buffers: &buffers::SceneBuffers, choice: BackendChoice, sp
     film
 }
 
+/// Renders the window `crop` of `scene` (whose own crop it replaces) as a part of the whole image:
+/// the window with a margin of the filter's radius around it (within the image) is rendered and cut
+/// back to `crop`, so that its edge pixels take the samples beyond its edge that they take in the
+/// whole image (a crop's own edge stops them, in caustic's film as in Mitsuba's) and compare exactly
+/// with a reference of the whole image cut to `crop`.
+pub fn render_window(
+    scene: &Scene,
+    crop: caustic::scene::Crop,
+    choice: BackendChoice,
+    spp: u32,
+    seed: u32,
+) -> Film {
+    let (w, h) = (scene.sensor.width, scene.sensor.height);
+    let margin = scene.sensor.filter.radius().ceil() as u32;
+    let (x0, y0) = (crop.x.saturating_sub(margin), crop.y.saturating_sub(margin));
+    let (x1, y1) = ((crop.x + crop.width + margin).min(w), (crop.y + crop.height + margin).min(h));
+    let mut s = scene.clone();
+    s.sensor.crop = Some(caustic::scene::Crop { x: x0, y: y0, width: x1 - x0, height: y1 - y0 });
+    render_scene(&s, choice, spp, seed).crop(crop.x - x0, crop.y - y0, crop.width, crop.height)
+}
+
 /// The largest per-channel |difference| between two images of one size (GPU against CPU, one image
 /// against another of the same seed).
 pub fn max_abs_difference(a: &Film, b: &Film) -> f32 {

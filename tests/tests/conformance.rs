@@ -86,12 +86,11 @@ fn check_edited(
     let (w, h) = (s.sensor.width, s.sensor.height);
     let (cw, ch) = (((w as f32 * fraction) as u32).max(1), ((h as f32 * fraction) as u32).max(1));
     let crop = Crop { x: (w - cw) / 2, y: (h - ch) / 2, width: cw, height: ch };
-    s.sensor.crop = Some(crop);
     edit(&mut s);
     let pixels = cw * ch;
     let spp = (budget / pixels as u64).clamp(4, 4096) as u32;
     let start = Instant::now();
-    let film = render_scene(&s, choice, spp, 11);
+    let film = render_window(&s, crop, choice, spp, 11);
     let seconds = start.elapsed().as_secs_f64();
     let reference = Film::load_exr(&mitsuba_reference(&scene.name))
         .expect("reference loads")

@@ -63,9 +63,9 @@ fn cbox_ptracer_and_ibpt_match_mitsuba() {
                 *e = e.map(|c| c * radiance_scale);
             }
         }
-        scene.sensor.crop = Some(caustic::scene::Crop { x: 96, y: 96, width: 64, height: 64 });
+        let window = caustic::scene::Crop { x: 96, y: 96, width: 64, height: 64 };
         let spp = 64;
-        let film = render_scene(&scene, BackendChoice::Cpu, spp, 9);
+        let film = render_window(&scene, window, BackendChoice::Cpu, spp, 9);
         let reference =
             Film::load_exr(&mitsuba_reference("cbox")).expect("reference loads").crop(96, 96, 64, 64);
         let c = compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
