@@ -66,8 +66,12 @@ fn cbox_ptracer_and_ibpt_match_mitsuba() {
         let window = caustic::scene::Crop { x: 96, y: 96, width: 64, height: 64 };
         let spp = 64;
         let film = render_window(&scene, window, BackendChoice::Cpu, spp, 9);
-        let reference =
-            Film::load_exr(&mitsuba_reference("cbox")).expect("reference loads").crop(96, 96, 64, 64);
+        let reference = Film::load_exr(&mitsuba_reference("cbox")).expect("reference loads").crop(
+            window.x,
+            window.y,
+            window.width,
+            window.height,
+        );
         let c = compare(&film, &reference, spp as f64 / REFERENCE_SPP).expect("same size");
         let pass = c.pass_fraction.unwrap();
         println!(
