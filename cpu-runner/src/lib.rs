@@ -1,7 +1,8 @@
 //! The CPU backend: the kernel's per-pixel function, called natively on every core.
 use caustic_kernel::film_splat::{gather, resolved, words_per_pixel, CellReader, FilmCells};
 use caustic_kernel::integrator::{
-    accumulated, render_pixel, splat_camera_paths, splats_camera_paths, trace_light_paths, SceneView,
+    accumulated, render_pixel, splat_bdpt_samples, splat_camera_paths, splats_camera_paths,
+    trace_light_paths, traces_bdpt, traces_light_paths, SceneView,
 };
 use caustic_kernel::layout::{square_scale, FrameParams, PixelAccum};
 use caustic_kernel::splat::{AtomicWords, SPLAT_STRIDE};
@@ -133,18 +134,25 @@ impl AtomicWords for CpuWords<'_> {
     }
 }
 
-/// Traces `params.sample_count` light paths per pixel (IBPT: and camera paths), exactly as the GPU's
+/// Traces `params.sample_count` light paths per pixel (IBPT: and camera paths; BDPT: its samples), exactly as the GPU's
 /// dispatches do, and returns the splat words (`caustic_kernel::splat` layout) for the host to resolve.
 pub fn light_pass(scene: &SceneView, params: &FrameParams) -> Vec<u32> {
     let pixels = params.width * params.height;
     let words: Vec<AtomicU32> = (0..pixels * SPLAT_STRIDE).map(|_| AtomicU32::new(0)).collect();
     let camera_half = splats_camera_paths(scene, params);
+    let light_half = traces_light_paths(params.integrator);
+    let bdpt = traces_bdpt(params.integrator);
     (0..pixels).into_par_iter().for_each(|pixel| {
         let mut words = CpuWords(&words);
         if camera_half {
             splat_camera_paths(scene, params, pixel, &mut words);
         }
-        trace_light_paths(scene, params, pixel, &mut words);
+        if light_half {
+            trace_light_paths(scene, params, pixel, &mut words);
+        }
+        if bdpt {
+            splat_bdpt_samples(scene, params, pixel, &mut words);
+        }
     });
     words.into_iter().map(AtomicU32::into_inner).collect()
 }

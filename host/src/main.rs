@@ -477,6 +477,7 @@ fn integrator_name(kind: &caustic::scene::IntegratorKind) -> &'static str {
         Direct { .. } => "direct",
         Ptracer => "ptracer",
         Ibpt => "ibpt",
+        Bdpt => "bdpt",
     }
 }
 

@@ -3,7 +3,8 @@
 //! attributes need; their names live in `layout` (`binding::*`, `TILE`), which the host uses.
 use crate::film_splat::{gather, resolved as film_resolved, WordCells};
 use crate::integrator::{
-    accumulated, render_pixel, splat_camera_paths, splats_camera_paths, trace_light_paths, SceneView,
+    accumulated, render_pixel, splat_bdpt_samples, splat_camera_paths, splats_camera_paths,
+    trace_light_paths, SceneView,
 };
 use crate::layout::{
     square_scale, BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
@@ -96,6 +97,42 @@ pub fn light(
     };
     let pixel = id.y * params.width + id.x;
     trace_light_paths(&scene, params, pixel, &mut GpuWords(splat));
+}
+
+/// Bidirectional path tracing (`integrator::bdpt`): one invocation per pixel, each sample's light path
+/// and camera path, splatting wherever they reach. Its own entry point, so that `render` does not
+/// carry it.
+#[spirv(compute(threads(8, 8, 1)))] // layout::TILE
+#[allow(clippy::too_many_arguments)]
+pub fn bdpt(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &FrameParams, // PARAMS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],    // NODES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] prims: &[Primitive],  // PRIMS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] attributes: &[TriangleAttributes], // ATTRIBUTES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] materials: &[Material], // MATERIALS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] lights: &[Light],     // LIGHTS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] tables: &[f32],       // TABLES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] textures: &[Texture], // TEXTURES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] splat: &mut [u32],    // SPLAT
+    #[spirv(spec_constant(id = 0, default = 4294967295))] features: u32,
+) {
+    if id.x >= params.width || id.y >= params.height {
+        return;
+    }
+    let scene = SceneView {
+        nodes,
+        prims,
+        attributes,
+        materials,
+        lights,
+        textures,
+        tables,
+        features,
+        wide_bvh: false,
+    };
+    let pixel = id.y * params.width + id.x;
+    splat_bdpt_samples(&scene, params, pixel, &mut GpuWords(splat));
 }
 
 /// After a splatting pass: folds each pixel's splat words into its accumulator and clears them, so

@@ -18,7 +18,7 @@
 use spirv_std::num_traits::Float;
 
 use crate::film::{filter_weight, FilmSample};
-use crate::layout::{FrameParams, PixelAccum, INTEGRATOR_IBPT, INTEGRATOR_PTRACER};
+use crate::layout::{FrameParams, PixelAccum, INTEGRATOR_BDPT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER};
 use crate::math::is_finite3;
 use crate::spectrum::Rgb;
 use crate::splat::SPLAT_STRIDE;
@@ -59,7 +59,8 @@ fn invalid_slot(params: &FrameParams) -> u32 {
 /// `u32` words per pixel of the `SPLAT` buffer for these parameters: light tracing's fixed-point
 /// sums, the splatting film's cells, or none.
 pub fn words_per_pixel(params: &FrameParams) -> u32 {
-    if params.integrator == INTEGRATOR_PTRACER || params.integrator == INTEGRATOR_IBPT {
+    let kind = params.integrator;
+    if kind == INTEGRATOR_PTRACER || kind == INTEGRATOR_IBPT || kind == INTEGRATOR_BDPT {
         SPLAT_STRIDE
     } else if params.film_reach > 0 {
         invalid_slot(params) + 1

@@ -381,6 +381,10 @@ pub const INTEGRATOR_PTRACER: u32 = 2;
 /// Instant bidirectional path tracing: a camera path (with NEE) and a light path (connected to the
 /// camera) per pixel sample, combined by the power heuristic; splats like `INTEGRATOR_PTRACER`.
 pub const INTEGRATOR_IBPT: u32 = 3;
+/// Bidirectional path tracing (`integrator::bdpt`): per pixel sample a light path and a camera path
+/// joined in every way, combined by the power heuristic; splats like `INTEGRATOR_IBPT`, in the camera
+/// entry point alone.
+pub const INTEGRATOR_BDPT: u32 = 4;
 
 pub const SAMPLER_INDEPENDENT: u32 = 0;
 pub const SAMPLER_STRATIFIED: u32 = 1;
@@ -424,7 +428,8 @@ pub struct FrameParams {
     pub full_width: u32,
     pub full_height: u32,
 
-    /// `INTEGRATOR_PATH`, `INTEGRATOR_DIRECT` or `INTEGRATOR_PTRACER`.
+    /// `INTEGRATOR_PATH`, `INTEGRATOR_DIRECT`, `INTEGRATOR_PTRACER`, `INTEGRATOR_IBPT` or
+    /// `INTEGRATOR_BDPT`.
     pub integrator: u32,
     /// Light and BSDF samples per shading point of the direct integrator.
     pub emitter_samples: u32,

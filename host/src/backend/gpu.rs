@@ -11,7 +11,7 @@ use super::spirv::{declares_spec_constant, set_workgroup_size, KERNEL_SPV};
 use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::{anyhow, bail, Context, Result};
-use caustic_kernel::integrator::{splats, traces_camera_paths};
+use caustic_kernel::integrator::{traces_bdpt, traces_camera_paths, traces_light_paths};
 use caustic_kernel::layout::{
     binding, FrameParams, PixelAccum, INTEGRATOR_PATH, SPEC_FEATURES, SPEC_REGENERATE,
 };
@@ -23,6 +23,17 @@ const CAMERA_ENTRY: &str = "entry::render";
 const LIGHT_ENTRY: &str = "entry::light";
 /// Folds a splatting pass's words into the accumulator (and clears them).
 const RESOLVE_ENTRY: &str = "entry::resolve";
+/// BDPT's samples, in place of the camera entry point.
+const BDPT_ENTRY: &str = "entry::bdpt";
+
+/// The entry point that traces integrator `kind`'s camera paths.
+pub(crate) fn camera_entry(kind: u32) -> &'static str {
+    if traces_bdpt(kind) {
+        BDPT_ENTRY
+    } else {
+        CAMERA_ENTRY
+    }
+}
 
 pub struct GpuBackend {
     device: wgpu::Device,
@@ -172,20 +183,21 @@ impl GpuBackend {
             layout: pipeline_layout,
             features: buffers.features,
             loops,
+            camera_entry: camera_entry(integrator),
         };
         // The first candidate now; the others once the trial reaches them (`build_candidates`): a
         // render too short for a trial compiles one pipeline, not six.
         let camera_pipelines: Vec<(Variant, wgpu::ComputePipeline)> = if traces_camera_paths(integrator) {
             vec![(
                 candidates[0],
-                factory.build(candidates[0].path_loop, candidates[0].workgroup, CAMERA_ENTRY),
+                factory.build(candidates[0].path_loop, candidates[0].workgroup, factory.camera_entry),
             )]
         } else {
             Vec::new()
         };
         let first_loop = candidates[0].path_loop;
         let light_pipeline =
-            splats(integrator).then(|| factory.build(first_loop, DEFAULT_WORKGROUP, LIGHT_ENTRY));
+            traces_light_paths(integrator).then(|| factory.build(first_loop, DEFAULT_WORKGROUP, LIGHT_ENTRY));
         // (Also the splatting film's gather.)
         let batched = super::accumulation::batch_means(&buffers.params);
         let resolve_pipeline = batched.then(|| factory.build(first_loop, DEFAULT_WORKGROUP, RESOLVE_ENTRY));
@@ -420,7 +432,7 @@ impl GpuBackend {
                     .map(|&v| {
                         threads.spawn(move || {
                             let scope = factory.device.push_error_scope(wgpu::ErrorFilter::Validation);
-                            let pipeline = factory.build(v.path_loop, v.workgroup, CAMERA_ENTRY);
+                            let pipeline = factory.build(v.path_loop, v.workgroup, factory.camera_entry);
                             match pollster::block_on(scope.pop()) {
                                 Some(e) => Err(e.to_string()),
                                 None => Ok(pipeline),
@@ -520,6 +532,8 @@ struct PipelineFactory {
     layout: wgpu::PipelineLayout,
     features: u32,
     loops: LoopModules,
+    /// The integrator's camera entry point (`camera_entry`).
+    camera_entry: &'static str,
 }
 
 impl PipelineFactory {
@@ -655,7 +669,8 @@ fn scene_module(words: &[u32], prune: bool, features: u32, choice: PathLoop) -> 
     (words.to_vec(), specialisable)
 }
 
-/// The camera, light and resolve entry points' names, for `kernel_stats`.
+/// The camera, light and resolve entry points' names, for `kernel_stats` (its camera entry point by
+/// integrator: `camera_entry`).
 pub(crate) const ENTRY_POINTS: [&str; 3] = [CAMERA_ENTRY, LIGHT_ENTRY, RESOLVE_ENTRY];
 
 /// The kernel's bindings (`entry.rs`), all storage buffers of descriptor set 0.

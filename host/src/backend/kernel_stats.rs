@@ -281,15 +281,15 @@ pub struct PipelineReport {
 /// `Variant` (`CAUSTIC_PATH_LOOP` and `CAUSTIC_WORKGROUP` honoured), the light entry point once.
 /// Without `with_statistics`, a missing adapter is no error: the reports then hold the modules alone.
 pub fn scene(features: u32, integrator: u32, with_statistics: bool) -> Result<Vec<PipelineReport>> {
-    use super::gpu::{kernel_words, LoopModules, ENTRY_POINTS};
-    use caustic_kernel::integrator::{splats, traces_camera_paths};
+    use super::gpu::{camera_entry, kernel_words, LoopModules, ENTRY_POINTS};
+    use caustic_kernel::integrator::{traces_camera_paths, traces_light_paths};
     let words = kernel_words()?;
     let candidates = variant::candidates(integrator == INTEGRATOR_PATH, false)?;
     let mut wanted: Vec<(&'static str, Variant)> = Vec::new();
     if traces_camera_paths(integrator) {
-        wanted.extend(candidates.iter().map(|&v| (ENTRY_POINTS[0], v)));
+        wanted.extend(candidates.iter().map(|&v| (camera_entry(integrator), v)));
     }
-    if splats(integrator) {
+    if traces_light_paths(integrator) {
         wanted.push((ENTRY_POINTS[1], Variant { workgroup: DEFAULT_WORKGROUP, ..candidates[0] }));
     }
     // Every loop's module first: pruning is what takes long, and a later failure should not waste it.

@@ -116,7 +116,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         emitter_lights(scene, &textures, &mut tables, &mut light_list, bounding_sphere(&nodes, has_prims));
 
     let uniform_share = match scene.integrator.kind {
-        IntegratorKind::Ptracer | IntegratorKind::Ibpt => LIGHT_TRACING_UNIFORM_SHARE,
+        IntegratorKind::Ptracer | IntegratorKind::Ibpt | IntegratorKind::Bdpt => LIGHT_TRACING_UNIFORM_SHARE,
         IntegratorKind::Path | IntegratorKind::Direct { .. } => 1.0,
     };
     let light_cdf = cdf_of(&light_list.selection_weights(uniform_share));
@@ -147,15 +147,25 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
             (INTEGRATOR_PTRACER, 1, 1)
         }
         IntegratorKind::Ibpt => {
-            check_light_tracing(scene, "ibpt")?;
-            if let Some(s) = scene.shapes.iter().find(|s| s.emission.is_some() && s.emission_directional) {
+            check_bidirectional(scene, "ibpt")?;
+            (INTEGRATOR_IBPT, 1, 1)
+        }
+        IntegratorKind::Bdpt => {
+            check_bidirectional(scene, "bdpt")?;
+            let disperses = |s: &&crate::scene::Shape| {
+                scene.materials.get(s.material as usize).is_some_and(caustic_kernel::wavelength::disperses)
+            };
+            if let Some(s) = scene.shapes.iter().find(disperses) {
                 bail!(
-                    "{}: a directionalarea emitter is rendered by ptracer (which alone sees it in Mitsuba) \
-                     and by path and direct (as black), not by ibpt",
+                    "{}: a dispersive dielectric is not rendered by bdpt yet (its light and camera paths \
+                     would carry different wavelengths): render this scene with ibpt or path",
                     s.origin
                 );
             }
-            (INTEGRATOR_IBPT, 1, 1)
+            if scene.materials.iter().any(caustic_kernel::wavelength::disperses) {
+                bail!("bdpt: a dispersive dielectric is not rendered by bdpt yet: render this scene with ibpt or path");
+            }
+            (INTEGRATOR_BDPT, 1, 1)
         }
     };
     let params = FrameParams {
@@ -222,6 +232,20 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
 /// What light tracing does not cover yet is refused, never rendered without it: the orthographic
 /// camera (light tracing connects to the pinhole and to points of a thin lens's aperture) and the
 /// radiance meter (a single ray, which no light path can reach by a connection).
+/// What IBPT and BDPT refuse besides what light tracing does: `directionalarea` emitters, which
+/// only light paths reach (their weights would count strategies that cannot happen).
+fn check_bidirectional(scene: &Scene, name: &str) -> Result<()> {
+    check_light_tracing(scene, name)?;
+    if let Some(s) = scene.shapes.iter().find(|s| s.emission.is_some() && s.emission_directional) {
+        bail!(
+            "{}: a directionalarea emitter is rendered by ptracer (which alone sees it in Mitsuba) \
+             and by path and direct (as black), not by {name}",
+            s.origin
+        );
+    }
+    Ok(())
+}
+
 fn check_light_tracing(scene: &Scene, name: &str) -> Result<()> {
     let integrator = name;
     if matches!(scene.sensor.projection, Projection::RadianceMeter) {

@@ -55,6 +55,7 @@ pub(super) fn film_reach(sensor: &crate::scene::Sensor, integrator: u32) -> u32 
         || meter
         || integrator == INTEGRATOR_PTRACER
         || integrator == INTEGRATOR_IBPT
+        || integrator == INTEGRATOR_BDPT
     {
         return 0;
     }

@@ -201,6 +201,8 @@ pub enum IntegratorChoice {
     Ptracer,
     /// Path tracing and light tracing combined by MIS (instant bidirectional path tracing).
     Ibpt,
+    /// Bidirectional path tracing: every connection of a light path and a camera path, by MIS.
+    Bdpt,
 }
 
 impl Integrator {
@@ -211,6 +213,7 @@ impl Integrator {
             IntegratorChoice::Path => Integrator { kind: IntegratorKind::Path, ..self },
             IntegratorChoice::Ptracer => Integrator { kind: IntegratorKind::Ptracer, ..self },
             IntegratorChoice::Ibpt => Integrator { kind: IntegratorKind::Ibpt, ..self },
+            IntegratorChoice::Bdpt => Integrator { kind: IntegratorKind::Bdpt, ..self },
             IntegratorChoice::Direct => Integrator {
                 kind: IntegratorKind::Direct { emitter_samples: 1, bsdf_samples: 1 },
                 max_depth: 2,
@@ -233,6 +236,8 @@ pub enum IntegratorKind {
     Ptracer,
     /// Instant bidirectional path tracing: path tracing and light tracing combined by MIS.
     Ibpt,
+    /// Bidirectional path tracing (`caustic_kernel::integrator::bdpt`).
+    Bdpt,
 }
 
 /// An emitter not attached to a shape.

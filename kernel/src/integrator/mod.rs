@@ -1,4 +1,6 @@
 //! Integrators and the per-pixel driver both backends call.
+pub mod bdpt;
+pub mod bdpt_mis;
 pub mod direct;
 pub mod mis;
 pub mod nee;
@@ -15,7 +17,8 @@ use crate::glam::{Vec2, Vec3};
 use crate::irradiance_meter;
 pub use crate::layout::SceneView;
 use crate::layout::{
-    FrameParams, Material, PixelAccum, Primitive, INTEGRATOR_IBPT, INTEGRATOR_PTRACER, MATERIAL_TWO_SIDED,
+    FrameParams, Material, PixelAccum, Primitive, INTEGRATOR_BDPT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER,
+    MATERIAL_TWO_SIDED,
 };
 use crate::math::is_finite3;
 use crate::rng::Sampler;
@@ -237,16 +240,57 @@ pub fn splat_camera_paths<W: AtomicWords>(
     }
 }
 
+/// BDPT: `params.sample_count` samples of `pixel`, each a light path (splatted wherever its camera
+/// connections land) and a camera path (`bdpt::li`), the camera path's estimate splatted into the
+/// pixel's own sums as IBPT's is. (Its own entry point on the GPU, `entry::bdpt`: inlined beside the
+/// path tracer's loops in `entry::render`, it ran rust-gpu's build out of 23 GB of memory.)
+pub fn splat_bdpt_samples<W: AtomicWords>(
+    scene: &SceneView,
+    params: &FrameParams,
+    pixel: u32,
+    words: &mut W,
+) {
+    let (px, py) = (pixel % params.width, pixel / params.width);
+    let mut s = 0;
+    while s < params.sample_count {
+        let (mut sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
+        let film_pos = film_sample.pos;
+        let pos = Vec2::new(film_pos.x * params.full_width as f32, film_pos.y * params.full_height as f32);
+        let density = film::pixel_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);
+        let mut light_sampler = light_path_sampler(params, pixel, params.sample_base + s);
+        let mut l = bdpt::li(scene, params, ray, &mut sampler, &mut light_sampler, density, words);
+        if params.filter_signed != 0 {
+            l *= film_sample.weight;
+        }
+        sampler.set_dimension(DIM_SPLAT_ROUNDING);
+        if is_finite3(l) {
+            crate::splat::splat(words, pixel, l, sampler.next_1d());
+        } else {
+            crate::splat::count_invalid(words, pixel);
+        }
+        s += 1;
+    }
+}
+
 /// Traces the light paths of `params.sample_count` samples of path index `pixel` (one light path per
 /// pixel and sample, whichever pixels they reach) and splats their camera connections into `words`
 /// (weighted against the camera strategies under IBPT).
 pub fn trace_light_paths<W: AtomicWords>(scene: &SceneView, params: &FrameParams, pixel: u32, words: &mut W) {
+    if !traces_light_paths(params.integrator) {
+        return;
+    }
     let mut s = 0;
     while s < params.sample_count {
-        let mut sampler = Sampler::new(params.seed ^ LIGHT_PATH_STREAM, pixel, params.sample_base + s);
+        let mut sampler = light_path_sampler(params, pixel, params.sample_base + s);
         ptracer::trace(scene, params, &mut sampler, words);
         s += 1;
     }
+}
+
+/// The sampler of light path `index`'s sample `sample`.
+#[inline]
+fn light_path_sampler(params: &FrameParams, index: u32, sample: u32) -> Sampler {
+    Sampler::new(params.seed ^ LIGHT_PATH_STREAM, index, sample)
 }
 
 /// Whether the camera entry point splats IBPT's camera paths rather than accumulating camera paths.
@@ -255,7 +299,22 @@ pub fn splats_camera_paths(scene: &SceneView, params: &FrameParams) -> bool {
     params.integrator == INTEGRATOR_IBPT && features::has(scene.features, features::LIGHT_TRACER)
 }
 
-/// Whether integrator `kind` runs the camera entry point (everything but plain light tracing).
+/// Whether integrator `kind` runs BDPT's entry point (`splat_bdpt_samples`) in place of the camera
+/// entry point (and no light entry point).
+#[inline]
+pub fn traces_bdpt(kind: u32) -> bool {
+    kind == INTEGRATOR_BDPT
+}
+
+/// Whether integrator `kind` runs the light entry point (`ptracer`, IBPT's light half; BDPT traces its
+/// light paths beside the camera paths).
+#[inline]
+pub fn traces_light_paths(kind: u32) -> bool {
+    kind == INTEGRATOR_PTRACER || kind == INTEGRATOR_IBPT
+}
+
+/// Whether integrator `kind` runs the camera entry point (everything but plain light tracing; for BDPT
+/// its own, `traces_bdpt`).
 #[inline]
 pub fn traces_camera_paths(kind: u32) -> bool {
     kind != INTEGRATOR_PTRACER
@@ -264,7 +323,7 @@ pub fn traces_camera_paths(kind: u32) -> bool {
 /// Whether integrator `kind` splats into the `SPLAT` words (resolved by the host after each pass).
 #[inline]
 pub fn splats(kind: u32) -> bool {
-    kind == INTEGRATOR_PTRACER || kind == INTEGRATOR_IBPT
+    kind == INTEGRATOR_PTRACER || kind == INTEGRATOR_IBPT || kind == INTEGRATOR_BDPT
 }
 
 /// A pixel's accumulator with one dispatch's sums added.

@@ -4,6 +4,7 @@
 //! With `n_l` light samples and `n_b` BSDF samples per vertex (Mitsuba's `direct` takes several; the
 //! path tracer one each) the heuristic compares `n_l·p_light` with `n_b·p_bsdf`, and each strategy's
 //! sum is divided by its own count by the caller.
+use super::bdpt_mis::{self, SubpathMis};
 use super::mis;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
@@ -55,14 +56,34 @@ impl PreviousVertex {
 /// (`1 / (We·cos/d² · film scale)` at the first vertex, then `· ρ_rev / ρ_fwd` per bounce); zero when
 /// light tracing cannot make the path. `first_vertex`: the current vertex is the camera's first, which
 /// light tracing connects to the camera rather than samples (no reverse density there).
+///
+/// Under BDPT (`bdpt` set) the camera path's recursive state `state` (`bdpt_mis`) weighs the light
+/// sample against every bidirectional strategy instead.
 #[derive(Clone, Copy)]
 pub struct LightTracingMis {
     pub scale: f32,
     pub first_vertex: bool,
+    /// 1 under BDPT.
+    pub bdpt: u32,
+    pub state: SubpathMis,
 }
 
 impl LightTracingMis {
-    pub const OFF: LightTracingMis = LightTracingMis { scale: 0.0, first_vertex: false };
+    pub const OFF: LightTracingMis =
+        LightTracingMis { scale: 0.0, first_vertex: false, bdpt: 0, state: SubpathMis::ZERO };
+
+    /// IBPT's camera scalar at a vertex (the first one, or a later one).
+    #[inline]
+    pub fn ibpt(scale: f32, first_vertex: bool) -> Self {
+        LightTracingMis { scale, first_vertex, ..Self::OFF }
+    }
+
+    /// BDPT's camera state, where the light sample makes a path whose every strategy exists
+    /// (`bidirectional`); else the plain weighting against BSDF sampling.
+    #[inline]
+    pub fn bdpt(state: SubpathMis, bidirectional: bool) -> Self {
+        LightTracingMis { bdpt: bidirectional as u32, state, ..Self::OFF }
+    }
 }
 
 /// One light sample at a surface point, weighted against BSDF sampling (delta emitters, which BSDF
@@ -105,7 +126,12 @@ pub fn next_event(
     if max_component(transmittance) <= 0.0 {
         return Rgb::ZERO;
     }
-    let weight = if lt.scale > 0.0 {
+    let weight = if lt.bdpt != 0 {
+        let r_hit = if ls.delta { 0.0 } else { ep.pdf / ls.pdf };
+        let reverse = bsdf.pdf(wi, wo, TransportMode::Importance);
+        let cos = ng.dot(ls.wi).abs();
+        bdpt_mis::nee_weight(lt.state, r_hit, emission::nee_ratio(scene, &ls), cos, reverse)
+    } else if lt.scale > 0.0 {
         // IBPT: against BSDF sampling and against the light path that connects this point to the camera.
         let r_hit = if ls.delta { 0.0 } else { ep.pdf / ls.pdf };
         let reverse = if lt.first_vertex { 1.0 } else { bsdf.pdf(wi, wo, TransportMode::Importance) };

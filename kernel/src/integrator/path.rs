@@ -190,7 +190,7 @@ impl CameraPath {
                     u_select,
                     u_light,
                     ONE_EACH,
-                    LightTracingMis { scale: self.lt_scale, first_vertex: depth == 0 },
+                    LightTracingMis::ibpt(self.lt_scale, depth == 0),
                 );
         }
 

@@ -13,6 +13,7 @@
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
+use super::bdpt_mis::{self, SubpathMis};
 use super::mis;
 use super::nee::first_hit_past_emitters;
 use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE, DIM_WAVELENGTH};
@@ -40,7 +41,7 @@ const SHADOW_EPSILON: f32 = 1.0e-4;
 /// (`wo` towards the previous vertex, `wi` towards the next): with it the adjoint BSDF is the true
 /// adjoint of the shading-normal BSDF that camera paths see.
 #[inline]
-fn shading_normal_correction(wo: Vec3, wi: Vec3, ns: Vec3, ng: Vec3) -> f32 {
+pub(super) fn shading_normal_correction(wo: Vec3, wi: Vec3, ns: Vec3, ng: Vec3) -> f32 {
     let denom = wo.dot(ng).abs() * wi.dot(ns).abs();
     if denom > 0.0 {
         wo.dot(ns).abs() * wi.dot(ng).abs() / denom
@@ -58,23 +59,36 @@ pub fn film_scale(params: &FrameParams) -> f32 {
 
 /// How a camera connection is weighted against the camera strategies under IBPT (`mis`): not at all
 /// (plain light tracing), or as the emitter point, the first vertex or a later vertex of a light path.
+/// Under BDPT (`MIS_BDPT`): `d` and `vc` hold the light path's `bdpt_mis::SubpathMis` at the vertex,
+/// `rho` the camera path's density of leaving it back along the light path, `cos` the cosine there
+/// towards the camera.
 #[derive(Clone, Copy)]
-struct ConnectionMis {
+pub(super) struct ConnectionMis {
     kind: u32,
     rho: f32,
     inv_hit_sq: f32,
     inv_nee_sq: f32,
     d: f32,
+    vc: f32,
+    cos: f32,
 }
 
 const MIS_NONE: u32 = 0;
 const NO_MIS: ConnectionMis =
-    ConnectionMis { kind: MIS_NONE, rho: 0.0, inv_hit_sq: 0.0, inv_nee_sq: 0.0, d: 0.0 };
+    ConnectionMis { kind: MIS_NONE, rho: 0.0, inv_hit_sq: 0.0, inv_nee_sq: 0.0, d: 0.0, vc: 0.0, cos: 0.0 };
 const MIS_EMITTER: u32 = 1;
 const MIS_FIRST_VERTEX: u32 = 2;
 const MIS_LATER_VERTEX: u32 = 3;
+const MIS_BDPT: u32 = 4;
 
 impl ConnectionMis {
+    /// A light vertex of BDPT with state `state`, `cos` towards the camera, `rev` the camera path's
+    /// density of leaving it back along the light path.
+    #[inline]
+    pub(super) fn bdpt(state: SubpathMis, cos: f32, rev: f32) -> Self {
+        ConnectionMis { kind: MIS_BDPT, rho: rev, d: state.vcm, vc: state.vc, cos, ..NO_MIS }
+    }
+
     /// The weight of a splat whose camera strategies carry `importance` (`We·cos/d²`, the film scale and
     /// the pixel's filter density at the point: the camera path's density of landing there).
     #[inline]
@@ -85,6 +99,10 @@ impl ConnectionMis {
                 mis::first_vertex_connection_weight(importance, self.rho, self.inv_hit_sq, self.inv_nee_sq)
             }
             MIS_LATER_VERTEX => mis::connection_weight(importance, self.rho, self.d),
+            MIS_BDPT => {
+                let state = SubpathMis { vcm: self.d, vc: self.vc };
+                bdpt_mis::weight(state.others(importance * self.cos, self.rho), 0.0)
+            }
             _ => 1.0,
         }
     }
@@ -96,7 +114,7 @@ impl ConnectionMis {
 /// (`film::pixel_weight`; one pixel for the box). `skip`: a primitive the shadow ray ignores (the
 /// emitter it starts on).
 #[allow(clippy::too_many_arguments)]
-fn splat_to_camera<W: AtomicWords>(
+pub(super) fn splat_to_camera<W: AtomicWords>(
     scene: &SceneView,
     params: &FrameParams,
     accel: &Accel,
@@ -196,12 +214,12 @@ fn to_camera(scene: &SceneView, params: &FrameParams, accel: &Accel, shadow: &Ra
 /// emitter sample's, before the first bounce's.
 const DIM_LENS_AT_EMITTER: u32 = 6;
 /// Within a bounce's dimensions (`path::DIMS_PER_BOUNCE`), the two after Russian roulette's.
-const DIM_LENS_IN_BOUNCE: u32 = 5;
+pub(super) const DIM_LENS_IN_BOUNCE: u32 = 5;
 
 /// The 2D sample that picks a thin lens's aperture point for a connection, from dimensions `dim` and
 /// `dim + 1`, which no other decision uses.
 #[inline]
-fn lens_sample(sampler: &Sampler, dim: u32) -> Vec2 {
+pub(super) fn lens_sample(sampler: &Sampler, dim: u32) -> Vec2 {
     let mut s = *sampler;
     s.set_dimension(dim);
     s.next_2d()
@@ -319,7 +337,7 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
                     // The camera path's density of the direction back along the light path from here.
                     let rho = bsdf.pdf(to_camera, wo, TransportMode::Radiance);
                     let kind = if depth == 1 { MIS_FIRST_VERTEX } else { MIS_LATER_VERTEX };
-                    ConnectionMis { kind, rho, inv_hit_sq, inv_nee_sq, d: mis_d }
+                    ConnectionMis { kind, rho, inv_hit_sq, inv_nee_sq, d: mis_d, ..NO_MIS }
                 } else {
                     NO_MIS
                 };
@@ -367,7 +385,7 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
 
 /// `1/er²` for next-event estimation from the first vertex `p` towards the emitter point of `es`:
 /// the density ratio `emission::nee_ratio` of that light sample.
-fn inv_nee_ratio_sq(scene: &SceneView, es: &emission::EmissionSample, p: Vec3) -> f32 {
+pub(super) fn inv_nee_ratio_sq(scene: &SceneView, es: &emission::EmissionSample, p: Vec3) -> f32 {
     let d = es.p - p;
     let dist2 = d.length_squared();
     if !(dist2 > 0.0) {

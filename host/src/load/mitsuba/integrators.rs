@@ -1,6 +1,6 @@
 //! Integrator plugins: `path` (and Mitsuba's differentiable `prb`, `prb_basic`, `prb_projective`,
 //! whose images are the path tracer's), `direct`, `ptracer` (light tracing), `ibpt` (caustic's own: path and
-//! light tracing combined by MIS) and `moment` (its nested integrator; caustic always tracks
+//! light tracing combined by MIS), `bdpt` (caustic's: bidirectional path tracing) and `moment` (its nested integrator; caustic always tracks
 //! the variance), and Mitsuba's `aov` and `depth` (`crate::scene::aov`: outputs rendered beside the image).
 use super::loader::Loader;
 use super::props::Props;
@@ -30,11 +30,15 @@ impl Loader {
                     hide_emitters: props.boolean("hide_emitters", false)?,
                 }
             }
-            "ptracer" | "ibpt" => {
+            "ptracer" | "ibpt" | "bdpt" => {
                 let (max_depth, rr_depth) = depths(props, -1)?;
                 // Mitsuba's `samples_per_pass` only splits its own work; the image does not depend on it.
                 props.integer("samples_per_pass", -1)?;
-                let kind = if props.kind == "ibpt" { IntegratorKind::Ibpt } else { IntegratorKind::Ptracer };
+                let kind = match props.kind.as_str() {
+                    "ibpt" => IntegratorKind::Ibpt,
+                    "bdpt" => IntegratorKind::Bdpt,
+                    _ => IntegratorKind::Ptracer,
+                };
                 Integrator {
                     kind,
                     max_depth,

@@ -1,0 +1,578 @@
+//! Bidirectional path tracing: for each pixel sample a light path and a camera path, and every way of
+//! joining them: the camera path hitting an emitter, next-event estimation from each camera vertex,
+//! each camera vertex connected to each vertex of the light path by a shadow ray, and each light
+//! vertex connected to the camera (light tracing, splatted wherever it lands). The strategies are
+//! weighted by the power heuristic through the recursive quantities of `bdpt_mis`, so that paths
+//! light tracing and IBPT cannot make, a caustic seen in a mirror or through glass (light → specular →
+//! diffuse → specular → camera), are found by connecting the camera path's diffuse vertex to the light
+//! path's.
+//!
+//! The light path's vertices are kept in the invocation (`LightVertices`, at most
+//! `MAX_LIGHT_VERTICES`): no buffer, and memory bounded per path in flight. Paths of up to
+//! `MAX_LIGHT_VERTICES + 1` segments are weighted over every strategy; the light path stops there, so
+//! longer paths (where `max_depth` allows them) are made by the camera path alone, hitting an emitter
+//! or by next-event estimation, weighted between those two as `path` weighs them. Each path length
+//! therefore has a set of strategies that all exist, and the weights sum to one over it.
+//!
+//! Light paths and camera paths follow `ptracer` and `path`: Mitsuba's `max_depth` (segments),
+//! `rr_depth` and `hide_emitters`, null interfaces crossed without a vertex (`mask`), importance
+//! transport with Veach's shading-normal correction on the light side. As under IBPT, no light path
+//! starts on an emitter at infinity (camera paths alone carry their light), and the emitter point
+//! itself is not connected to the camera (a camera path seeing an emitter takes its whole value).
+//! The host refuses dispersion, the radiance and irradiance meters, the orthographic camera and
+//! `directionalarea` emitters under `bdpt`.
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
+
+use super::bdpt_mis::{self, SubpathMis};
+use super::nee::{
+    environment, first_hit_past_emitters, next_event, LightTracingMis, PreviousVertex, StrategyCounts,
+};
+use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE, DIM_MASK};
+use super::ptracer::{
+    film_scale, inv_nee_ratio_sq, lens_sample, shading_normal_correction, splat_to_camera, ConnectionMis,
+    DIM_LENS_IN_BOUNCE,
+};
+use super::shading_frame;
+use crate::bsdf::perturb::{Perturbation, Shading};
+use crate::bsdf::{Bsdf, TransportMode};
+use crate::bvh::Accel;
+use crate::camera::Ray;
+use crate::glam::{Vec2, Vec3};
+use crate::instancing::surface_point;
+use crate::layout::{FrameParams, SceneView, NONE};
+use crate::light::{self, emission};
+use crate::mask;
+use crate::math::max_component;
+use crate::rng::Sampler;
+use crate::sampling::power_heuristic;
+use crate::shape::{offset_origin, SurfacePoint};
+use crate::spectrum::Rgb;
+use crate::splat::AtomicWords;
+
+/// The light path's vertices kept for connections, and its longest length in segments: paths up to
+/// one segment longer are weighted over all strategies, longer ones between the camera path's two.
+/// Each vertex takes 224 bytes of the invocation's memory (`kernel/tests/bdpt_mis.rs`).
+pub const MAX_LIGHT_VERTICES: u32 = 8;
+const SHADOW_EPSILON: f32 = 1.0e-4;
+const ONE_EACH: StrategyCounts = StrategyCounts::ONE_EACH;
+
+/// A vertex of the light path with a non-Dirac lobe: where it is, how it is shaded, the light path's
+/// throughput arriving there (`Le·…/p`, before its BSDF) and its MIS state. Flat and `repr(C)`,
+/// vectors in 16-byte groups (naga rounds a `Vec3` member up to 16 bytes: `perturb::Perturbation`).
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct LightVertex {
+    pub p: Vec3,
+    pub error_scale: f32,
+    /// The surface's geometric normal (`SurfacePoint::ng`).
+    pub ng: Vec3,
+    pub offset_floor: f32,
+    pub ns: Vec3,
+    /// The material seen there (a two-sided pair's side chosen).
+    pub material: u32,
+    pub uv: Vec2,
+    pub bary: Vec2,
+    pub beta: Vec3,
+    pub mesh_attributes: u32,
+    /// The shading frame (`Shading`): `s`, `t`, `n`, the geometric normal on its side and the
+    /// direction back along the light path in it.
+    pub s: Vec3,
+    pub vcm: f32,
+    pub t: Vec3,
+    pub vc: f32,
+    pub n: Vec3,
+    /// Segments from the emitter.
+    pub depth: u32,
+    pub shading_ng: Vec3,
+    pub _pad0: u32,
+    pub wo: Vec3,
+    pub _pad1: u32,
+    pub tilt: Perturbation,
+}
+
+impl LightVertex {
+    pub const EMPTY: LightVertex = LightVertex {
+        p: Vec3::ZERO,
+        error_scale: 0.0,
+        ng: Vec3::Z,
+        offset_floor: 0.0,
+        ns: Vec3::Z,
+        material: 0,
+        uv: Vec2::ZERO,
+        bary: Vec2::ZERO,
+        beta: Vec3::ZERO,
+        mesh_attributes: NONE,
+        s: Vec3::X,
+        vcm: 0.0,
+        t: Vec3::Y,
+        vc: 0.0,
+        n: Vec3::Z,
+        depth: 0,
+        shading_ng: Vec3::Z,
+        _pad0: 0,
+        wo: Vec3::Z,
+        _pad1: 0,
+        tilt: Perturbation::NONE,
+    };
+
+    #[inline]
+    fn new(
+        sp: &SurfacePoint,
+        shading: &Shading,
+        material: u32,
+        beta: Rgb,
+        mis: SubpathMis,
+        depth: u32,
+    ) -> Self {
+        LightVertex {
+            p: sp.p,
+            error_scale: sp.error_scale,
+            ng: sp.ng,
+            offset_floor: sp.offset_floor,
+            ns: sp.ns,
+            material,
+            uv: sp.uv,
+            bary: sp.bary,
+            beta,
+            mesh_attributes: sp.mesh_attributes,
+            s: shading.s,
+            vcm: mis.vcm,
+            t: shading.t,
+            vc: mis.vc,
+            n: shading.n,
+            depth,
+            shading_ng: shading.ng,
+            _pad0: 0,
+            wo: shading.wo,
+            _pad1: 0,
+            tilt: shading.tilt,
+        }
+    }
+
+    #[inline]
+    fn surface_point(&self) -> SurfacePoint {
+        SurfacePoint {
+            p: self.p,
+            ng: self.ng,
+            ns: self.ns,
+            error_scale: self.error_scale,
+            offset_floor: self.offset_floor,
+            uv: self.uv,
+            mesh_attributes: self.mesh_attributes,
+            bary: self.bary,
+        }
+    }
+
+    #[inline]
+    fn shading(&self) -> Shading {
+        Shading { s: self.s, t: self.t, n: self.n, ng: self.shading_ng, wo: self.wo, tilt: self.tilt }
+    }
+}
+
+/// A light path's stored vertices.
+pub type LightVertices = [LightVertex; MAX_LIGHT_VERTICES as usize];
+
+/// Whether a path of `segments` is weighted over every strategy (within the light path's reach).
+#[inline]
+fn bidirectional(segments: u32) -> bool {
+    segments <= MAX_LIGHT_VERTICES + 1
+}
+
+/// Whether `max_depth` (`NONE`: unbounded) allows a path of `segments`.
+#[inline]
+fn within(max_depth: u32, segments: u32) -> bool {
+    max_depth == NONE || segments <= max_depth
+}
+
+/// One pixel sample: traces the light path (drawing from `light_sampler`), splats its connections to
+/// the camera into `words`, keeps its vertices, then follows the camera path along `camera_ray`
+/// (drawing from `sampler`) and returns its estimate, every strategy but light tracing's.
+/// `pixel_density`: the density with which the pixel's camera samples land where `camera_ray` crosses
+/// the film (`film::pixel_density`).
+pub fn li<W: AtomicWords>(
+    scene: &SceneView,
+    params: &FrameParams,
+    camera_ray: Ray,
+    sampler: &mut Sampler,
+    light_sampler: &mut Sampler,
+    pixel_density: f32,
+    words: &mut W,
+) -> Rgb {
+    let mut vertices = [LightVertex::EMPTY; MAX_LIGHT_VERTICES as usize];
+    let count = trace_light_path(scene, params, light_sampler, words, &mut vertices);
+    camera_path(scene, params, camera_ray, sampler, pixel_density, &vertices, count)
+}
+
+/// Traces a light path, splats each of its vertices' connections to the camera and keeps the vertices
+/// a camera path can connect to; returns how many it kept.
+pub fn trace_light_path<W: AtomicWords>(
+    scene: &SceneView,
+    params: &FrameParams,
+    sampler: &mut Sampler,
+    words: &mut W,
+    vertices: &mut LightVertices,
+) -> u32 {
+    let accel = Accel::of(scene);
+    let camera = params.camera;
+    // The emitter sample's dimensions as `ptracer` draws them.
+    let u_select = sampler.next_1d();
+    let u_pos = sampler.next_2d();
+    let u_dir = sampler.next_2d();
+    let es = emission::sample(scene, params, u_select, u_pos, u_dir);
+    if es.light == NONE || max_component(es.weight) <= 0.0 {
+        return 0;
+    }
+    let max_depth = params.max_depth;
+    let hit_density = if es.delta_position { 0.0 } else { emission::hit_density(scene, es.light) };
+    let inv_hit_sq = if hit_density > 0.0 { 1.0 / (hit_density * hit_density) } else { 0.0 };
+    let mut mis = SubpathMis::ZERO;
+    let mut beta = es.weight;
+    let mut ray = Ray { origin: es.origin, dir: es.dir, t_min: 0.0, t_max: f32::MAX };
+    let mut previous = es.p;
+    let mut depth = 1u32;
+    let mut count = 0u32;
+    let mut mask_passes = 0u32;
+    while depth <= MAX_LIGHT_VERTICES && (max_depth == NONE || depth < max_depth) {
+        let bounce_dims = DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE;
+        sampler.set_dimension(bounce_dims);
+        let hit = match accel.trace(&ray, false, NONE) {
+            Some(h) => h,
+            None => break,
+        };
+        let prim = scene.prims[hit.prim as usize];
+        let sp = surface_point(scene, &prim, &hit, &ray);
+        let crossing = mask::crossing(
+            scene,
+            &scene.materials[prim.material as usize],
+            &sp,
+            ray.dir,
+            sampler,
+            &mut mask_passes,
+        );
+        if crossing.through {
+            beta *= crossing.weight;
+            if mask_passes >= mask::MAX_PASSES || max_component(beta) <= 0.0 {
+                break;
+            }
+            ray = mask::onward(&sp, ray.dir);
+            continue;
+        }
+        let material_index = crate::two_sided::seen(scene, prim.material, &sp, ray.dir);
+        let material = scene.materials[material_index as usize];
+        let shading = shading_frame(scene, &material, &prim, &hit, &sp, ray.dir);
+        let (frame, ng, wo) = (shading.frame(), shading.ng, shading.wo);
+        let bsdf = Bsdf::new(
+            &material,
+            scene.materials,
+            scene.textures,
+            scene.tables,
+            sp.lookup(),
+            scene.features,
+            shading.tilt,
+        );
+        let wo_world = -ray.dir;
+        let u_round = sampler.next_1d();
+        let smooth = bsdf.flags().has_smooth();
+        let cos_in = sp.ng.dot(ray.dir).abs();
+        mis = if depth == 1 {
+            let inv_nee_sq = if smooth { inv_nee_ratio_sq(scene, &es, sp.p) } else { 0.0 };
+            SubpathMis::light_first_vertex(inv_nee_sq, inv_hit_sq, cos_in)
+        } else {
+            mis.arrive((sp.p - previous).length_squared(), cos_in)
+        };
+
+        if smooth {
+            // A camera vertex connects to this one only if the path stays within `max_depth`.
+            if within(max_depth, depth + 2) && count < MAX_LIGHT_VERTICES {
+                vertices[count as usize] = LightVertex::new(&sp, &shading, material_index, beta, mis, depth);
+                count += 1;
+            }
+            if let Some(c) = camera.connect(sp.p, lens_sample(sampler, bounce_dims + DIM_LENS_IN_BOUNCE)) {
+                let to_camera = frame.to_local(c.dir);
+                let f = bsdf.eval(wo, to_camera, TransportMode::Importance);
+                let corr = shading_normal_correction(wo_world, c.dir, frame.n, ng);
+                let origin = offset_origin(&sp, ng, c.dir);
+                // The camera path's density of leaving here back along the light path.
+                let rev = bsdf.pdf(to_camera, wo, TransportMode::Radiance);
+                let weighting = ConnectionMis::bdpt(mis, sp.ng.dot(c.dir).abs(), rev);
+                splat_to_camera(
+                    scene,
+                    params,
+                    &accel,
+                    words,
+                    origin,
+                    &c,
+                    beta * f * corr,
+                    NONE,
+                    u_round,
+                    weighting,
+                );
+            }
+        }
+        if depth >= MAX_LIGHT_VERTICES || (max_depth != NONE && depth + 1 >= max_depth) {
+            break;
+        }
+
+        let u_lobe = sampler.next_1d();
+        let u_dir = sampler.next_2d();
+        let u_lobe = if crossing.reflect_only { 0.0 } else { u_lobe };
+        let bs = bsdf.sample(wo, u_lobe, u_dir, TransportMode::Importance);
+        if bs.pdf <= 0.0 {
+            break;
+        }
+        let wi = frame.to_world(bs.wi);
+        let rev = if bs.delta { bs.pdf } else { bsdf.pdf(bs.wi, wo, TransportMode::Radiance) };
+        mis = mis.scatter(bs.delta, bs.pdf, rev, sp.ng.dot(wi).abs());
+        beta *= bs.weight * shading_normal_correction(wo_world, wi, frame.n, ng);
+        previous = sp.p;
+        ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
+        depth += 1;
+
+        let u_rr = sampler.next_1d();
+        if depth >= params.rr_depth {
+            let q = max_component(beta).min(0.95);
+            if u_rr >= q {
+                break;
+            }
+            beta /= q;
+        }
+        if max_component(beta) <= 0.0 {
+            break;
+        }
+    }
+    count
+}
+
+/// The camera path of one pixel sample with its strategies: emitters hit, next-event estimation and
+/// connections to the light path's kept `vertices` (`count` of them).
+fn camera_path(
+    scene: &SceneView,
+    params: &FrameParams,
+    camera_ray: Ray,
+    sampler: &mut Sampler,
+    pixel_density: f32,
+    vertices: &LightVertices,
+    count: u32,
+) -> Rgb {
+    let accel = Accel::of(scene);
+    let max_depth = params.max_depth;
+    let lens = params.camera.lens_point_of(camera_ray.origin);
+    let mut ray = camera_ray;
+    let mut throughput = Rgb::ONE;
+    let mut result = Rgb::ZERO;
+    let mut eta_scale = 1.0f32;
+    let mut mis = SubpathMis::ZERO;
+    let mut prev = PreviousVertex::camera(camera_ray.origin);
+    // Segments to the vertex about to be found, less one.
+    let mut depth = 0u32;
+    let mut mask_passes = 0u32;
+    loop {
+        sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
+        let visible_emitter = !(depth == 0 && params.hide_emitters != 0);
+        let found = if visible_emitter {
+            accel.trace(&ray, false, NONE)
+        } else {
+            first_hit_past_emitters(scene, &accel, &ray)
+        };
+        let hit = match found {
+            Some(h) => h,
+            None => {
+                if visible_emitter {
+                    // Environments start no light path: weighed against next-event estimation alone.
+                    result += throughput * environment(scene, params, ray.dir, &prev, ONE_EACH);
+                }
+                break;
+            }
+        };
+        let prim = scene.prims[hit.prim as usize];
+        let sp = surface_point(scene, &prim, &hit, &ray);
+        let segments = depth + 1;
+        let cos_in = sp.ng.dot(ray.dir).abs();
+        let dist_sq = (sp.p - prev.p).length_squared();
+        let arrived = if depth == 0 {
+            // Light tracing reaches the first vertex by connecting it to the camera, through the
+            // aperture point this ray left from.
+            let a = match params.camera.connect_through(sp.p, lens) {
+                Some(c) => c.importance * pixel_density * film_scale(params) * cos_in,
+                None => 0.0,
+            };
+            SubpathMis::camera_first_vertex(a)
+        } else {
+            mis.arrive(dist_sq, cos_in)
+        };
+
+        if prim.light != NONE {
+            let emitter = scene.lights[prim.light as usize];
+            let le = light::emitted_at(scene, &emitter, sp.ns, -ray.dir, sp.uv);
+            let weight = if prev.delta {
+                // Seen by the camera or through Dirac lobes alone: at the first vertex no other
+                // strategy makes the path; later the recursion's terms decide.
+                if depth == 0 || !bidirectional(segments) {
+                    1.0
+                } else {
+                    bdpt_mis::hit_weight(arrived, 0.0, emission::hit_density(scene, prim.light) * cos_in)
+                }
+            } else {
+                let direct = light::pdf(&emitter, &prim, prev.p, sp.p, sp.ng);
+                if bidirectional(segments) {
+                    let direct_area = bdpt_mis::to_area(direct, dist_sq, cos_in);
+                    let emission = emission::hit_density(scene, prim.light) * cos_in;
+                    bdpt_mis::hit_weight(arrived, direct_area, emission)
+                } else {
+                    power_heuristic(prev.pdf, direct)
+                }
+            };
+            result += throughput * le * weight;
+        }
+
+        let material = scene.materials[crate::two_sided::seen(scene, prim.material, &sp, ray.dir) as usize];
+        let mut reflect_only = false;
+        if mask::is_null(scene, &material) {
+            sampler.set_dimension(DIM_MASK + mask_passes);
+            let u_mask = sampler.next_1d();
+            sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
+            mask_passes += 1;
+            let crossing = mask::cross(scene, &material, &sp, ray.dir, u_mask);
+            if crossing.through {
+                throughput *= crossing.weight;
+                if mask_passes >= mask::MAX_PASSES || max_component(throughput) <= 0.0 {
+                    break;
+                }
+                ray = mask::onward(&sp, ray.dir);
+                continue;
+            }
+            reflect_only = crossing.reflect_only;
+        }
+        if max_depth != NONE && segments >= max_depth {
+            break;
+        }
+        let shading = shading_frame(scene, &material, &prim, &hit, &sp, ray.dir);
+        let (frame, ng, wo) = (shading.frame(), shading.ng, shading.wo);
+        let bsdf = Bsdf::new(
+            &material,
+            scene.materials,
+            scene.textures,
+            scene.tables,
+            sp.lookup(),
+            scene.features,
+            shading.tilt,
+        );
+        mis = arrived;
+
+        let u_select = sampler.next_1d();
+        let u_light = sampler.next_2d();
+        if bsdf.flags().has_smooth() {
+            let weighting = LightTracingMis::bdpt(mis, bidirectional(segments + 1));
+            result += throughput
+                * next_event(
+                    scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, ONE_EACH, weighting,
+                );
+            let mut k = 0;
+            while k < count {
+                let v = vertices[k as usize];
+                let length = segments + v.depth + 1;
+                if within(max_depth, length) && bidirectional(length) {
+                    result += throughput * connect(scene, &accel, &bsdf, &shading, &sp, mis, &v);
+                }
+                k += 1;
+            }
+        }
+
+        let u_lobe = sampler.next_1d();
+        let u_dir = sampler.next_2d();
+        let u_lobe = if reflect_only { 0.0 } else { u_lobe };
+        let bs = bsdf.sample(wo, u_lobe, u_dir, TransportMode::Radiance);
+        if bs.pdf <= 0.0 {
+            break;
+        }
+        let wi = frame.to_world(bs.wi);
+        throughput *= bs.weight;
+        eta_scale *= bs.eta * bs.eta;
+        let rev = if bs.delta { bs.pdf } else { bsdf.pdf(bs.wi, wo, TransportMode::Importance) };
+        mis = mis.scatter(bs.delta, bs.pdf, rev, sp.ng.dot(wi).abs());
+        prev = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta, lt: 0.0 };
+        ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
+        depth += 1;
+
+        let u_rr = sampler.next_1d();
+        if depth >= params.rr_depth {
+            let q = (max_component(throughput) * eta_scale).min(0.95);
+            if u_rr >= q {
+                break;
+            }
+            throughput /= q;
+        }
+        if max_component(throughput) <= 0.0 {
+            break;
+        }
+    }
+    result
+}
+
+/// A camera vertex (`bsdf`, `shading` at `sp`, state `camera`) connected to light vertex `v` by a
+/// shadow ray: both BSDFs, the geometry between them, the light path's throughput and the weight.
+fn connect(
+    scene: &SceneView,
+    accel: &Accel,
+    bsdf: &Bsdf,
+    shading: &Shading,
+    sp: &SurfacePoint,
+    camera: SubpathMis,
+    v: &LightVertex,
+) -> Rgb {
+    let d = v.p - sp.p;
+    let dist_sq = d.length_squared();
+    if !(dist_sq > 0.0) {
+        return Rgb::ZERO;
+    }
+    let dist = dist_sq.sqrt();
+    let dir = d / dist;
+    let frame = shading.frame();
+    let wi = frame.to_local(dir);
+    let ep = bsdf.eval_pdf(shading.wo, wi, TransportMode::Radiance);
+    if max_component(ep.f) <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let light_shading = v.shading();
+    let light_frame = light_shading.frame();
+    let light_sp = v.surface_point();
+    let light_bsdf = Bsdf::new(
+        &scene.materials[v.material as usize],
+        scene.materials,
+        scene.textures,
+        scene.tables,
+        light_sp.lookup(),
+        scene.features,
+        light_shading.tilt,
+    );
+    let to_camera = light_frame.to_local(-dir);
+    let light_ep = light_bsdf.eval_pdf(light_shading.wo, to_camera, TransportMode::Importance);
+    if max_component(light_ep.f) <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let corr = shading_normal_correction(
+        light_frame.to_world(light_shading.wo),
+        -dir,
+        light_frame.n,
+        light_shading.ng,
+    );
+    // Each side's density of sampling the other's vertex, and of leaving its own back along its path.
+    let camera_rev = bsdf.pdf(wi, shading.wo, TransportMode::Importance);
+    let light_rev = light_bsdf.pdf(to_camera, light_shading.wo, TransportMode::Radiance);
+    let light_state = SubpathMis { vcm: v.vcm, vc: v.vc };
+    let light_side = light_state.others(bdpt_mis::to_area(ep.pdf, dist_sq, v.ng.dot(dir).abs()), light_rev);
+    let camera_side =
+        camera.others(bdpt_mis::to_area(light_ep.pdf, dist_sq, sp.ng.dot(dir).abs()), camera_rev);
+    let weight = bdpt_mis::weight(light_side, camera_side);
+    let value = ep.f * light_ep.f * v.beta * (corr * weight / dist_sq);
+    if max_component(value) <= 0.0 {
+        return Rgb::ZERO;
+    }
+    let origin = offset_origin(sp, shading.ng, dir);
+    let target = offset_origin(&light_sp, light_shading.ng, -dir);
+    let to_target = target - origin;
+    let length = to_target.length();
+    let shadow = Ray { origin, dir: to_target / length, t_min: 0.0, t_max: length * (1.0 - SHADOW_EPSILON) };
+    value * mask::transmittance(scene, accel, &shadow, NONE)
+}

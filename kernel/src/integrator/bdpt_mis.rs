@@ -1,0 +1,127 @@
+//! Bidirectional path tracing's multiple-importance arithmetic: the recursion of vertex connection and
+//! merging (Georgiev et al. 2012, "Implementing Vertex Connection and Merging") without the merging
+//! terms, with the power heuristic. Every quantity is kept squared (the heuristic's exponent 2), as
+//! pure functions of densities so that the camera half and the light half use one definition each
+//! and a test can walk explicit paths through both (`kernel/tests/bdpt_mis.rs`: every path's weights
+//! sum to one over the strategies that can make it).
+//!
+//! A sub-path carries two scalars at its current vertex `v` (`SubpathMis`):
+//! - `vcm`: the density ratio, squared, of the strategy whose *other* sub-path reaches `v` (the other
+//!   side samples `v` by connecting to, or hitting, the vertex before it) to the strategy that made
+//!   `v` here, without `v`'s own reverse density;
+//! - `vc`: the sum of those ratios, squared, for the strategies whose other sub-path reaches further
+//!   along this one, without the reverse density at `v`.
+//!
+//! Densities are in solid angle at the vertex they leave; the cosines that turn them into area
+//! densities are taken with the geometric normal, on both sides alike.
+//!
+//! Conventions of caustic's camera (`mis::camera_scale_at_first_vertex`): the camera strategy's density
+//! of a first vertex `x`, relative to light tracing's paths per camera sample, is `importance ·
+//! pixel density · film scale · |cos θx|` (`Camera::connect_through`'s importance), written `a` here.
+
+use crate::math::is_finite;
+
+/// A sub-path's recursive MIS state at its current vertex (both terms squared).
+#[derive(Clone, Copy)]
+pub struct SubpathMis {
+    pub vcm: f32,
+    pub vc: f32,
+}
+
+impl SubpathMis {
+    pub const ZERO: SubpathMis = SubpathMis { vcm: 0.0, vc: 0.0 };
+
+    /// The camera path's first vertex: light tracing reaches it by connecting it to the camera (`a`
+    /// as above; 0 where it cannot: outside the film, an orthographic camera).
+    #[inline]
+    pub fn camera_first_vertex(a: f32) -> Self {
+        SubpathMis { vcm: if a > 0.0 { 1.0 / (a * a) } else { 0.0 }, vc: 0.0 }
+    }
+
+    /// The light path's first vertex, met at `|cos|` `cos_in`: next-event estimation from it could have
+    /// sampled the emitter point (`inv_nee_sq`: `1/er²` of `emission::nee_ratio` for that light sample,
+    /// 0 for an emitter it cannot sample), and a camera path leaving it could have hit that point
+    /// (`inv_hit_sq`: `1/E²` of `emission::hit_density`, 0 for point, spot and projector lights).
+    #[inline]
+    pub fn light_first_vertex(inv_nee_sq: f32, inv_hit_sq: f32, cos_in: f32) -> Self {
+        let c2 = cos_in * cos_in;
+        if !(c2 > 0.0) {
+            return SubpathMis::ZERO;
+        }
+        SubpathMis { vcm: inv_nee_sq / c2, vc: inv_hit_sq / c2 }
+    }
+
+    /// Arriving at the next vertex along a segment of squared length `dist_sq`, which meets the
+    /// surface at `|cos|` `cos_in`.
+    #[inline]
+    pub fn arrive(self, dist_sq: f32, cos_in: f32) -> Self {
+        let c2 = cos_in * cos_in;
+        if !(c2 > 0.0) {
+            return SubpathMis::ZERO;
+        }
+        let g = dist_sq / cos_in;
+        SubpathMis { vcm: self.vcm * g * g, vc: self.vc / c2 }
+    }
+
+    /// Leaving a vertex by a direction of solid-angle density `fwd` at `|cos|` `cos_out`; `rev` is the
+    /// other side's density of sampling the way back from here. A Dirac lobe has the same probability
+    /// both ways: the ratios pass through it, and no strategy connects at it.
+    #[inline]
+    pub fn scatter(self, delta: bool, fwd: f32, rev: f32, cos_out: f32) -> Self {
+        if delta {
+            return SubpathMis { vcm: 0.0, vc: self.vc * cos_out * cos_out };
+        }
+        if !(fwd > 0.0) {
+            return SubpathMis::ZERO;
+        }
+        let g = cos_out / fwd;
+        SubpathMis { vcm: 1.0 / (fwd * fwd), vc: g * g * (self.vc * rev * rev + self.vcm) }
+    }
+
+    /// The sum of the other strategies' ratios, squared, where the other side samples this vertex with
+    /// area density `other_area` and would leave it back along this sub-path with density `rev`.
+    #[inline]
+    pub fn others(self, other_area: f32, rev: f32) -> f32 {
+        other_area * other_area * (self.vcm + self.vc * rev * rev)
+    }
+}
+
+/// The power heuristic's weight from the squared ratios of the other strategies on either side.
+#[inline]
+pub fn weight(light_side: f32, camera_side: f32) -> f32 {
+    let w = 1.0 / (1.0 + light_side + camera_side);
+    if is_finite(w) {
+        w
+    } else {
+        0.0
+    }
+}
+
+/// A solid-angle density at a vertex turned into the area density at a point `dist_sq` away, met at
+/// `|cos|` `cos_at`.
+#[inline]
+pub fn to_area(pdf_w: f32, dist_sq: f32, cos_at: f32) -> f32 {
+    if dist_sq > 0.0 {
+        pdf_w * cos_at / dist_sq
+    } else {
+        0.0
+    }
+}
+
+/// The camera path hits an emitter (not at its first vertex): `direct_area` is next-event estimation's
+/// density of that point from the previous vertex, in area, `emission` light tracing's density of
+/// starting there and leaving towards the previous vertex (`hit_density · |cos|`; 0 for emitters
+/// that start no light path); `camera` the camera path's state at the hit.
+#[inline]
+pub fn hit_weight(camera: SubpathMis, direct_area: f32, emission: f32) -> f32 {
+    weight(0.0, direct_area * direct_area * camera.vcm + emission * emission * camera.vc)
+}
+
+/// Next-event estimation from a camera vertex: `r_hit` BSDF sampling's density over the light
+/// sample's (0 for delta lights), `nee_ratio` the light sample's `emission::nee_ratio`, `cos` the
+/// cosine at the vertex towards the light, `rev` light tracing's density of leaving the vertex back
+/// along the camera path.
+#[inline]
+pub fn nee_weight(camera: SubpathMis, r_hit: f32, nee_ratio: f32, cos: f32, rev: f32) -> f32 {
+    weight(r_hit * r_hit, camera.others(nee_ratio * cos, rev))
+}

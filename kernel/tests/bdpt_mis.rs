@@ -1,0 +1,237 @@
+//! BDPT's MIS weights on explicit random paths: for every path, the weights of the strategies that
+//! can make it (the camera path hitting the emitter, next-event estimation, each connection of a
+//! camera vertex to a light vertex, light tracing's connection to the camera) sum to one, each
+//! computed as `integrator::bdpt` computes it, by walking the path with `bdpt_mis`'s recursion from
+//! the camera side and from the light side. Dirac vertices anywhere between camera and emitter.
+use caustic_kernel::glam::Vec3;
+use caustic_kernel::integrator::bdpt_mis::{self, SubpathMis};
+use caustic_kernel::rng::Sampler;
+use std::f32::consts::PI;
+
+/// A path `x0` (pinhole camera) … `xk` (emitter), with the normal at every vertex and which vertices
+/// scatter by a Dirac lobe (probability `delta_prob` both ways).
+struct TestPath {
+    x: Vec<Vec3>,
+    n: Vec<Vec3>,
+    delta: Vec<bool>,
+    delta_prob: f32,
+    /// Area of the emitter at `xk` (uniform, pmf 1, cosine-weighted emission); `None`: a point light.
+    emitter_area: Option<f32>,
+    /// `We·cos/d²` of the camera connection to `x1` (film area at unit distance 1.5).
+    importance: f32,
+    /// For the negative control: the camera side's (`Some(true)`) or the light side's (`Some(false)`)
+    /// recursion takes 1 for every reverse density.
+    broken: Option<bool>,
+}
+
+fn random_unit(s: &mut Sampler) -> Vec3 {
+    let u = s.next_2d();
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// `deltas`: which interior vertices (1 ≤ i < k) scatter by a Dirac lobe, as a bit mask.
+fn random_path(k: usize, seed: u32, deltas: u32, point_light: bool) -> TestPath {
+    let mut s = Sampler::new(seed, k as u32, deltas * 2 + point_light as u32);
+    let mut x = vec![Vec3::ZERO];
+    for _ in 1..=k {
+        let last = *x.last().unwrap();
+        x.push(last + random_unit(&mut s) * (0.5 + 2.0 * s.next_1d()));
+    }
+    let mut n = vec![Vec3::Z];
+    for i in 1..=k {
+        let towards = if i < k {
+            (x[i - 1] - x[i]).normalize() + (x[i + 1] - x[i]).normalize()
+        } else {
+            x[i - 1] - x[i]
+        };
+        n.push((towards.normalize() + random_unit(&mut s) * 0.3).normalize());
+    }
+    let delta = (0..=k).map(|i| i >= 1 && i < k && deltas & (1 << i) != 0).collect();
+    let cos_c = (x[1] - x[0]).normalize().z.abs().max(0.2);
+    let d2 = (x[1] - x[0]).length_squared();
+    TestPath {
+        x,
+        n,
+        delta,
+        delta_prob: 0.7,
+        emitter_area: if point_light { None } else { Some(0.05 + s.next_1d()) },
+        importance: 1.0 / (1.5 * cos_c * cos_c * cos_c * d2),
+        broken: None,
+    }
+}
+
+impl TestPath {
+    fn k(&self) -> usize {
+        self.x.len() - 1
+    }
+
+    /// `|cos|` at vertex `i` towards vertex `j`.
+    fn cos(&self, i: usize, j: usize) -> f32 {
+        (self.x[j] - self.x[i]).normalize().dot(self.n[i]).abs()
+    }
+
+    fn dist_sq(&self, i: usize, j: usize) -> f32 {
+        (self.x[j] - self.x[i]).length_squared()
+    }
+
+    /// Sampling density at `i` towards `j`: Lambert's, or a Dirac vertex's discrete probability.
+    fn pdf(&self, i: usize, j: usize) -> f32 {
+        if self.delta[i] {
+            self.delta_prob
+        } else {
+            self.cos(i, j) / PI
+        }
+    }
+
+    /// Next-event estimation's solid-angle density of the emitter point from `x(k-1)` (uniform area).
+    fn light_pdf(&self) -> f32 {
+        let k = self.k();
+        self.dist_sq(k - 1, k) / (self.cos(k, k - 1) * self.emitter_area.unwrap())
+    }
+
+    /// `emission::hit_density`.
+    fn hit_density(&self) -> f32 {
+        self.emitter_area.map_or(0.0, |a| 1.0 / (a * PI))
+    }
+
+    /// `emission::nee_ratio` of the light sample at `xk` from `x(k-1)`.
+    fn nee_ratio(&self) -> f32 {
+        let k = self.k();
+        match self.emitter_area {
+            Some(_) => self.hit_density() / self.light_pdf(),
+            None => 1.0 / (4.0 * PI * self.dist_sq(k - 1, k)),
+        }
+    }
+
+    /// The camera path's state on arriving at each vertex `x1 … xk` (index = vertex).
+    fn camera_states(&self) -> Vec<SubpathMis> {
+        let k = self.k();
+        let mut states = vec![SubpathMis::ZERO; k + 1];
+        let mut m = SubpathMis::camera_first_vertex(self.importance * self.cos(1, 0));
+        states[1] = m;
+        for j in 1..k {
+            let rev = if self.broken == Some(true) { 1.0 } else { self.pdf(j, j - 1) };
+            m = m.scatter(self.delta[j], self.pdf(j, j + 1), rev, self.cos(j, j + 1));
+            m = m.arrive(self.dist_sq(j, j + 1), self.cos(j + 1, j));
+            states[j + 1] = m;
+        }
+        states
+    }
+
+    /// The light path's state on arriving at each vertex `x(k-1) … x1` (index = vertex).
+    fn light_states(&self) -> Vec<SubpathMis> {
+        let k = self.k();
+        let mut states = vec![SubpathMis::ZERO; k + 1];
+        let inv_hit_sq = if self.emitter_area.is_some() { 1.0 / self.hit_density().powi(2) } else { 0.0 };
+        // As `trace_light_path`: no next-event estimation from a Dirac first vertex.
+        let inv_nee_sq = if self.delta[k - 1] { 0.0 } else { 1.0 / self.nee_ratio().powi(2) };
+        let mut m = SubpathMis::light_first_vertex(inv_nee_sq, inv_hit_sq, self.cos(k - 1, k));
+        states[k - 1] = m;
+        for j in (2..k).rev() {
+            let rev = if self.broken == Some(false) { 1.0 } else { self.pdf(j, j + 1) };
+            m = m.scatter(self.delta[j], self.pdf(j, j - 1), rev, self.cos(j, j - 1));
+            m = m.arrive(self.dist_sq(j, j - 1), self.cos(j - 1, j));
+            states[j - 1] = m;
+        }
+        states
+    }
+
+    /// Every strategy's weight: (name, weight), for those that can make the path.
+    fn weights(&self) -> Vec<(String, f32)> {
+        let k = self.k();
+        let camera = self.camera_states();
+        let light = self.light_states();
+        let mut w = Vec::new();
+        if self.emitter_area.is_some() {
+            let direct_area = if self.delta[k - 1] {
+                0.0
+            } else {
+                bdpt_mis::to_area(self.light_pdf(), self.dist_sq(k - 1, k), self.cos(k, k - 1))
+            };
+            let emission = self.hit_density() * self.cos(k, k - 1);
+            w.push(("hit".into(), bdpt_mis::hit_weight(camera[k], direct_area, emission)));
+        }
+        if !self.delta[k - 1] {
+            let r_hit = if self.emitter_area.is_some() { self.pdf(k - 1, k) / self.light_pdf() } else { 0.0 };
+            let rev = self.pdf(k - 1, k - 2);
+            let nee = bdpt_mis::nee_weight(camera[k - 1], r_hit, self.nee_ratio(), self.cos(k - 1, k), rev);
+            w.push(("nee".into(), nee));
+        }
+        // Camera vertex x(t-1) connected to light vertex x(t).
+        for t in 2..k {
+            if self.delta[t - 1] || self.delta[t] {
+                continue;
+            }
+            let d2 = self.dist_sq(t - 1, t);
+            let light_side = light[t]
+                .others(bdpt_mis::to_area(self.pdf(t - 1, t), d2, self.cos(t, t - 1)), self.pdf(t, t + 1));
+            let camera_side = camera[t - 1].others(
+                bdpt_mis::to_area(self.pdf(t, t - 1), d2, self.cos(t - 1, t)),
+                self.pdf(t - 1, t - 2),
+            );
+            w.push((format!("connect x{} x{t}", t - 1), bdpt_mis::weight(light_side, camera_side)));
+        }
+        if !self.delta[1] {
+            let a = self.importance * self.cos(1, 0);
+            w.push(("light tracing".into(), bdpt_mis::weight(light[1].others(a, self.pdf(1, 2)), 0.0)));
+        }
+        w
+    }
+}
+
+#[test]
+fn strategy_weights_sum_to_one_on_random_paths() {
+    let mut checked = 0;
+    for k in 2..=9 {
+        // No Dirac vertex; every other interior vertex; random subsets (x1 and x(k-1) included).
+        let masks: Vec<u32> = vec![0, 0b1010_1010_1010 & ((1 << k) - 2), 0b10, 1 << (k - 1), 0b1_0110_1100];
+        for (m, &deltas) in masks.iter().enumerate() {
+            let deltas = deltas & ((1 << k) - 2);
+            for point_light in [false, true] {
+                for seed in 0..100 {
+                    let path = random_path(k, seed * 8 + m as u32, deltas, point_light);
+                    let weights = path.weights();
+                    if weights.is_empty() {
+                        // (A point light seen through a Dirac vertex: no strategy makes the path.)
+                        continue;
+                    }
+                    let sum: f32 = weights.iter().map(|w| w.1).sum();
+                    assert!(
+                        (sum - 1.0).abs() < 1e-4,
+                        "k={k} deltas={deltas:b} point={point_light} seed={seed}: {weights:?} sum to {sum}"
+                    );
+                    // Every strategy that can make the path takes part.
+                    assert!(weights.iter().all(|w| w.1 > 0.0), "k={k} seed={seed}: {weights:?}");
+                    checked += 1;
+                }
+            }
+        }
+    }
+    println!("{checked} paths: weights sum to one");
+}
+
+/// The test above can fail: either side's recursion without its reverse densities (a plausible
+/// slip) breaks the sum.
+#[test]
+fn a_wrong_recursion_breaks_the_sum() {
+    let mut path = random_path(5, 3, 0, false);
+    let sum = |p: &TestPath| p.weights().iter().map(|w| w.1).sum::<f32>();
+    assert!((sum(&path) - 1.0).abs() < 1e-4);
+    for side in [true, false] {
+        path.broken = Some(side);
+        let s = sum(&path);
+        println!("reverse densities left out on the {} side: sum {s}", if side { "camera" } else { "light" });
+        assert!((s - 1.0).abs() > 1e-3, "a recursion without reverse densities went unnoticed");
+    }
+}
+
+/// What one light path takes in an invocation's memory (`bdpt::LightVertex`).
+#[test]
+fn a_light_vertex_takes_224_bytes() {
+    use caustic_kernel::integrator::bdpt::{LightVertex, LightVertices, MAX_LIGHT_VERTICES};
+    assert_eq!(std::mem::size_of::<LightVertex>(), 224);
+    assert_eq!(std::mem::size_of::<LightVertices>(), 224 * MAX_LIGHT_VERTICES as usize);
+}

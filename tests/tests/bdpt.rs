@@ -1,0 +1,262 @@
+//! Bidirectional path tracing (`bdpt`) against path tracing: the same image, statistically, under each
+//! emitter kind it starts light paths from, with Dirac lobes, through a thin lens, with hidden
+//! emitters and masks, past the light path's reach and on the caustic seen through glass that only
+//! its connections make cheaply; GPU against CPU; no NaN or Inf on stiff cases.
+use caustic::backend::BackendChoice;
+use caustic::output::film::Film;
+use caustic_tests::replicas::*;
+use caustic_tests::*;
+
+/// A diffuse box corner (floor, back wall, a red side wall) with a sphere of `sphere_bsdf`, lit by
+/// `emitter`, `max_depth` `depth`, seen through a box filter.
+fn corner(integrator: &str, emitter: &str, depth: &str, sphere_bsdf: &str) -> String {
+    format!(
+        r#"<scene version="3.0.0">
+    <integrator type="{integrator}"><integer name="max_depth" value="{depth}"/></integrator>
+    <sensor type="perspective">
+        <float name="fov" value="50"/>
+        <transform name="to_world"><lookat origin="0, -3, 1.6" target="0, 0, 0.5" up="0, 0, 1"/></transform>
+        <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="24"/><rfilter type="box"/></film>
+    </sensor>
+    <shape type="rectangle"><transform name="to_world"><scale value="2"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.7"/></bsdf></shape>
+    <shape type="rectangle"><transform name="to_world"><scale value="2"/><rotate x="1" angle="90"/><translate y="1.5" z="1"/></transform>
+        <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></bsdf></shape>
+    <shape type="rectangle"><transform name="to_world"><scale value="2"/><rotate y="1" angle="90"/><translate x="-1.5" z="1"/></transform>
+        <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.2, 0.2"/></bsdf></bsdf></shape>
+    <shape type="sphere"><float name="radius" value="0.4"/><point name="center" x="0.3" y="0.2" z="0.4"/>
+        {sphere_bsdf}</shape>
+    {emitter}
+</scene>"#
+    )
+}
+
+const ROUGH_PLASTIC: &str = r#"<bsdf type="roughplastic"><float name="alpha" value="0.2"/><rgb name="diffuse_reflectance" value="0.3, 0.4, 0.6"/></bsdf>"#;
+const GLASS: &str = r#"<bsdf type="dielectric"><float name="int_ior" value="1.5"/></bsdf>"#;
+
+const EMITTERS: [(&str, &str); 4] = [
+    (
+        "area",
+        r#"<shape type="rectangle"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate z="1.9"/></transform>
+            <emitter type="area"><rgb name="radiance" value="12"/></emitter></shape>"#,
+    ),
+    (
+        "sphere",
+        r#"<shape type="sphere"><float name="radius" value="0.15"/><point name="center" x="-0.5" y="-0.3" z="1.4"/>
+            <emitter type="area"><rgb name="radiance" value="10"/></emitter></shape>"#,
+    ),
+    (
+        "point",
+        r#"<emitter type="point"><point name="position" value="0.4, -0.6, 1.5"/><rgb name="intensity" value="4"/></emitter>"#,
+    ),
+    (
+        "spot",
+        r#"<emitter type="spot"><transform name="to_world"><lookat origin="-0.6, -1, 1.8" target="0.2, 0.3, 0"/></transform>
+            <rgb name="intensity" value="8"/><float name="cutoff_angle" value="35"/></emitter>"#,
+    ),
+];
+
+/// `bdpt` (`spp` replicated, seed `seed`) against `path` (`path_spp`, seed `seed + 1`) on `xml(kind)`;
+/// returns the two images.
+fn agrees_with_path(
+    what: &str,
+    xml: impl Fn(&str) -> String,
+    spp: u32,
+    path_spp: u32,
+    seed: u32,
+) -> (Replicated, Film) {
+    let path = render_scene(
+        &load_xml(&xml("path"), &format!("{what}-path")),
+        BackendChoice::Cpu,
+        path_spp,
+        seed + 1,
+    );
+    let bdpt = render_replicated(&load_xml(&xml("bdpt"), &format!("{what}-bdpt")), spp, seed);
+    let (z, worst) = agreement(&bdpt, &path);
+    println!(
+        "{what}: bdpt mean {:.5}, path {:.5}: image z {z:+.2}, worst pixel |z| {worst:.2}",
+        bdpt.mean,
+        image_mean(&path)
+    );
+    assert!(image_mean(&path) > 1e-3, "{what}: the scene is dark");
+    assert_eq!(bdpt.film.invalid_samples, 0, "{what}: bdpt gave NaN or infinite samples");
+    // 24×24×3 values: |z| ≤ 5.0 is the Šidák-corrected 0.1% two-sided bound per value.
+    assert!(z.abs() < 4.5 && worst < 5.0, "{what}: bdpt and path disagree (z {z:+.2}, worst {worst:.2})");
+    (bdpt, path)
+}
+
+#[test]
+fn bdpt_and_path_agree_on_every_emitter_kind() {
+    for (i, (name, emitter)) in EMITTERS.into_iter().enumerate() {
+        agrees_with_path(name, |k| corner(k, emitter, "5", ROUGH_PLASTIC), 256, 1024, 10 + 2 * i as u32);
+    }
+}
+
+/// The check above can fail: a 10% brighter light in the bidirectional image is detected.
+#[test]
+fn bdpt_agreement_detects_a_brighter_light() {
+    let emitter = EMITTERS[0].1;
+    let brighter = emitter.replace(r#"value="12""#, r#"value="13.2""#);
+    let path = render_scene(
+        &load_xml(&corner("path", emitter, "5", ROUGH_PLASTIC), "neg-path"),
+        BackendChoice::Cpu,
+        1024,
+        1,
+    );
+    let bdpt =
+        render_replicated(&load_xml(&corner("bdpt", &brighter, "5", ROUGH_PLASTIC), "neg-bdpt"), 256, 2);
+    let (z, _) = agreement(&bdpt, &path);
+    println!("10% brighter light: image z {z:+.2}");
+    assert!(z > 6.0, "a 10% brighter light went unnoticed (z {z:+.2})");
+}
+
+/// Dirac lobes at the sphere (glass and a mirror), unbounded depth: paths longer than the light path's
+/// reach (`bdpt::MAX_LIGHT_VERTICES` + 1 segments) are weighted between the camera strategies alone.
+#[test]
+fn bdpt_and_path_agree_through_dirac_lobes_at_any_depth() {
+    let mirror = r#"<bsdf type="conductor"><string name="material" value="none"/></bsdf>"#;
+    for (name, bsdf, depth) in
+        [("glass", GLASS, "-1"), ("mirror", mirror, "-1"), ("glass, depth 4", GLASS, "4")]
+    {
+        agrees_with_path(name, |k| corner(k, EMITTERS[1].1, depth, bsdf), 256, 2048, 30);
+    }
+}
+
+/// Long paths: a box of mirrors facing each other (light bouncing tens of times), where most of the
+/// image is made by paths longer than the light path's reach.
+#[test]
+fn bdpt_and_path_agree_on_long_paths() {
+    let scene = |k: &str| {
+        corner(k, EMITTERS[0].1, "-1", ROUGH_PLASTIC)
+            .replace(r#"<rgb name="reflectance" value="0.7"/>"#, r#"<rgb name="reflectance" value="0.95"/>"#)
+            .replace(r#"<rgb name="reflectance" value="0.6"/>"#, r#"<rgb name="reflectance" value="0.95"/>"#)
+    };
+    agrees_with_path("bright corner", scene, 256, 2048, 40);
+}
+
+/// A caustic seen through glass (light → glass → floor → glass → camera): a small light above a glass
+/// sphere focusing onto the floor, seen through a glass slab. Path tracing finds these paths only by
+/// hitting the small light; BDPT connects the floor's camera vertex to the light path's, and agrees.
+#[test]
+fn bdpt_renders_a_caustic_seen_through_glass_like_path() {
+    let light = r#"<shape type="sphere"><float name="radius" value="0.05"/><point name="center" x="0.5" y="0.3" z="1.6"/>
+            <emitter type="area"><rgb name="radiance" value="400"/></emitter></shape>"#;
+    let slab = r#"<shape type="cube"><transform name="to_world"><scale x="1.2" y="0.05" z="1.2"/><translate y="-1.6" z="0.8"/></transform>
+            <bsdf type="dielectric"><float name="int_ior" value="1.5"/></bsdf></shape>"#;
+    let scene = |k: &str| corner(k, &format!("{light}{slab}"), "-1", GLASS);
+    let (bdpt, path) = agrees_with_path("caustic through glass", scene, 512, 8192, 50);
+    let noise = |f: &Film| f.variance.as_ref().unwrap().iter().flatten().copied().sum::<f64>();
+    println!(
+        "summed variance: path {:.3e} (8192 spp), bdpt {:.3e} (512 spp)",
+        noise(&path),
+        noise(&bdpt.film)
+    );
+}
+
+/// A thin lens, hidden emitters and a mask: what the camera side shares with `path` and the light side
+/// with `ptracer`.
+#[test]
+fn bdpt_and_path_agree_with_a_thin_lens_hidden_emitters_and_a_mask() {
+    let thin_lens = |xml: String| {
+        xml.replace(
+            r#"<sensor type="perspective">"#,
+            r#"<sensor type="thinlens"><float name="aperture_radius" value="0.4"/><float name="focus_distance" value="6"/>"#,
+        )
+    };
+    agrees_with_path("thin lens", |k| thin_lens(corner(k, EMITTERS[0].1, "5", ROUGH_PLASTIC)), 256, 2048, 60);
+    let hidden = |k: &str| {
+        corner(k, EMITTERS[1].1, "5", ROUGH_PLASTIC).replace(
+            r#"<integer name="max_depth" value="5"/>"#,
+            r#"<integer name="max_depth" value="5"/><boolean name="hide_emitters" value="true"/>"#,
+        )
+    };
+    agrees_with_path("hidden emitters", hidden, 256, 2048, 62);
+    let masked = r#"<bsdf type="mask"><float name="opacity" value="0.4"/><bsdf type="diffuse"><rgb name="reflectance" value="0.8"/></bsdf></bsdf>"#;
+    agrees_with_path("mask", |k| corner(k, EMITTERS[0].1, "5", masked), 256, 2048, 64);
+}
+
+/// An environment (no light path starts there) beside an area light.
+#[test]
+fn bdpt_and_path_agree_under_an_environment() {
+    let sky =
+        format!(r#"{}<emitter type="constant"><rgb name="radiance" value="0.3"/></emitter>"#, EMITTERS[0].1);
+    agrees_with_path("constant sky", |k| corner(k, &sky, "5", ROUGH_PLASTIC), 256, 2048, 70);
+}
+
+/// Stiff cases: a lamp sealed in glass, index-matched glass, a camera inside glass, a grazing floor.
+/// No sample may be NaN or infinite, and bdpt must agree with path tracing.
+#[test]
+fn bdpt_stiff_cases_stay_finite_and_agree() {
+    let lamp_in_glass = r#"<shape type="sphere"><float name="radius" value="0.05"/><point name="center" x="0.3" y="0.2" z="0.4"/>
+            <emitter type="area"><rgb name="radiance" value="50"/></emitter></shape>"#;
+    let cases = [
+        ("lamp sealed in glass", GLASS, lamp_in_glass, "-1", "0, -3, 1.6"),
+        (
+            "index-matched glass",
+            r#"<bsdf type="dielectric"><float name="int_ior" value="1.000001"/><float name="ext_ior" value="1"/></bsdf>"#,
+            EMITTERS[0].1,
+            "8",
+            "0, -3, 1.6",
+        ),
+        (
+            "camera inside glass",
+            r#"<bsdf type="roughdielectric"><float name="alpha" value="0.05"/><float name="int_ior" value="1.33"/></bsdf>"#,
+            EMITTERS[0].1,
+            "8",
+            "0.3, 0.2, 0.45",
+        ),
+        ("grazing floor", r#"<bsdf type="diffuse"/>"#, EMITTERS[0].1, "8", "0, -3, 0.02"),
+    ];
+    for (i, (name, bsdf, emitter, depth, origin)) in cases.into_iter().enumerate() {
+        let scene = |k: &str| {
+            corner(k, emitter, depth, bsdf)
+                .replace(r#"origin="0, -3, 1.6""#, &format!(r#"origin="{origin}""#))
+        };
+        agrees_with_path(name, scene, 256, 4096, 80 + 2 * i as u32);
+    }
+}
+
+/// What `bdpt` does not render is refused with the file and line where it can be named: a dispersive
+/// dielectric, a `directionalarea` emitter, the orthographic camera.
+#[test]
+fn bdpt_refuses_what_it_does_not_render() {
+    let dispersive = r#"<bsdf type="dielectric"><float name="int_ior" value="1.6"/><float name="abbe_number" value="20"/></bsdf>"#;
+    let directional = r#"<shape type="rectangle"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate z="1.9"/></transform>
+            <emitter type="directionalarea"><rgb name="radiance" value="12"/></emitter></shape>"#;
+    let ortho = corner("bdpt", EMITTERS[0].1, "5", ROUGH_PLASTIC).replace(
+        r#"<sensor type="perspective">
+        <float name="fov" value="50"/>"#,
+        r#"<sensor type="orthographic">"#,
+    );
+    let cases = [
+        (
+            corner("bdpt", EMITTERS[0].1, "5", dispersive),
+            "dispersive dielectric is not rendered by bdpt",
+            ".xml:",
+        ),
+        (corner("bdpt", directional, "5", ROUGH_PLASTIC), "not by bdpt", ".xml:"),
+        (ortho, "orthographic sensor is not supported", "bdpt"),
+    ];
+    for (i, (xml, expected, location)) in cases.iter().enumerate() {
+        let result = try_load_xml(xml, &format!("bdpt-refuse-{i}"), &[])
+            .and_then(|scene| caustic::prepare::buffers::build(&scene).map(|_| ()));
+        let error = format!("{:#}", result.expect_err(expected));
+        println!("case {i}: {error}");
+        assert!(error.contains(expected), "case {i}: {error}");
+        assert!(error.contains(location), "case {i} says nowhere: {error}");
+    }
+}
+
+/// The GPU runs the same kernel: same seed, the same image to float rounding (GPU compilers may fuse
+/// differently, which moves a few paths).
+#[test]
+fn bdpt_gpu_matches_cpu() {
+    let scene = load_xml(&corner("bdpt", EMITTERS[0].1, "5", ROUGH_PLASTIC), "bdpt-gpu-cpu");
+    let cpu = render_scene(&scene, BackendChoice::Cpu, 2, 5);
+    let gpu = render_scene(&scene, BackendChoice::Gpu, 2, 5);
+    let max_diff = max_abs_difference(&cpu, &gpu);
+    let total: f64 = cpu.rgb.iter().flatten().map(|&c| c as f64).sum();
+    println!("bdpt GPU vs CPU: max |difference| {max_diff:e}, image sum {total:.4}");
+    assert!(total > 0.1, "the image is dark");
+    assert!(max_diff < 1e-3, "GPU and CPU BDPT differ by {max_diff}");
+}
