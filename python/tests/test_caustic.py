@@ -104,7 +104,7 @@ def test_aovs_come_by_name():
 
 
 def test_bad_arguments_raise_value_errors(small):
-    for kwargs in [{"backend": "xpu"}, {"integrator": "bdpt"}, {"film": "box"}, {"gpus": "none"}]:
+    for kwargs in [{"backend": "xpu"}, {"integrator": "mlt"}, {"film": "box"}, {"gpus": "none"}]:
         with pytest.raises(ValueError):
             small.render(spp=1, progress=False, **kwargs)
 
