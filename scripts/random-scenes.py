@@ -1639,12 +1639,16 @@ def render_mitsuba(xml_path, spp, batches, first_seed):
 
 
 BACKEND = ["cpu"]  # caustic's backend (--backend)
+TIMEOUT = [None]  # seconds a caustic render may take (--timeout)
 
 
 def render_caustic(binary, xml_path, exr_path, spp, seed, env):
     command = [binary, "render", xml_path, "--backend", BACKEND[0], "--spp", str(spp), "--seed", str(seed),
                "--strict", "--variance", "-q", "-o", exr_path]
-    out = subprocess.run(command, capture_output=True, text=True, env=env)
+    try:
+        out = subprocess.run(command, capture_output=True, text=True, env=env, timeout=TIMEOUT[0])
+    except subprocess.TimeoutExpired:
+        raise RuntimeError(f"caustic render ran past --timeout {TIMEOUT[0]} s and was stopped")
     if out.returncode != 0:
         raise RuntimeError(f"caustic render failed (exit {out.returncode}): "
                            + (out.stderr.strip() or out.stdout.strip()))
@@ -1741,6 +1745,9 @@ def main():
                          "DRJIT_LIBLLVM_PATH where Debian keeps libLLVM)")
     ap.add_argument("--backend", default="cpu", choices=["cpu", "gpu"],
                     help="caustic's backend (gpu: the kernel's SPIR-V, on lavapipe where no GPU is)")
+    ap.add_argument("--timeout", type=float, default=None,
+                    help="seconds a caustic render may take before it is stopped and the seed reported "
+                         "(lavapipe has taken over 12 minutes and 8 GB to compile the largest modules)")
     ap.add_argument("--extended", action=argparse.BooleanOptionalAction, default=True,
                     help="add the extended kinds of scene element (--no-extended: the original generator, "
                          "whose seeds make the scenes they made before)")
@@ -1760,6 +1767,7 @@ def main():
     RENDER_THREADS[0] = args.threads
     mi.set_variant(args.variant)
     BACKEND[0] = args.backend
+    TIMEOUT[0] = args.timeout
     dr.set_thread_count(max(2, args.threads))  # 1 only while rendering: see render_mitsuba
     env = dict(os.environ, RAYON_NUM_THREADS=str(args.threads))
     reference_spp = args.spp * args.ref_factor
