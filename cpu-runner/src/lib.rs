@@ -1,8 +1,9 @@
 //! The CPU backend: the kernel's per-pixel function, called natively on every core.
 use caustic_kernel::film_splat::{gather, resolved, words_per_pixel, CellReader, FilmCells};
+use caustic_kernel::integrator::bdpt::{CacheSlots, LightVertex, MAX_LIGHT_VERTICES};
 use caustic_kernel::integrator::{
-    accumulated, render_pixel, splat_bdpt_samples, splat_camera_paths, splats_camera_paths,
-    trace_light_paths, traces_bdpt, traces_light_paths, SceneView,
+    accumulated, merges, render_pixel, splat_cached_camera_path, splat_camera_paths, splats_camera_paths,
+    trace_cached_light_path, trace_light_paths, traces_light_paths, vcm_grid, SceneView,
 };
 use caustic_kernel::layout::{square_scale, FrameParams, PixelAccum};
 use caustic_kernel::splat::{AtomicWords, SPLAT_STRIDE};
@@ -132,16 +133,20 @@ impl AtomicWords for CpuWords<'_> {
         // Relaxed: the sums are read only after the pass has joined every thread.
         self.0[index as usize].fetch_add(value, Ordering::Relaxed)
     }
+
+    #[inline]
+    fn exchange(&mut self, index: u32, value: u32) -> u32 {
+        self.0[index as usize].swap(value, Ordering::Relaxed)
+    }
 }
 
-/// Traces `params.sample_count` light paths per pixel (IBPT: and camera paths; BDPT: its samples), exactly as the GPU's
+/// Traces `params.sample_count` light paths per pixel (IBPT: and camera paths), exactly as the GPU's
 /// dispatches do, and returns the splat words (`caustic_kernel::splat` layout) for the host to resolve.
 pub fn light_pass(scene: &SceneView, params: &FrameParams) -> Vec<u32> {
     let pixels = params.width * params.height;
     let words: Vec<AtomicU32> = (0..pixels * SPLAT_STRIDE).map(|_| AtomicU32::new(0)).collect();
     let camera_half = splats_camera_paths(scene, params);
     let light_half = traces_light_paths(params.integrator);
-    let bdpt = traces_bdpt(params.integrator);
     (0..pixels).into_par_iter().for_each(|pixel| {
         let mut words = CpuWords(&words);
         if camera_half {
@@ -150,9 +155,58 @@ pub fn light_pass(scene: &SceneView, params: &FrameParams) -> Vec<u32> {
         if light_half {
             trace_light_paths(scene, params, pixel, &mut words);
         }
-        if bdpt {
-            splat_bdpt_samples(scene, params, pixel, &mut words);
-        }
     });
     words.into_iter().map(AtomicU32::into_inner).collect()
+}
+
+/// BDPT's and VCM's memory kept between passes: the light vertex cache (`MAX_LIGHT_VERTICES` slots a
+/// pixel) and VCM's hash grid words (`caustic_kernel::integrator::vcm_grid`).
+#[derive(Default)]
+pub struct CacheScratch {
+    cache: Vec<LightVertex>,
+    grid: Vec<u32>,
+}
+
+impl CacheScratch {
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.cache.len() * std::mem::size_of::<LightVertex>() + self.grid.len() * 4
+    }
+}
+
+/// One BDPT or VCM sample a pixel (`params.sample_base`; VCM's radius `params.merge_radius`), exactly
+/// as the GPU's dispatches run it: every pixel's light path into the cache (its camera connections
+/// splatted), for VCM the grid linked over the cache, then every pixel's camera
+/// path; returns the splat words for the host to resolve.
+pub fn cached_pass(scene: &SceneView, params: &FrameParams, scratch: &mut CacheScratch) -> Vec<u32> {
+    let pixels = params.width * params.height;
+    let words: Vec<AtomicU32> = (0..pixels * SPLAT_STRIDE).map(|_| AtomicU32::new(0)).collect();
+    let grid = vcm_grid::Grid::of(params);
+    scratch.cache.resize(vcm_grid::slots(params) as usize, LightVertex::EMPTY);
+    scratch.cache.par_chunks_mut(MAX_LIGHT_VERTICES as usize).enumerate().for_each(|(pixel, own)| {
+        let mut slots = CacheSlots { cache: own, base: 0 };
+        trace_cached_light_path(scene, params, pixel as u32, &mut slots, &mut CpuWords(&words));
+    });
+    scratch.grid.clear();
+    let cache = &scratch.cache;
+    if merges(params.integrator) {
+        scratch.grid.resize(grid.words() as usize, 0);
+        let atomic = as_atomic(&mut scratch.grid);
+        (0..cache.len() as u32).into_par_iter().for_each(|slot| {
+            vcm_grid::link(cache, &grid, slot, &mut CpuWords(atomic));
+        });
+    }
+    let grid_words = &scratch.grid;
+    (0..pixels).into_par_iter().for_each(|pixel| {
+        splat_cached_camera_path(scene, params, pixel, cache, grid_words, &mut CpuWords(&words));
+    });
+    words.into_iter().map(AtomicU32::into_inner).collect()
+}
+
+/// `words` as atomics, for the grid's step that links vertices into it from every thread.
+fn as_atomic(words: &mut [u32]) -> &[AtomicU32] {
+    // SAFETY: `AtomicU32` has the size, alignment and bit validity of `u32`, and the exclusive borrow
+    // makes the atomics the only access for as long as they live (what the unstable
+    // `AtomicU32::from_mut_slice` does).
+    unsafe { &*(words as *mut [u32] as *const [AtomicU32]) }
 }

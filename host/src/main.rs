@@ -478,6 +478,7 @@ fn integrator_name(kind: &caustic::scene::IntegratorKind) -> &'static str {
         Ptracer => "ptracer",
         Ibpt => "ibpt",
         Bdpt => "bdpt",
+        Vcm => "vcm",
     }
 }
 

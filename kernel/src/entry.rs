@@ -2,9 +2,10 @@
 //! functions the CPU runner calls. Binding numbers and the workgroup size are the literals rust-gpu's
 //! attributes need; their names live in `layout` (`binding::*`, `TILE`), which the host uses.
 use crate::film_splat::{gather, resolved as film_resolved, WordCells};
+use crate::integrator::bdpt::{CacheSlots, LightVertex, MAX_LIGHT_VERTICES};
 use crate::integrator::{
-    accumulated, render_pixel, splat_bdpt_samples, splat_camera_paths, splats_camera_paths,
-    trace_light_paths, SceneView,
+    accumulated, render_pixel, splat_cached_camera_path, splat_camera_paths, splats_camera_paths,
+    trace_cached_light_path, trace_light_paths, vcm_grid, SceneView,
 };
 use crate::layout::{
     square_scale, BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
@@ -99,12 +100,11 @@ pub fn light(
     trace_light_paths(&scene, params, pixel, &mut GpuWords(splat));
 }
 
-/// Bidirectional path tracing (`integrator::bdpt`): one invocation per pixel, each sample's light path
-/// and camera path, splatting wherever they reach. Its own entry point, so that `render` does not
-/// carry it.
+/// BDPT's and VCM's light paths (`integrator::bdpt`): one invocation per pixel, its light path's
+/// camera connections splatted, its vertices into its slots of the light vertex cache.
 #[spirv(compute(threads(8, 8, 1)))] // layout::TILE
 #[allow(clippy::too_many_arguments)]
-pub fn bdpt(
+pub fn cache_light(
     #[spirv(global_invocation_id)] id: UVec3,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &FrameParams, // PARAMS
     #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],    // NODES
@@ -115,6 +115,7 @@ pub fn bdpt(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] tables: &[f32],       // TABLES
     #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] textures: &[Texture], // TEXTURES
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] splat: &mut [u32],    // SPLAT
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] cache: &mut [LightVertex], // CACHE
     #[spirv(spec_constant(id = 0, default = 4294967295))] features: u32,
 ) {
     if id.x >= params.width || id.y >= params.height {
@@ -132,7 +133,67 @@ pub fn bdpt(
         wide_bvh: false,
     };
     let pixel = id.y * params.width + id.x;
-    splat_bdpt_samples(&scene, params, pixel, &mut GpuWords(splat));
+    let mut slots = CacheSlots { cache, base: pixel * MAX_LIGHT_VERTICES };
+    trace_cached_light_path(&scene, params, pixel, &mut slots, &mut GpuWords(splat));
+}
+
+/// VCM's grid (`integrator::vcm_grid`): each pixel's light path's vertices linked into their
+/// buckets' lists.
+#[spirv(compute(threads(8, 8, 1)))] // layout::TILE
+pub fn grid_link(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &FrameParams, // PARAMS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] cache: &[LightVertex], // CACHE
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] grid: &mut [u32],    // GRID
+) {
+    if id.x >= params.width || id.y >= params.height {
+        return;
+    }
+    let g = vcm_grid::Grid::of(params);
+    let first = (id.y * params.width + id.x) * MAX_LIGHT_VERTICES;
+    let mut words = GpuWords(grid);
+    let mut k = 0;
+    while k < MAX_LIGHT_VERTICES {
+        vcm_grid::link(cache, &g, first + k, &mut words);
+        k += 1;
+    }
+}
+
+/// BDPT's and VCM's camera paths: one invocation per pixel, connected to its light path's vertices in
+/// the cache and (VCM) merged through the grid, splatted into the pixel's sums.
+#[spirv(compute(threads(8, 8, 1)))] // layout::TILE
+#[allow(clippy::too_many_arguments)]
+pub fn cache_camera(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &FrameParams, // PARAMS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],    // NODES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] prims: &[Primitive],  // PRIMS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] attributes: &[TriangleAttributes], // ATTRIBUTES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] materials: &[Material], // MATERIALS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] lights: &[Light],     // LIGHTS
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] tables: &[f32],       // TABLES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] textures: &[Texture], // TEXTURES
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] splat: &mut [u32],    // SPLAT
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] cache: &[LightVertex], // CACHE
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] grid: &[u32],        // GRID
+    #[spirv(spec_constant(id = 0, default = 4294967295))] features: u32,
+) {
+    if id.x >= params.width || id.y >= params.height {
+        return;
+    }
+    let scene = SceneView {
+        nodes,
+        prims,
+        attributes,
+        materials,
+        lights,
+        textures,
+        tables,
+        features,
+        wide_bvh: false,
+    };
+    let pixel = id.y * params.width + id.x;
+    splat_cached_camera_path(&scene, params, pixel, cache, grid, &mut GpuWords(splat));
 }
 
 /// After a splatting pass: folds each pixel's splat words into its accumulator and clears them, so

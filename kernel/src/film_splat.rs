@@ -18,7 +18,7 @@
 use spirv_std::num_traits::Float;
 
 use crate::film::{filter_weight, FilmSample};
-use crate::layout::{FrameParams, PixelAccum, INTEGRATOR_BDPT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER};
+use crate::layout::{FrameParams, PixelAccum};
 use crate::math::is_finite3;
 use crate::spectrum::Rgb;
 use crate::splat::SPLAT_STRIDE;
@@ -60,7 +60,7 @@ fn invalid_slot(params: &FrameParams) -> u32 {
 /// sums, the splatting film's cells, or none.
 pub fn words_per_pixel(params: &FrameParams) -> u32 {
     let kind = params.integrator;
-    if kind == INTEGRATOR_PTRACER || kind == INTEGRATOR_IBPT || kind == INTEGRATOR_BDPT {
+    if crate::layout::splats(kind) {
         SPLAT_STRIDE
     } else if params.film_reach > 0 {
         invalid_slot(params) + 1

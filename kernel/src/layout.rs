@@ -372,6 +372,11 @@ pub mod binding {
     pub const TEXTURES: u32 = 8;
     /// Light tracing's fixed-point splat sums (`splat`); a placeholder word for the other integrators.
     pub const SPLAT: u32 = 9;
+    /// BDPT's and VCM's light vertex cache (`integrator::bdpt::LightVertex`, `MAX_LIGHT_VERTICES` a
+    /// pixel).
+    pub const CACHE: u32 = 10;
+    /// VCM's hash grid over the cache (`integrator::vcm_grid`).
+    pub const GRID: u32 = 11;
 }
 
 pub const INTEGRATOR_PATH: u32 = 0;
@@ -385,6 +390,17 @@ pub const INTEGRATOR_IBPT: u32 = 3;
 /// joined in every way, combined by the power heuristic; splats like `INTEGRATOR_IBPT`, in the camera
 /// entry point alone.
 pub const INTEGRATOR_BDPT: u32 = 4;
+/// Vertex connection and merging (`integrator::vcm`): each pass traces a light path per pixel into
+/// the light vertex cache, builds the hash grid over it, then traces a camera path per pixel that
+/// connects to its own light path's vertices and merges with every light vertex within
+/// `merge_radius`; splats like `INTEGRATOR_BDPT`.
+pub const INTEGRATOR_VCM: u32 = 5;
+
+/// Whether integrator `kind` splats into the `SPLAT` words (resolved by the host after each pass).
+#[inline]
+pub fn splats(kind: u32) -> bool {
+    kind == INTEGRATOR_PTRACER || kind == INTEGRATOR_IBPT || kind == INTEGRATOR_BDPT || kind == INTEGRATOR_VCM
+}
 
 pub const SAMPLER_INDEPENDENT: u32 = 0;
 pub const SAMPLER_STRATIFIED: u32 = 1;
@@ -428,8 +444,8 @@ pub struct FrameParams {
     pub full_width: u32,
     pub full_height: u32,
 
-    /// `INTEGRATOR_PATH`, `INTEGRATOR_DIRECT`, `INTEGRATOR_PTRACER`, `INTEGRATOR_IBPT` or
-    /// `INTEGRATOR_BDPT`.
+    /// `INTEGRATOR_PATH`, `INTEGRATOR_DIRECT`, `INTEGRATOR_PTRACER`, `INTEGRATOR_IBPT`,
+    /// `INTEGRATOR_BDPT` or `INTEGRATOR_VCM`.
     pub integrator: u32,
     /// Light and BSDF samples per shading point of the direct integrator.
     pub emitter_samples: u32,
@@ -449,7 +465,8 @@ pub struct FrameParams {
     /// the filter (filter importance sampling); `r` > 0 splats it, drawn uniformly in its pixel, into
     /// the (2r+1)² pixels around it with the filter's weight, as Mitsuba's `hdrfilm` does.
     pub film_reach: u32,
-    pub _pad: u32,
+    /// Vertex merging's radius in this pass (`INTEGRATOR_VCM`; 0 otherwise), in scene units.
+    pub merge_radius: f32,
 
     pub camera: crate::camera::Camera,
 }

@@ -28,10 +28,12 @@ const TWO_32: f32 = 4_294_967_296.0;
 /// The largest magnitude one splat may add (2³⁹: the top of the signed range).
 pub const SPLAT_MAX: f32 = 1_099_511_627_776.0 / 2.0;
 
-/// A buffer of `u32` words with an atomic add, implemented by each backend.
+/// A buffer of `u32` words with an atomic add and exchange, implemented by each backend.
 pub trait AtomicWords {
     /// Adds `value` to word `index` and returns the word's previous value.
     fn fetch_add(&mut self, index: u32, value: u32) -> u32;
+    /// Writes `value` to word `index` and returns the word's previous value.
+    fn exchange(&mut self, index: u32, value: u32) -> u32;
 }
 
 /// The GPU's storage buffer of splat words.
@@ -49,6 +51,19 @@ impl AtomicWords for GpuWords<'_> {
         // sums are read only after the dispatch has completed.
         unsafe {
             spirv_std::arch::atomic_i_add::<u32, { Scope::QueueFamily as u32 }, { Semantics::NONE.bits() }>(
+                &mut self.0[index as usize],
+                value,
+            )
+        }
+    }
+
+    #[inline]
+    fn exchange(&mut self, index: u32, value: u32) -> u32 {
+        use spirv_std::memory::{Scope, Semantics};
+        // SAFETY: as `fetch_add`: an atomic exchange on a word of a storage buffer, read only after
+        // the dispatch has completed.
+        unsafe {
+            spirv_std::arch::atomic_exchange::<u32, { Scope::QueueFamily as u32 }, { Semantics::NONE.bits() }>(
                 &mut self.0[index as usize],
                 value,
             )

@@ -1,10 +1,11 @@
-//! BDPT's MIS weights on explicit random paths: for every path, the weights of the strategies that
-//! can make it (the camera path hitting the emitter, next-event estimation, each connection of a
-//! camera vertex to a light vertex, light tracing's connection to the camera) sum to one, each
-//! computed as `integrator::bdpt` computes it, by walking the path with `bdpt_mis`'s recursion from
-//! the camera side and from the light side. Dirac vertices anywhere between camera and emitter.
+//! BDPT's and VCM's MIS weights on explicit random paths: for every path, the weights of the
+//! strategies that can make it (the camera path hitting the emitter, next-event estimation, each
+//! connection of a camera vertex to a light vertex, light tracing's connection to the camera and,
+//! under VCM, each merge at a vertex) sum to one, each computed as `integrator::bdpt` computes it, by
+//! walking the path with `bdpt_mis`'s recursion from the camera side and from the light side. Dirac
+//! vertices anywhere between camera and emitter.
 use caustic_kernel::glam::Vec3;
-use caustic_kernel::integrator::bdpt_mis::{self, SubpathMis};
+use caustic_kernel::integrator::bdpt_mis::{self, Merging, SubpathMis};
 use caustic_kernel::rng::Sampler;
 use std::f32::consts::PI;
 
@@ -22,6 +23,10 @@ struct TestPath {
     /// For the negative control: the camera side's (`Some(true)`) or the light side's (`Some(false)`)
     /// recursion takes 1 for every reverse density.
     broken: Option<bool>,
+    /// Vertex merging (`Merging::OFF`: BDPT).
+    merging: Merging,
+    /// For the negative control: merges are weighted as connections are, without `vm`.
+    merges_unweighted: bool,
 }
 
 fn random_unit(s: &mut Sampler) -> Vec3 {
@@ -60,6 +65,8 @@ fn random_path(k: usize, seed: u32, deltas: u32, point_light: bool) -> TestPath 
         emitter_area: if point_light { None } else { Some(0.05 + s.next_1d()) },
         importance: 1.0 / (1.5 * cos_c * cos_c * cos_c * d2),
         broken: None,
+        merging: Merging::OFF,
+        merges_unweighted: false,
     }
 }
 
@@ -114,7 +121,7 @@ impl TestPath {
         states[1] = m;
         for j in 1..k {
             let rev = if self.broken == Some(true) { 1.0 } else { self.pdf(j, j - 1) };
-            m = m.scatter(self.delta[j], self.pdf(j, j + 1), rev, self.cos(j, j + 1));
+            m = m.scatter(self.delta[j], self.pdf(j, j + 1), rev, self.cos(j, j + 1), self.merging);
             m = m.arrive(self.dist_sq(j, j + 1), self.cos(j + 1, j));
             states[j + 1] = m;
         }
@@ -128,11 +135,11 @@ impl TestPath {
         let inv_hit_sq = if self.emitter_area.is_some() { 1.0 / self.hit_density().powi(2) } else { 0.0 };
         // As `trace_light_path`: no next-event estimation from a Dirac first vertex.
         let inv_nee_sq = if self.delta[k - 1] { 0.0 } else { 1.0 / self.nee_ratio().powi(2) };
-        let mut m = SubpathMis::light_first_vertex(inv_nee_sq, inv_hit_sq, self.cos(k - 1, k));
+        let mut m = SubpathMis::light_first_vertex(inv_nee_sq, inv_hit_sq, self.cos(k - 1, k), self.merging);
         states[k - 1] = m;
         for j in (2..k).rev() {
             let rev = if self.broken == Some(false) { 1.0 } else { self.pdf(j, j + 1) };
-            m = m.scatter(self.delta[j], self.pdf(j, j - 1), rev, self.cos(j, j - 1));
+            m = m.scatter(self.delta[j], self.pdf(j, j - 1), rev, self.cos(j, j - 1), self.merging);
             m = m.arrive(self.dist_sq(j, j - 1), self.cos(j - 1, j));
             states[j - 1] = m;
         }
@@ -157,7 +164,14 @@ impl TestPath {
         if !self.delta[k - 1] {
             let r_hit = if self.emitter_area.is_some() { self.pdf(k - 1, k) / self.light_pdf() } else { 0.0 };
             let rev = self.pdf(k - 1, k - 2);
-            let nee = bdpt_mis::nee_weight(camera[k - 1], r_hit, self.nee_ratio(), self.cos(k - 1, k), rev);
+            let nee = bdpt_mis::nee_weight(
+                camera[k - 1],
+                r_hit,
+                self.nee_ratio(),
+                self.cos(k - 1, k),
+                rev,
+                self.merging,
+            );
             w.push(("nee".into(), nee));
         }
         // Camera vertex x(t-1) connected to light vertex x(t).
@@ -166,17 +180,38 @@ impl TestPath {
                 continue;
             }
             let d2 = self.dist_sq(t - 1, t);
-            let light_side = light[t]
-                .others(bdpt_mis::to_area(self.pdf(t - 1, t), d2, self.cos(t, t - 1)), self.pdf(t, t + 1));
+            let light_side = light[t].others(
+                bdpt_mis::to_area(self.pdf(t - 1, t), d2, self.cos(t, t - 1)),
+                self.pdf(t, t + 1),
+                self.merging,
+            );
             let camera_side = camera[t - 1].others(
                 bdpt_mis::to_area(self.pdf(t, t - 1), d2, self.cos(t - 1, t)),
                 self.pdf(t - 1, t - 2),
+                self.merging,
             );
             w.push((format!("connect x{} x{t}", t - 1), bdpt_mis::weight(light_side, camera_side)));
         }
         if !self.delta[1] {
             let a = self.importance * self.cos(1, 0);
-            w.push(("light tracing".into(), bdpt_mis::weight(light[1].others(a, self.pdf(1, 2)), 0.0)));
+            let others = light[1].others(a, self.pdf(1, 2), self.merging);
+            w.push(("light tracing".into(), bdpt_mis::weight(others, 0.0)));
+        }
+        // Under VCM, the camera path merged at x_t with a light vertex there (t ≥ 1, the light path
+        // at least one segment long), where x_t scatters by no Dirac lobe.
+        if self.merging.eta_sq > 0.0 {
+            for t in 1..k {
+                if self.delta[t] {
+                    continue;
+                }
+                let (fwd, rev) = (self.pdf(t, t + 1), if t == 1 { 0.0 } else { self.pdf(t, t - 1) });
+                let weight = if self.merges_unweighted {
+                    bdpt_mis::weight(light[t].vcm, camera[t].vcm)
+                } else {
+                    bdpt_mis::merge_weight(light[t], camera[t], fwd, rev, self.merging)
+                };
+                w.push((format!("merge x{t}"), weight));
+            }
         }
         w
     }
@@ -184,33 +219,40 @@ impl TestPath {
 
 #[test]
 fn strategy_weights_sum_to_one_on_random_paths() {
-    let mut checked = 0;
-    for k in 2..=9 {
-        // No Dirac vertex; every other interior vertex; random subsets (x1 and x(k-1) included).
-        let masks: Vec<u32> = vec![0, 0b1010_1010_1010 & ((1 << k) - 2), 0b10, 1 << (k - 1), 0b1_0110_1100];
-        for (m, &deltas) in masks.iter().enumerate() {
-            let deltas = deltas & ((1 << k) - 2);
-            for point_light in [false, true] {
-                for seed in 0..100 {
-                    let path = random_path(k, seed * 8 + m as u32, deltas, point_light);
-                    let weights = path.weights();
-                    if weights.is_empty() {
-                        // (A point light seen through a Dirac vertex: no strategy makes the path.)
-                        continue;
+    // BDPT, then VCM with merges a hundredth of, as likely as, and a hundred times as likely as a
+    // connection at a typical vertex (`eta`: π r² L).
+    for (radius, light_paths) in [(0.0, 1.0), (0.01, 30.0), (0.1, 30.0), (1.0, 30.0)] {
+        let merging = Merging::new(radius, light_paths);
+        let mut checked = 0;
+        for k in 2..=9 {
+            // No Dirac vertex; every other interior vertex; random subsets (x1 and x(k-1) included).
+            let masks: Vec<u32> =
+                vec![0, 0b1010_1010_1010 & ((1 << k) - 2), 0b10, 1 << (k - 1), 0b1_0110_1100];
+            for (m, &deltas) in masks.iter().enumerate() {
+                let deltas = deltas & ((1 << k) - 2);
+                for point_light in [false, true] {
+                    for seed in 0..100 {
+                        let mut path = random_path(k, seed * 8 + m as u32, deltas, point_light);
+                        path.merging = merging;
+                        let weights = path.weights();
+                        if weights.is_empty() {
+                            // (A point light seen through a Dirac vertex: no strategy makes the path.)
+                            continue;
+                        }
+                        let sum: f32 = weights.iter().map(|w| w.1).sum();
+                        assert!(
+                            (sum - 1.0).abs() < 1e-4,
+                            "r={radius} k={k} deltas={deltas:b} point={point_light} seed={seed}: {weights:?} sum to {sum}"
+                        );
+                        // Every strategy that can make the path takes part.
+                        assert!(weights.iter().all(|w| w.1 > 0.0), "k={k} seed={seed}: {weights:?}");
+                        checked += 1;
                     }
-                    let sum: f32 = weights.iter().map(|w| w.1).sum();
-                    assert!(
-                        (sum - 1.0).abs() < 1e-4,
-                        "k={k} deltas={deltas:b} point={point_light} seed={seed}: {weights:?} sum to {sum}"
-                    );
-                    // Every strategy that can make the path takes part.
-                    assert!(weights.iter().all(|w| w.1 > 0.0), "k={k} seed={seed}: {weights:?}");
-                    checked += 1;
                 }
             }
         }
+        println!("radius {radius}: {checked} paths: weights sum to one");
     }
-    println!("{checked} paths: weights sum to one");
 }
 
 /// The test above can fail: either side's recursion without its reverse densities (a plausible
@@ -226,12 +268,23 @@ fn a_wrong_recursion_breaks_the_sum() {
         println!("reverse densities left out on the {} side: sum {s}", if side { "camera" } else { "light" });
         assert!((s - 1.0).abs() > 1e-3, "a recursion without reverse densities went unnoticed");
     }
+    // Merges weighted without the recursion's `vm` term (as if merging were one more connection).
+    let mut path = random_path(5, 3, 0, false);
+    path.merging = Merging::new(0.1, 30.0);
+    assert!((sum(&path) - 1.0).abs() < 1e-4);
+    path.merges_unweighted = true;
+    let s = sum(&path);
+    println!("merges weighted without vm: sum {s}");
+    assert!((s - 1.0).abs() > 1e-3, "merges weighted without their term went unnoticed");
 }
 
-/// What one light path takes in an invocation's memory (`bdpt::LightVertex`).
+/// What one light path takes in the light vertex cache (`bdpt::LightVertex`, `MAX_LIGHT_VERTICES`
+/// slots a path): 208 bytes a vertex, a multiple of 16, of 4-byte members, which Rust and the GPU
+/// lay out alike.
 #[test]
-fn a_light_vertex_takes_224_bytes() {
-    use caustic_kernel::integrator::bdpt::{LightVertex, LightVertices, MAX_LIGHT_VERTICES};
-    assert_eq!(std::mem::size_of::<LightVertex>(), 224);
-    assert_eq!(std::mem::size_of::<LightVertices>(), 224 * MAX_LIGHT_VERTICES as usize);
+fn a_light_path_takes_1664_bytes_of_the_cache() {
+    use caustic_kernel::integrator::bdpt::{LightVertex, MAX_LIGHT_VERTICES};
+    assert_eq!(std::mem::size_of::<LightVertex>(), 208);
+    assert_eq!(std::mem::align_of::<LightVertex>(), 4);
+    assert_eq!(std::mem::size_of::<LightVertex>() * MAX_LIGHT_VERTICES as usize, 1664);
 }

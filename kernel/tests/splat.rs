@@ -13,6 +13,10 @@ impl AtomicWords for Words {
         self.0[index as usize] = old.wrapping_add(value);
         old
     }
+
+    fn exchange(&mut self, index: u32, value: u32) -> u32 {
+        std::mem::replace(&mut self.0[index as usize], value)
+    }
 }
 
 fn words() -> Words {

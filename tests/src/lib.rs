@@ -12,6 +12,7 @@ use caustic::render::passes;
 use caustic::scene::Scene;
 use std::path::PathBuf;
 
+pub mod corner;
 pub mod replicas;
 
 /// `../shared` beside the repository (override with CAUSTIC_SHARED), whether it is there or not.

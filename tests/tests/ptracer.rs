@@ -3,64 +3,20 @@
 //! caustic; the GPU and the CPU splat the same sums.
 use caustic::backend::BackendChoice;
 use caustic::output::film::Film;
+use caustic_tests::corner::{corner_sized, EMITTERS, ROUGH_PLASTIC};
 use caustic_tests::replicas::*;
 use caustic_tests::*;
 
-/// A diffuse box corner (floor, back wall, a red side wall) with a glossy sphere, lit by `emitter`,
-/// seen through a box filter (light tracing splats with the box).
+/// The shared corner (`caustic_tests::corner`) with a glossy sphere at `max_depth` 5, `res`×`res`
+/// pixels (light tracing splats with its box filter).
 fn corner(integrator: &str, emitter: &str, res: u32) -> String {
-    corner_with(
-        integrator,
-        emitter,
-        res,
-        r#"<bsdf type="roughplastic"><float name="alpha" value="0.2"/><rgb name="diffuse_reflectance" value="0.3, 0.4, 0.6"/></bsdf>"#,
-    )
+    corner_with(integrator, emitter, res, ROUGH_PLASTIC)
 }
 
 /// `corner` with the sphere's BSDF given.
 fn corner_with(integrator: &str, emitter: &str, res: u32, sphere_bsdf: &str) -> String {
-    format!(
-        r#"<scene version="3.0.0">
-    <integrator type="{integrator}"><integer name="max_depth" value="5"/></integrator>
-    <sensor type="perspective">
-        <float name="fov" value="50"/>
-        <transform name="to_world"><lookat origin="0, -3, 1.6" target="0, 0, 0.5" up="0, 0, 1"/></transform>
-        <film type="hdrfilm"><integer name="width" value="{res}"/><integer name="height" value="{res}"/><rfilter type="box"/></film>
-    </sensor>
-    <shape type="rectangle"><transform name="to_world"><scale value="2"/></transform>
-        <bsdf type="diffuse"><rgb name="reflectance" value="0.7"/></bsdf></shape>
-    <shape type="rectangle"><transform name="to_world"><scale value="2"/><rotate x="1" angle="90"/><translate y="1.5" z="1"/></transform>
-        <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></bsdf></shape>
-    <shape type="rectangle"><transform name="to_world"><scale value="2"/><rotate y="1" angle="90"/><translate x="-1.5" z="1"/></transform>
-        <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.2, 0.2"/></bsdf></bsdf></shape>
-    <shape type="sphere"><float name="radius" value="0.4"/><point name="center" x="0.3" y="0.2" z="0.4"/>
-        {sphere_bsdf}</shape>
-    {emitter}
-</scene>"#
-    )
+    corner_sized(integrator, emitter, "5", res, sphere_bsdf)
 }
-
-const EMITTERS: [(&str, &str); 4] = [
-    (
-        "area",
-        r#"<shape type="rectangle"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate z="1.9"/></transform>
-            <emitter type="area"><rgb name="radiance" value="12"/></emitter></shape>"#,
-    ),
-    (
-        "sphere",
-        r#"<shape type="sphere"><float name="radius" value="0.15"/><point name="center" x="-0.5" y="-0.3" z="1.4"/>
-            <emitter type="area"><rgb name="radiance" value="10"/></emitter></shape>"#,
-    ),
-    (
-        "point",
-        r#"<emitter type="point"><point name="position" value="0.4, -0.6, 1.5"/><rgb name="intensity" value="4"/></emitter>"#,
-    ),
-    (
-        "spot",
-        r#"<emitter type="spot"><transform name="to_world"><lookat origin="-0.6, -1, 1.8" target="0.2, 0.3, 0"/></transform>
-            <rgb name="intensity" value="8"/><float name="cutoff_angle" value="35"/></emitter>"#,
-    ),
-];
 
 #[test]
 fn ptracer_and_path_agree_on_every_supported_emitter() {

@@ -28,6 +28,8 @@ pub struct CpuBackend {
     regenerate: bool,
     /// The splatting film's cells (`caustic_kernel::film_splat`), kept between passes.
     cells: Vec<f32>,
+    /// BDPT's and VCM's light vertex cache and VCM's hash grid, kept between passes.
+    cache: caustic_cpu::CacheScratch,
 }
 
 impl CpuBackend {
@@ -49,7 +51,15 @@ impl CpuBackend {
             buffers.nodes = nodes;
         }
         let device = vec![PixelAccum::default(); pixels];
-        CpuBackend { buffers, wide, device, folding, regenerate, cells: Vec::new() }
+        CpuBackend {
+            buffers,
+            wide,
+            device,
+            folding,
+            regenerate,
+            cells: Vec::new(),
+            cache: Default::default(),
+        }
     }
 
     fn view(buffers: &SceneBuffers, wide: bool) -> SceneView<'_> {
@@ -70,7 +80,25 @@ impl Backend for CpuBackend {
 
     fn pass(&mut self, params: &FrameParams) -> Result<()> {
         let view = Self::view(&self.buffers, self.wide);
-        if params.film_reach != 0 && !caustic_kernel::integrator::splats(params.integrator) {
+        if caustic_kernel::integrator::traces_cached(params.integrator) {
+            // One pass of the light vertex cache (light paths, VCM's grid, camera paths) per sample,
+            // each with VCM's radius for it.
+            use caustic_kernel::splat::{resolved, SPLAT_STRIDE};
+            let q = caustic_kernel::layout::square_scale(params);
+            for i in 0..params.sample_count {
+                let iteration = params.sample_base + i;
+                let one = FrameParams {
+                    sample_base: iteration,
+                    sample_count: 1,
+                    merge_radius: self.buffers.merge_radius(iteration),
+                    ..*params
+                };
+                let words = caustic_cpu::cached_pass(&view, &one, &mut self.cache);
+                for (px, w) in self.device.iter_mut().zip(words.chunks_exact(SPLAT_STRIDE as usize)) {
+                    *px = resolved(*px, w.try_into().expect("a pixel's words"), 1, q);
+                }
+            }
+        } else if params.film_reach != 0 && !caustic_kernel::integrator::splats(params.integrator) {
             caustic_cpu::film_pass(&view, params, &mut self.device, self.regenerate, &mut self.cells);
         } else if caustic_kernel::integrator::splats(params.integrator) {
             use caustic_kernel::splat::{resolved, SPLAT_STRIDE};

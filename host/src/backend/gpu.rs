@@ -11,7 +11,7 @@ use super::spirv::{declares_spec_constant, set_workgroup_size, KERNEL_SPV};
 use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::{anyhow, bail, Context, Result};
-use caustic_kernel::integrator::{traces_bdpt, traces_camera_paths, traces_light_paths};
+use caustic_kernel::integrator::{merges, traces_cached, traces_camera_paths, traces_light_paths};
 use caustic_kernel::layout::{
     binding, FrameParams, PixelAccum, INTEGRATOR_PATH, SPEC_FEATURES, SPEC_REGENERATE,
 };
@@ -23,13 +23,16 @@ const CAMERA_ENTRY: &str = "entry::render";
 const LIGHT_ENTRY: &str = "entry::light";
 /// Folds a splatting pass's words into the accumulator (and clears them).
 const RESOLVE_ENTRY: &str = "entry::resolve";
-/// BDPT's samples, in place of the camera entry point.
-const BDPT_ENTRY: &str = "entry::bdpt";
+/// BDPT's and VCM's passes over the light vertex cache: light paths into it, VCM's grid over it,
+/// camera paths from it (`caustic_kernel::integrator::bdpt`).
+const CACHE_LIGHT_ENTRY: &str = "entry::cache_light";
+const GRID_LINK_ENTRY: &str = "entry::grid_link";
+const CACHE_CAMERA_ENTRY: &str = "entry::cache_camera";
 
 /// The entry point that traces integrator `kind`'s camera paths.
 pub(crate) fn camera_entry(kind: u32) -> &'static str {
-    if traces_bdpt(kind) {
-        BDPT_ENTRY
+    if traces_cached(kind) {
+        CACHE_CAMERA_ENTRY
     } else {
         CAMERA_ENTRY
     }
@@ -56,7 +59,15 @@ pub struct GpuBackend {
     /// the first candidate, unmeasured (`pass`).
     building: Option<std::thread::JoinHandle<Vec<Result<wgpu::ComputePipeline, String>>>>,
     light_pipeline: Option<wgpu::ComputePipeline>,
-    bind_group: wgpu::BindGroup,
+    /// BDPT and VCM: the light paths into the cache, and VCM's grid over it with the buffer to clear
+    /// before it (`cached_dispatch`).
+    cache_light_pipeline: Option<wgpu::ComputePipeline>,
+    grid: Option<(wgpu::ComputePipeline, wgpu::Buffer)>,
+    /// VCM's first radius and its shrinking (`SceneBuffers::merge_radius`).
+    merge: (f32, f32),
+    /// The same buffers in the three layouts (`on_adapter`): the light and resolve entry points',
+    /// the grid's, the camera entry points'.
+    bind_groups: [wgpu::BindGroup; 3],
     params_buffer: wgpu::Buffer,
     accum_buffer: wgpu::Buffer,
     accum_size: u64,
@@ -167,20 +178,42 @@ impl GpuBackend {
             },
             count: None,
         };
-        let layout_entries: Vec<wgpu::BindGroupLayoutEntry> =
-            BINDINGS.iter().map(|&b| entry(b, b != binding::ACCUM && b != binding::SPLAT)).collect();
-        let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("scene"),
-            entries: &layout_entries,
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("scene"),
-            bind_group_layouts: &[Some(&bind_group_layout)],
-            immediate_size: 0,
-        });
+        // wgpu matches each binding's access exactly, and the light vertex cache's entry points differ:
+        // `cache_light` writes the cache, `grid_link` reads it and writes the grid, `cache_camera` reads
+        // both. So three layouts of the same buffers, by whether the cache and the grid are read-only;
+        // the other entry points use neither, and take the first.
+        let access = |cache_read_only: bool, grid_read_only: bool| {
+            let entries: Vec<wgpu::BindGroupLayoutEntry> = BINDINGS
+                .iter()
+                .map(|&b| {
+                    let read_only = match b {
+                        binding::ACCUM | binding::SPLAT => false,
+                        binding::CACHE => cache_read_only,
+                        binding::GRID => grid_read_only,
+                        _ => true,
+                    };
+                    entry(b, read_only)
+                })
+                .collect();
+            let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("scene"),
+                entries: &entries,
+            });
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("scene"),
+                bind_group_layouts: &[Some(&bind_group_layout)],
+                immediate_size: 0,
+            });
+            (bind_group_layout, pipeline_layout)
+        };
+        let writes_cache = access(false, false);
+        let links_grid = access(true, false);
+        let reads_cache = access(true, true);
+        let cached = traces_cached(integrator);
+        let camera_layout = if cached { &reads_cache } else { &writes_cache };
         let factory = PipelineFactory {
             device: device.clone(),
-            layout: pipeline_layout,
+            layout: camera_layout.1.clone(),
             features: buffers.features,
             loops,
             camera_entry: camera_entry(integrator),
@@ -196,11 +229,16 @@ impl GpuBackend {
             Vec::new()
         };
         let first_loop = candidates[0].path_loop;
-        let light_pipeline =
-            traces_light_paths(integrator).then(|| factory.build(first_loop, DEFAULT_WORKGROUP, LIGHT_ENTRY));
+        let light_pipeline = traces_light_paths(integrator)
+            .then(|| factory.build_in(&writes_cache.1, first_loop, DEFAULT_WORKGROUP, LIGHT_ENTRY));
+        let cache_light_pipeline = cached
+            .then(|| factory.build_in(&writes_cache.1, first_loop, DEFAULT_WORKGROUP, CACHE_LIGHT_ENTRY));
+        let grid_pipeline = merges(integrator)
+            .then(|| factory.build_in(&links_grid.1, first_loop, DEFAULT_WORKGROUP, GRID_LINK_ENTRY));
         // (Also the splatting film's gather.)
         let batched = super::accumulation::batch_means(&buffers.params);
-        let resolve_pipeline = batched.then(|| factory.build(first_loop, DEFAULT_WORKGROUP, RESOLVE_ENTRY));
+        let resolve_pipeline =
+            batched.then(|| factory.build_in(&writes_cache.1, first_loop, DEFAULT_WORKGROUP, RESOLVE_ENTRY));
         if let Some(e) = pollster::block_on(scope.pop()) {
             bail!("the GPU rejected the kernel on {}: {e}", info.name);
         }
@@ -241,6 +279,16 @@ impl GpuBackend {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let scratch = |label: &str, size: u64| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let cache_buffer = scratch("light vertex cache", super::limits::cache_bytes(buffers));
+        let grid_buffer = scratch("merging grid", super::limits::grid_bytes(buffers));
         let entries: Vec<wgpu::BindGroupEntry> = [
             (binding::PARAMS, &params_buffer),
             (binding::NODES, &nodes),
@@ -252,15 +300,22 @@ impl GpuBackend {
             (binding::ACCUM, &accum_buffer),
             (binding::TEXTURES, &textures),
             (binding::SPLAT, &splat_buffer),
+            (binding::CACHE, &cache_buffer),
+            (binding::GRID, &grid_buffer),
         ]
         .iter()
         .map(|(binding, b)| wgpu::BindGroupEntry { binding: *binding, resource: b.as_entire_binding() })
         .collect();
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("scene"),
-            layout: &bind_group_layout,
-            entries: &entries,
-        });
+        let bind_group_of = |layout: &wgpu::BindGroupLayout| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("scene"),
+                layout,
+                entries: &entries,
+            })
+        };
+        // The light paths', the grid's and the camera paths' (the camera pipelines' layout).
+        let bind_groups =
+            [bind_group_of(&writes_cache.0), bind_group_of(&links_grid.0), bind_group_of(&camera_layout.0)];
         let adapter_name = format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend);
         Ok(GpuBackend {
             device,
@@ -273,14 +328,20 @@ impl GpuBackend {
             camera_pipelines,
             trial,
             light_pipeline,
-            bind_group,
+            cache_light_pipeline,
+            grid: grid_pipeline.map(|p| (p, grid_buffer)),
+            merge: (buffers.params.merge_radius, buffers.merge_alpha),
+            bind_groups,
             params_buffer,
             accum_buffer,
             accum_size,
             folding: Folding::new(pixels as usize, batched, buffers.params.square_scale_log2),
             resolve_pipeline,
             adapter_name,
-            max_dispatch_samples: if info.device_type == wgpu::DeviceType::Cpu {
+            // (BDPT and VCM: one sample a dispatch, the cache holding one light path a pixel.)
+            max_dispatch_samples: if cached {
+                1
+            } else if info.device_type == wgpu::DeviceType::Cpu {
                 SOFTWARE_DISPATCH_SAMPLES
             } else {
                 u32::MAX
@@ -467,24 +528,40 @@ impl GpuBackend {
     }
 
     /// One dispatch of the kernel: `params.sample_count` samples per pixel (at most
-    /// `max_dispatch_samples`).
+    /// `max_dispatch_samples`; BDPT and VCM: one, whose radius VCM takes from `merge`).
     fn dispatch(&mut self, params: &FrameParams, choice: usize) -> Result<()> {
-        self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(params));
+        let (first_radius, alpha) = self.merge;
+        let radius = crate::prepare::buffers::merge_radius(first_radius, alpha, params.sample_base);
+        let params = FrameParams { merge_radius: radius, ..*params };
+        self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pass") });
+        if let Some((_, grid)) = &self.grid {
+            encoder.clear_buffer(grid, 0, None);
+        }
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("render"),
                 timestamp_writes: None,
             });
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            // Camera paths, light paths, then (splatting) the words folded into the accumulator: each
-            // dispatch sees the previous one's writes (wgpu orders dispatches that share a buffer).
-            let camera = self.camera_pipelines.get(choice).map(|(v, p)| (p, v.workgroup));
-            let others = [&self.light_pipeline, &self.resolve_pipeline];
-            for (pipeline, [w, h]) in
-                camera.into_iter().chain(others.into_iter().flatten().map(|p| (p, DEFAULT_WORKGROUP)))
-            {
+            // Each dispatch sees the previous one's writes (wgpu orders dispatches that share a
+            // buffer). Camera paths, light paths, then (splatting) the words folded into the
+            // accumulator; BDPT and VCM (`caustic_cpu::cached_pass`): the light paths into the cache,
+            // VCM's grid over it, the camera paths from it, then the words.
+            let camera = self.camera_pipelines.get(choice).map(|(v, p)| (p, v.workgroup, 2));
+            let resolve = step(self.resolve_pipeline.as_ref(), 0);
+            let steps = if self.cache_light_pipeline.is_some() {
+                vec![
+                    step(self.cache_light_pipeline.as_ref(), 0),
+                    step(self.grid.as_ref().map(|g| &g.0), 1),
+                    camera,
+                    resolve,
+                ]
+            } else {
+                vec![camera, step(self.light_pipeline.as_ref(), 0), resolve]
+            };
+            for (pipeline, [w, h], group) in steps.into_iter().flatten() {
+                pass.set_bind_group(0, &self.bind_groups[group], &[]);
                 pass.set_pipeline(pipeline);
                 pass.dispatch_workgroups(self.width.div_ceil(w), self.height.div_ceil(h), 1);
             }
@@ -537,8 +614,20 @@ struct PipelineFactory {
 }
 
 impl PipelineFactory {
-    /// Entry point `entry` of path loop `path_loop`'s module in workgroups of `size`.
+    /// Entry point `entry` of path loop `path_loop`'s module in workgroups of `size`, in the camera
+    /// pipelines' layout.
     fn build(&self, path_loop: PathLoop, size: [u32; 2], entry: &str) -> wgpu::ComputePipeline {
+        self.build_in(&self.layout, path_loop, size, entry)
+    }
+
+    /// `build` in pipeline layout `layout`.
+    fn build_in(
+        &self,
+        layout: &wgpu::PipelineLayout,
+        path_loop: PathLoop,
+        size: [u32; 2],
+        entry: &str,
+    ) -> wgpu::ComputePipeline {
         let (words, specialisable) = self.loops.module(path_loop, size);
         let (clock, length) = (Instant::now(), words.len());
         // SAFETY: the module is rust-gpu output of our kernel, whose array accesses are
@@ -566,7 +655,7 @@ impl PipelineFactory {
         let read = clock.elapsed().as_secs_f64();
         let pipeline = self.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(entry),
-            layout: Some(&self.layout),
+            layout: Some(layout),
             module: &module,
             entry_point: Some(entry),
             compilation_options: wgpu::PipelineCompilationOptions {
@@ -669,12 +758,21 @@ fn scene_module(words: &[u32], prune: bool, features: u32, choice: PathLoop) -> 
     (words.to_vec(), specialisable)
 }
 
+/// One dispatch of `dispatch`'s list, if its pipeline exists: the pipeline, its workgroup and its bind
+/// group's index.
+fn step(
+    pipeline: Option<&wgpu::ComputePipeline>,
+    group: usize,
+) -> Option<(&wgpu::ComputePipeline, [u32; 2], usize)> {
+    pipeline.map(|p| (p, DEFAULT_WORKGROUP, group))
+}
+
 /// The camera, light and resolve entry points' names, for `kernel_stats` (its camera entry point by
 /// integrator: `camera_entry`).
 pub(crate) const ENTRY_POINTS: [&str; 3] = [CAMERA_ENTRY, LIGHT_ENTRY, RESOLVE_ENTRY];
 
 /// The kernel's bindings (`entry.rs`), all storage buffers of descriptor set 0.
-pub(crate) const BINDINGS: [u32; 10] = [
+pub(crate) const BINDINGS: [u32; 12] = [
     binding::PARAMS,
     binding::NODES,
     binding::PRIMS,
@@ -685,6 +783,8 @@ pub(crate) const BINDINGS: [u32; 10] = [
     binding::ACCUM,
     binding::TEXTURES,
     binding::SPLAT,
+    binding::CACHE,
+    binding::GRID,
 ];
 
 /// `CAUSTIC_TRIAL_LOG` set: the trial's passes on standard error (each dispatch's candidate, samples

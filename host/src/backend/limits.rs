@@ -26,7 +26,25 @@ pub fn buffer_sizes(buffers: &SceneBuffers) -> Vec<(&'static str, u64)> {
         ("textures", bytes(&buffers.textures)),
         ("film accumulator", pixels * std::mem::size_of::<PixelAccum>() as u64),
         ("splats", splat * 4),
+        ("light vertex cache", cache_bytes(buffers)),
+        ("merging grid", grid_bytes(buffers)),
     ]
+}
+
+/// BDPT's and VCM's light vertex cache (`caustic_kernel::integrator::bdpt::LightVertex`, eight slots a
+/// pixel); a placeholder vertex for the other integrators.
+pub fn cache_bytes(buffers: &SceneBuffers) -> u64 {
+    use caustic_kernel::integrator::{bdpt::LightVertex, traces_cached, vcm_grid};
+    let slots =
+        if traces_cached(buffers.params.integrator) { vcm_grid::slots(&buffers.params) as u64 } else { 1 };
+    slots * std::mem::size_of::<LightVertex>() as u64
+}
+
+/// VCM's hash grid (`caustic_kernel::integrator::vcm_grid`); a placeholder word for the others.
+pub fn grid_bytes(buffers: &SceneBuffers) -> u64 {
+    use caustic_kernel::integrator::{merges, vcm_grid::Grid};
+    let words = if merges(buffers.params.integrator) { Grid::of(&buffers.params).words() as u64 } else { 1 };
+    words * 4
 }
 
 /// A scene this GPU cannot hold (the automatic backend choice then renders on the CPU, saying why).

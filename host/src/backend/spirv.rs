@@ -77,7 +77,7 @@ mod tests {
         let mut words: Vec<u32> = bytemuck::pod_collect_to_vec(KERNEL_SPV);
         const OP_ENTRY_POINT: u32 = 15;
         let entry_points = instructions(&words).filter(|i| i.1 == OP_ENTRY_POINT).count();
-        assert_eq!(entry_points, 4, "render, light, bdpt, resolve");
+        assert_eq!(entry_points, 6, "render, light, cache_light, grid_link, cache_camera, resolve");
         assert_eq!(local_sizes(&words), vec![[TILE, TILE, 1]; entry_points]);
         let before = words.clone();
         set_workgroup_size(&mut words, [32, 16]);

@@ -43,6 +43,22 @@ pub struct SceneBuffers {
     /// Primitives the scene's instances place, each group's counted once per instance (stored once
     /// each, in `prims`; `crate::scene::instancing`). 0 without instances.
     pub placed_prims: u64,
+    /// `vcm`: how the merging radius shrinks from pass to pass (`merge_radius`), 0 otherwise.
+    pub merge_alpha: f32,
+}
+
+/// `vcm`'s radius in iteration `i` (the pass's sample index): the first pass's, `first`, times
+/// `(i + 1)^((α − 1)/2)`, so that its square shrinks as Knaus and Zwicker's progressive photon
+/// mapping shrinks it on average and the estimate converges. 0 where `first` is (the other integrators).
+pub fn merge_radius(first: f32, alpha: f32, iteration: u32) -> f32 {
+    first * ((iteration + 1) as f32).powf(0.5 * (alpha - 1.0))
+}
+
+impl SceneBuffers {
+    /// `vcm`'s radius in iteration `iteration` (`merge_radius`).
+    pub fn merge_radius(&self, iteration: u32) -> f32 {
+        merge_radius(self.params.merge_radius, self.merge_alpha, iteration)
+    }
 }
 
 impl SceneBuffers {
@@ -116,7 +132,9 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         emitter_lights(scene, &textures, &mut tables, &mut light_list, bounding_sphere(&nodes, has_prims));
 
     let uniform_share = match scene.integrator.kind {
-        IntegratorKind::Ptracer | IntegratorKind::Ibpt | IntegratorKind::Bdpt => LIGHT_TRACING_UNIFORM_SHARE,
+        IntegratorKind::Ptracer | IntegratorKind::Ibpt | IntegratorKind::Bdpt | IntegratorKind::Vcm => {
+            LIGHT_TRACING_UNIFORM_SHARE
+        }
         IntegratorKind::Path | IntegratorKind::Direct { .. } => 1.0,
     };
     let light_cdf = cdf_of(&light_list.selection_weights(uniform_share));
@@ -152,21 +170,21 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         }
         IntegratorKind::Bdpt => {
             check_bidirectional(scene, "bdpt")?;
-            let disperses = |s: &&crate::scene::Shape| {
-                scene.materials.get(s.material as usize).is_some_and(caustic_kernel::wavelength::disperses)
-            };
-            if let Some(s) = scene.shapes.iter().find(disperses) {
-                bail!(
-                    "{}: a dispersive dielectric is not rendered by bdpt yet (its light and camera paths \
-                     would carry different wavelengths): render this scene with ibpt or path",
-                    s.origin
-                );
-            }
-            if scene.materials.iter().any(caustic_kernel::wavelength::disperses) {
-                bail!("bdpt: a dispersive dielectric is not rendered by bdpt yet: render this scene with ibpt or path");
-            }
+            check_one_wavelength(scene, "bdpt")?;
             (INTEGRATOR_BDPT, 1, 1)
         }
+        IntegratorKind::Vcm => {
+            check_bidirectional(scene, "vcm")?;
+            check_one_wavelength(scene, "vcm")?;
+            (INTEGRATOR_VCM, 1, 1)
+        }
+    };
+    let merge_radius = match scene.integrator.kind {
+        IntegratorKind::Vcm => {
+            let m = scene.integrator.merging;
+            m.radius.unwrap_or_else(|| m.radius_factor * bounding_sphere(&nodes, has_prims).1)
+        }
+        _ => 0.0,
     };
     let params = FrameParams {
         width: crop.width,
@@ -193,6 +211,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         wavelength_table,
         square_scale_log2: square_scale_log2(&lights, &textures, &tables),
         film_reach: film_reach(s, integrator_kind),
+        merge_radius,
         camera,
         ..Default::default()
     };
@@ -226,6 +245,11 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         aovs,
         prim_origins,
         placed_prims,
+        merge_alpha: if scene.integrator.kind == IntegratorKind::Vcm {
+            scene.integrator.merging.alpha
+        } else {
+            0.0
+        },
     })
 }
 
@@ -242,6 +266,25 @@ fn check_bidirectional(scene: &Scene, name: &str) -> Result<()> {
              and by path and direct (as black), not by {name}",
             s.origin
         );
+    }
+    Ok(())
+}
+
+/// What BDPT and VCM refuse besides: dispersive dielectrics (their light and camera paths would
+/// carry different wavelengths), naming the first shape that wears one.
+fn check_one_wavelength(scene: &Scene, name: &str) -> Result<()> {
+    let disperses = |s: &&crate::scene::Shape| {
+        scene.materials.get(s.material as usize).is_some_and(caustic_kernel::wavelength::disperses)
+    };
+    if let Some(s) = scene.shapes.iter().find(disperses) {
+        bail!(
+            "{}: a dispersive dielectric is not rendered by {name} yet (its light and camera paths would \
+             carry different wavelengths): render this scene with ibpt or path",
+            s.origin
+        );
+    }
+    if scene.materials.iter().any(caustic_kernel::wavelength::disperses) {
+        bail!("{name}: a dispersive dielectric is not rendered by {name} yet: render this scene with ibpt or path");
     }
     Ok(())
 }

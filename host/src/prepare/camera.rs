@@ -56,6 +56,7 @@ pub(super) fn film_reach(sensor: &crate::scene::Sensor, integrator: u32) -> u32 
         || integrator == INTEGRATOR_PTRACER
         || integrator == INTEGRATOR_IBPT
         || integrator == INTEGRATOR_BDPT
+        || integrator == INTEGRATOR_VCM
     {
         return 0;
     }

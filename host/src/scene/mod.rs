@@ -182,11 +182,36 @@ pub struct Integrator {
     pub max_depth: i32,
     pub rr_depth: u32,
     pub hide_emitters: bool,
+    /// Vertex merging's radius and its shrinking (`vcm`; read, unused, by the others).
+    pub merging: MergeSettings,
 }
 
 impl Default for Integrator {
     fn default() -> Self {
-        Integrator { kind: IntegratorKind::Path, max_depth: -1, rr_depth: 5, hide_emitters: false }
+        Integrator {
+            kind: IntegratorKind::Path,
+            max_depth: -1,
+            rr_depth: 5,
+            hide_emitters: false,
+            merging: MergeSettings::default(),
+        }
+    }
+}
+
+/// `vcm`'s merging radius: the first pass's, absolute (`radius`) or as a fraction of the scene's
+/// bounding sphere's radius (`radius_factor`); later passes shrink it by Knaus and Zwicker's
+/// progressive rule with `alpha`.
+#[derive(Clone, Copy, Debug)]
+pub struct MergeSettings {
+    pub radius: Option<f32>,
+    pub radius_factor: f32,
+    pub alpha: f32,
+}
+
+impl Default for MergeSettings {
+    /// SmallVCM's defaults: 0.3% of the scene's radius, `alpha` 0.75.
+    fn default() -> Self {
+        MergeSettings { radius: None, radius_factor: 0.003, alpha: 0.75 }
     }
 }
 
@@ -203,6 +228,8 @@ pub enum IntegratorChoice {
     Ibpt,
     /// Bidirectional path tracing: every connection of a light path and a camera path, by MIS.
     Bdpt,
+    /// Vertex connection and merging: bidirectional path tracing and photon mapping, by MIS.
+    Vcm,
 }
 
 impl Integrator {
@@ -214,6 +241,7 @@ impl Integrator {
             IntegratorChoice::Ptracer => Integrator { kind: IntegratorKind::Ptracer, ..self },
             IntegratorChoice::Ibpt => Integrator { kind: IntegratorKind::Ibpt, ..self },
             IntegratorChoice::Bdpt => Integrator { kind: IntegratorKind::Bdpt, ..self },
+            IntegratorChoice::Vcm => Integrator { kind: IntegratorKind::Vcm, ..self },
             IntegratorChoice::Direct => Integrator {
                 kind: IntegratorKind::Direct { emitter_samples: 1, bsdf_samples: 1 },
                 max_depth: 2,
@@ -238,6 +266,8 @@ pub enum IntegratorKind {
     Ibpt,
     /// Bidirectional path tracing (`caustic_kernel::integrator::bdpt`).
     Bdpt,
+    /// Vertex connection and merging (`caustic_kernel::integrator::vcm_grid`, `Integrator::merging`).
+    Vcm,
 }
 
 /// An emitter not attached to a shape.

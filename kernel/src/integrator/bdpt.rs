@@ -1,14 +1,16 @@
-//! Bidirectional path tracing: for each pixel sample a light path and a camera path, and every way of
-//! joining them: the camera path hitting an emitter, next-event estimation from each camera vertex,
-//! each camera vertex connected to each vertex of the light path by a shadow ray, and each light
-//! vertex connected to the camera (light tracing, splatted wherever it lands). The strategies are
-//! weighted by the power heuristic through the recursive quantities of `bdpt_mis`, so that paths
-//! light tracing and IBPT cannot make, a caustic seen in a mirror or through glass (light → specular →
-//! diffuse → specular → camera), are found by connecting the camera path's diffuse vertex to the light
-//! path's.
+//! Bidirectional path tracing and vertex connection and merging: for each pixel sample a light path
+//! and a camera path, and every way of joining them: the camera path hitting an emitter, next-event
+//! estimation from each camera vertex, each camera vertex connected to each vertex of its light path
+//! by a shadow ray, each light vertex connected to the camera (light tracing, splatted wherever it
+//! lands) and, under VCM, each camera vertex merged with every light vertex of the pass within the
+//! merging radius (`vcm_grid`). The strategies are weighted by the power heuristic through the
+//! recursive quantities of `bdpt_mis`, so that paths light tracing and IBPT cannot make, a caustic
+//! seen in a mirror or through glass (light → specular → diffuse → specular → camera), are found.
 //!
-//! The light path's vertices are kept in the invocation (`LightVertices`, at most
-//! `MAX_LIGHT_VERTICES`): no buffer, and memory bounded per path in flight. Paths of up to
+//! A pass traces every pixel's light path first, keeping its vertices in the pass's light vertex
+//! cache (`CacheSlots`: `MAX_LIGHT_VERTICES` slots of `LightVertex` a path, so memory is bounded per
+//! path and per pass), then every pixel's camera path, which connects to its own light path's
+//! vertices (`CacheView`) and merges with all of them (`vcm_grid::GridView`). Paths of up to
 //! `MAX_LIGHT_VERTICES + 1` segments are weighted over every strategy; the light path stops there, so
 //! longer paths (where `max_depth` allows them) are made by the camera path alone, hitting an emitter
 //! or by next-event estimation, weighted between those two as `path` weighs them. Each path length
@@ -20,11 +22,11 @@
 //! starts on an emitter at infinity (camera paths alone carry their light), and the emitter point
 //! itself is not connected to the camera (a camera path seeing an emitter takes its whole value).
 //! The host refuses dispersion, the radiance and irradiance meters, the orthographic camera and
-//! `directionalarea` emitters under `bdpt`.
+//! `directionalarea` emitters under `bdpt` and `vcm`.
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
-use super::bdpt_mis::{self, SubpathMis};
+use super::bdpt_mis::{self, Merging, SubpathMis};
 use super::nee::{
     environment, first_hit_past_emitters, next_event, LightTracingMis, PreviousVertex, StrategyCounts,
 };
@@ -34,6 +36,7 @@ use super::ptracer::{
     DIM_LENS_IN_BOUNCE,
 };
 use super::shading_frame;
+use super::vcm_grid::GridView;
 use crate::bsdf::perturb::{Perturbation, Shading};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
@@ -57,63 +60,81 @@ pub const MAX_LIGHT_VERTICES: u32 = 8;
 const SHADOW_EPSILON: f32 = 1.0e-4;
 const ONE_EACH: StrategyCounts = StrategyCounts::ONE_EACH;
 
-/// A vertex of the light path with a non-Dirac lobe: where it is, how it is shaded, the light path's
-/// throughput arriving there (`Le·…/p`, before its BSDF) and its MIS state. Flat and `repr(C)`,
-/// vectors in 16-byte groups (naga rounds a `Vec3` member up to 16 bytes: `perturb::Perturbation`).
+/// A vertex of the light path with a non-Dirac lobe, as the light vertex cache holds it: where it is,
+/// how it is shaded, the light path's throughput arriving there (`Le·…/p`, before its BSDF) and its
+/// MIS state. Flat, `repr(C)`, of scalars and 3-arrays in 16-byte groups, so that Rust and the GPU
+/// lay the storage buffer out alike (naga rounds a `Vec3` member up to 16 bytes: `perturb::Perturbation`).
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct LightVertex {
-    pub p: Vec3,
+    pub p: [f32; 3],
     pub error_scale: f32,
     /// The surface's geometric normal (`SurfacePoint::ng`).
-    pub ng: Vec3,
+    pub ng: [f32; 3],
     pub offset_floor: f32,
-    pub ns: Vec3,
+    pub ns: [f32; 3],
     /// The material seen there (a two-sided pair's side chosen).
     pub material: u32,
-    pub uv: Vec2,
-    pub bary: Vec2,
-    pub beta: Vec3,
+    pub uv: [f32; 2],
+    pub bary: [f32; 2],
+    pub beta: [f32; 3],
     pub mesh_attributes: u32,
     /// The shading frame (`Shading`): `s`, `t`, `n`, the geometric normal on its side and the
     /// direction back along the light path in it.
-    pub s: Vec3,
+    pub s: [f32; 3],
     pub vcm: f32,
-    pub t: Vec3,
+    pub t: [f32; 3],
     pub vc: f32,
-    pub n: Vec3,
-    /// Segments from the emitter.
+    pub n: [f32; 3],
+    /// Segments from the emitter; 0 for an empty slot.
     pub depth: u32,
-    pub shading_ng: Vec3,
-    pub _pad0: u32,
-    pub wo: Vec3,
-    pub _pad1: u32,
-    pub tilt: Perturbation,
+    pub shading_ng: [f32; 3],
+    pub vm: f32,
+    pub wo: [f32; 3],
+    /// A normal or bump map's tilt (`Perturbation`): its flags, then its frame and tilted normal.
+    pub tilt_flags: u32,
+    pub tilt_s: [f32; 3],
+    pub tilt_t: [f32; 3],
+    pub tilt_nt: [f32; 3],
+    pub tilt_n: [f32; 3],
+}
+
+#[inline]
+fn v3(a: [f32; 3]) -> Vec3 {
+    Vec3::new(a[0], a[1], a[2])
+}
+
+#[inline]
+fn a3(v: Vec3) -> [f32; 3] {
+    [v.x, v.y, v.z]
 }
 
 impl LightVertex {
     pub const EMPTY: LightVertex = LightVertex {
-        p: Vec3::ZERO,
+        p: [0.0; 3],
         error_scale: 0.0,
-        ng: Vec3::Z,
+        ng: [0.0, 0.0, 1.0],
         offset_floor: 0.0,
-        ns: Vec3::Z,
+        ns: [0.0, 0.0, 1.0],
         material: 0,
-        uv: Vec2::ZERO,
-        bary: Vec2::ZERO,
-        beta: Vec3::ZERO,
+        uv: [0.0; 2],
+        bary: [0.0; 2],
+        beta: [0.0; 3],
         mesh_attributes: NONE,
-        s: Vec3::X,
+        s: [1.0, 0.0, 0.0],
         vcm: 0.0,
-        t: Vec3::Y,
+        t: [0.0, 1.0, 0.0],
         vc: 0.0,
-        n: Vec3::Z,
+        n: [0.0, 0.0, 1.0],
         depth: 0,
-        shading_ng: Vec3::Z,
-        _pad0: 0,
-        wo: Vec3::Z,
-        _pad1: 0,
-        tilt: Perturbation::NONE,
+        shading_ng: [0.0, 0.0, 1.0],
+        vm: 0.0,
+        wo: [0.0, 0.0, 1.0],
+        tilt_flags: 0,
+        tilt_s: [1.0, 0.0, 0.0],
+        tilt_t: [0.0, 1.0, 0.0],
+        tilt_nt: [0.0, 0.0, 1.0],
+        tilt_n: [0.0, 0.0, 1.0],
     };
 
     #[inline]
@@ -126,82 +147,139 @@ impl LightVertex {
         depth: u32,
     ) -> Self {
         LightVertex {
-            p: sp.p,
+            p: a3(sp.p),
             error_scale: sp.error_scale,
-            ng: sp.ng,
+            ng: a3(sp.ng),
             offset_floor: sp.offset_floor,
-            ns: sp.ns,
+            ns: a3(sp.ns),
             material,
-            uv: sp.uv,
-            bary: sp.bary,
-            beta,
+            uv: [sp.uv.x, sp.uv.y],
+            bary: [sp.bary.x, sp.bary.y],
+            beta: a3(beta),
             mesh_attributes: sp.mesh_attributes,
-            s: shading.s,
+            s: a3(shading.s),
             vcm: mis.vcm,
-            t: shading.t,
+            t: a3(shading.t),
             vc: mis.vc,
-            n: shading.n,
+            n: a3(shading.n),
             depth,
-            shading_ng: shading.ng,
-            _pad0: 0,
-            wo: shading.wo,
-            _pad1: 0,
-            tilt: shading.tilt,
+            shading_ng: a3(shading.ng),
+            vm: mis.vm,
+            wo: a3(shading.wo),
+            tilt_flags: shading.tilt.flags,
+            tilt_s: a3(shading.tilt.s),
+            tilt_t: a3(shading.tilt.t),
+            tilt_nt: a3(shading.tilt.nt),
+            tilt_n: a3(shading.tilt.n),
         }
+    }
+
+    #[inline]
+    pub fn position(&self) -> Vec3 {
+        v3(self.p)
+    }
+
+    #[inline]
+    pub fn throughput(&self) -> Rgb {
+        v3(self.beta)
     }
 
     #[inline]
     fn surface_point(&self) -> SurfacePoint {
         SurfacePoint {
-            p: self.p,
-            ng: self.ng,
-            ns: self.ns,
+            p: v3(self.p),
+            ng: v3(self.ng),
+            ns: v3(self.ns),
             error_scale: self.error_scale,
             offset_floor: self.offset_floor,
-            uv: self.uv,
+            uv: Vec2::new(self.uv[0], self.uv[1]),
             mesh_attributes: self.mesh_attributes,
-            bary: self.bary,
+            bary: Vec2::new(self.bary[0], self.bary[1]),
         }
     }
 
     #[inline]
-    fn shading(&self) -> Shading {
-        Shading { s: self.s, t: self.t, n: self.n, ng: self.shading_ng, wo: self.wo, tilt: self.tilt }
+    pub fn mis(&self) -> SubpathMis {
+        SubpathMis { vcm: self.vcm, vc: self.vc, vm: self.vm }
+    }
+
+    #[inline]
+    pub fn shading(&self) -> Shading {
+        let tilt = Perturbation {
+            s: v3(self.tilt_s),
+            t: v3(self.tilt_t),
+            nt: v3(self.tilt_nt),
+            n: v3(self.tilt_n),
+            flags: self.tilt_flags,
+            _pad: [0; 3],
+        };
+        Shading {
+            s: v3(self.s),
+            t: v3(self.t),
+            n: v3(self.n),
+            ng: v3(self.shading_ng),
+            wo: v3(self.wo),
+            tilt,
+        }
     }
 }
 
-/// A light path's stored vertices.
-pub type LightVertices = [LightVertex; MAX_LIGHT_VERTICES as usize];
+/// One light path's `MAX_LIGHT_VERTICES` slots of the light vertex cache, from `base`.
+pub struct CacheSlots<'a> {
+    pub cache: &'a mut [LightVertex],
+    pub base: u32,
+}
+
+impl CacheSlots<'_> {
+    #[inline]
+    fn put(&mut self, k: u32, v: LightVertex) {
+        self.cache[(self.base + k) as usize] = v;
+    }
+
+    /// After the path's `count` vertices: the slots past them are emptied (they hold the last pass's).
+    #[inline]
+    fn finish(&mut self, count: u32) {
+        let mut k = count;
+        while k < MAX_LIGHT_VERTICES {
+            self.cache[(self.base + k) as usize] = LightVertex::EMPTY;
+            k += 1;
+        }
+    }
+}
+
+/// One light path's slots of the light vertex cache, read by its camera path.
+pub struct CacheView<'a> {
+    pub cache: &'a [LightVertex],
+    pub base: u32,
+}
+
+impl CacheView<'_> {
+    #[inline]
+    fn vertex(&self, k: u32) -> LightVertex {
+        self.cache[(self.base + k) as usize]
+    }
+
+    /// The path's vertices: those before the first empty slot.
+    #[inline]
+    pub fn count(&self) -> u32 {
+        let mut count = 0;
+        while count < MAX_LIGHT_VERTICES && self.vertex(count).depth > 0 {
+            count += 1;
+        }
+        count
+    }
+}
 
 /// Whether a path of `segments` is weighted over every strategy (within the light path's reach).
 #[inline]
-fn bidirectional(segments: u32) -> bool {
+pub fn bidirectional(segments: u32) -> bool {
     segments <= MAX_LIGHT_VERTICES + 1
 }
 
 /// Whether `max_depth` (`NONE`: unbounded) allows a path of `segments`.
 #[inline]
-fn within(max_depth: u32, segments: u32) -> bool {
+pub fn within(max_depth: u32, segments: u32) -> bool {
     max_depth == NONE || segments <= max_depth
-}
-
-/// One pixel sample: traces the light path (drawing from `light_sampler`), splats its connections to
-/// the camera into `words`, keeps its vertices, then follows the camera path along `camera_ray`
-/// (drawing from `sampler`) and returns its estimate, every strategy but light tracing's.
-/// `pixel_density`: the density with which the pixel's camera samples land where `camera_ray` crosses
-/// the film (`film::pixel_density`).
-pub fn li<W: AtomicWords>(
-    scene: &SceneView,
-    params: &FrameParams,
-    camera_ray: Ray,
-    sampler: &mut Sampler,
-    light_sampler: &mut Sampler,
-    pixel_density: f32,
-    words: &mut W,
-) -> Rgb {
-    let mut vertices = [LightVertex::EMPTY; MAX_LIGHT_VERTICES as usize];
-    let count = trace_light_path(scene, params, light_sampler, words, &mut vertices);
-    camera_path(scene, params, camera_ray, sampler, pixel_density, &vertices, count)
 }
 
 /// Traces a light path, splats each of its vertices' connections to the camera and keeps the vertices
@@ -211,10 +289,23 @@ pub fn trace_light_path<W: AtomicWords>(
     params: &FrameParams,
     sampler: &mut Sampler,
     words: &mut W,
-    vertices: &mut LightVertices,
+    vertices: &mut CacheSlots,
+) -> u32 {
+    let count = light_path_vertices(scene, params, sampler, words, vertices);
+    vertices.finish(count);
+    count
+}
+
+fn light_path_vertices<W: AtomicWords>(
+    scene: &SceneView,
+    params: &FrameParams,
+    sampler: &mut Sampler,
+    words: &mut W,
+    vertices: &mut CacheSlots,
 ) -> u32 {
     let accel = Accel::of(scene);
     let camera = params.camera;
+    let merging = Merging::of(params);
     // The emitter sample's dimensions as `ptracer` draws them.
     let u_select = sampler.next_1d();
     let u_pos = sampler.next_2d();
@@ -277,15 +368,16 @@ pub fn trace_light_path<W: AtomicWords>(
         let cos_in = sp.ng.dot(ray.dir).abs();
         mis = if depth == 1 {
             let inv_nee_sq = if smooth { inv_nee_ratio_sq(scene, &es, sp.p) } else { 0.0 };
-            SubpathMis::light_first_vertex(inv_nee_sq, inv_hit_sq, cos_in)
+            SubpathMis::light_first_vertex(inv_nee_sq, inv_hit_sq, cos_in, merging)
         } else {
             mis.arrive((sp.p - previous).length_squared(), cos_in)
         };
 
         if smooth {
-            // A camera vertex connects to this one only if the path stays within `max_depth`.
-            if within(max_depth, depth + 2) && count < MAX_LIGHT_VERTICES {
-                vertices[count as usize] = LightVertex::new(&sp, &shading, material_index, beta, mis, depth);
+            // A camera vertex merges with this one (connects: one segment more) only if the path stays
+            // within `max_depth`.
+            if within(max_depth, depth + 1) && count < MAX_LIGHT_VERTICES {
+                vertices.put(count, LightVertex::new(&sp, &shading, material_index, beta, mis, depth));
                 count += 1;
             }
             if let Some(c) = camera.connect(sp.p, lens_sample(sampler, bounce_dims + DIM_LENS_IN_BOUNCE)) {
@@ -295,7 +387,7 @@ pub fn trace_light_path<W: AtomicWords>(
                 let origin = offset_origin(&sp, ng, c.dir);
                 // The camera path's density of leaving here back along the light path.
                 let rev = bsdf.pdf(to_camera, wo, TransportMode::Radiance);
-                let weighting = ConnectionMis::bdpt(mis, sp.ng.dot(c.dir).abs(), rev);
+                let weighting = ConnectionMis::bdpt(mis, sp.ng.dot(c.dir).abs(), rev, merging);
                 splat_to_camera(
                     scene,
                     params,
@@ -323,7 +415,7 @@ pub fn trace_light_path<W: AtomicWords>(
         }
         let wi = frame.to_world(bs.wi);
         let rev = if bs.delta { bs.pdf } else { bsdf.pdf(bs.wi, wo, TransportMode::Radiance) };
-        mis = mis.scatter(bs.delta, bs.pdf, rev, sp.ng.dot(wi).abs());
+        mis = mis.scatter(bs.delta, bs.pdf, rev, sp.ng.dot(wi).abs(), merging);
         beta *= bs.weight * shading_normal_correction(wo_world, wi, frame.n, ng);
         previous = sp.p;
         ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
@@ -344,19 +436,23 @@ pub fn trace_light_path<W: AtomicWords>(
     count
 }
 
-/// The camera path of one pixel sample with its strategies: emitters hit, next-event estimation and
-/// connections to the light path's kept `vertices` (`count` of them).
-fn camera_path(
+/// The camera path of one pixel sample with its strategies: emitters hit, next-event estimation,
+/// connections to its light path's `vertices` and, under VCM, merges with the pass's light vertices
+/// (`grid`; under BDPT `Merging::OFF` leaves it unread).
+#[allow(clippy::too_many_arguments)]
+pub fn camera_path(
     scene: &SceneView,
     params: &FrameParams,
     camera_ray: Ray,
     sampler: &mut Sampler,
     pixel_density: f32,
-    vertices: &LightVertices,
-    count: u32,
+    vertices: &CacheView,
+    grid: &GridView,
 ) -> Rgb {
+    let count = vertices.count();
     let accel = Accel::of(scene);
     let max_depth = params.max_depth;
+    let merging = Merging::of(params);
     let lens = params.camera.lens_point_of(camera_ray.origin);
     let mut ray = camera_ray;
     let mut throughput = Rgb::ONE;
@@ -468,12 +564,13 @@ fn camera_path(
                 * next_event(
                     scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, ONE_EACH, weighting,
                 );
+            result += throughput * grid.merge(&bsdf, &shading, &sp, mis, segments, max_depth, merging);
             let mut k = 0;
             while k < count {
-                let v = vertices[k as usize];
+                let v = vertices.vertex(k);
                 let length = segments + v.depth + 1;
                 if within(max_depth, length) && bidirectional(length) {
-                    result += throughput * connect(scene, &accel, &bsdf, &shading, &sp, mis, &v);
+                    result += throughput * connect(scene, &accel, &bsdf, &shading, &sp, mis, &v, merging);
                 }
                 k += 1;
             }
@@ -490,7 +587,7 @@ fn camera_path(
         throughput *= bs.weight;
         eta_scale *= bs.eta * bs.eta;
         let rev = if bs.delta { bs.pdf } else { bsdf.pdf(bs.wi, wo, TransportMode::Importance) };
-        mis = mis.scatter(bs.delta, bs.pdf, rev, sp.ng.dot(wi).abs());
+        mis = mis.scatter(bs.delta, bs.pdf, rev, sp.ng.dot(wi).abs(), merging);
         prev = PreviousVertex { p: sp.p, pdf: bs.pdf, delta: bs.delta, lt: 0.0 };
         ray = Ray { origin: offset_origin(&sp, ng, wi), dir: wi, t_min: 0.0, t_max: f32::MAX };
         depth += 1;
@@ -512,6 +609,7 @@ fn camera_path(
 
 /// A camera vertex (`bsdf`, `shading` at `sp`, state `camera`) connected to light vertex `v` by a
 /// shadow ray: both BSDFs, the geometry between them, the light path's throughput and the weight.
+#[allow(clippy::too_many_arguments)]
 fn connect(
     scene: &SceneView,
     accel: &Accel,
@@ -520,8 +618,9 @@ fn connect(
     sp: &SurfacePoint,
     camera: SubpathMis,
     v: &LightVertex,
+    merging: Merging,
 ) -> Rgb {
-    let d = v.p - sp.p;
+    let d = v.position() - sp.p;
     let dist_sq = d.length_squared();
     if !(dist_sq > 0.0) {
         return Rgb::ZERO;
@@ -560,12 +659,12 @@ fn connect(
     // Each side's density of sampling the other's vertex, and of leaving its own back along its path.
     let camera_rev = bsdf.pdf(wi, shading.wo, TransportMode::Importance);
     let light_rev = light_bsdf.pdf(to_camera, light_shading.wo, TransportMode::Radiance);
-    let light_state = SubpathMis { vcm: v.vcm, vc: v.vc };
-    let light_side = light_state.others(bdpt_mis::to_area(ep.pdf, dist_sq, v.ng.dot(dir).abs()), light_rev);
+    let light_side =
+        v.mis().others(bdpt_mis::to_area(ep.pdf, dist_sq, v3(v.ng).dot(dir).abs()), light_rev, merging);
     let camera_side =
-        camera.others(bdpt_mis::to_area(light_ep.pdf, dist_sq, sp.ng.dot(dir).abs()), camera_rev);
+        camera.others(bdpt_mis::to_area(light_ep.pdf, dist_sq, sp.ng.dot(dir).abs()), camera_rev, merging);
     let weight = bdpt_mis::weight(light_side, camera_side);
-    let value = ep.f * light_ep.f * v.beta * (corr * weight / dist_sq);
+    let value = ep.f * light_ep.f * v.throughput() * (corr * weight / dist_sq);
     if max_component(value) <= 0.0 {
         return Rgb::ZERO;
     }

@@ -1,16 +1,23 @@
-//! Bidirectional path tracing's multiple-importance arithmetic: the recursion of vertex connection and
-//! merging (Georgiev et al. 2012, "Implementing Vertex Connection and Merging") without the merging
-//! terms, with the power heuristic. Every quantity is kept squared (the heuristic's exponent 2), as
-//! pure functions of densities so that the camera half and the light half use one definition each
-//! and a test can walk explicit paths through both (`kernel/tests/bdpt_mis.rs`: every path's weights
-//! sum to one over the strategies that can make it).
+//! Bidirectional path tracing's and vertex connection and merging's multiple-importance arithmetic:
+//! the recursion of Georgiev et al. 2012 ("Implementing Vertex Connection and Merging"), with the
+//! power heuristic. Every quantity is kept squared (the heuristic's exponent 2), as pure functions of
+//! densities so that the camera half and the light half use one definition each and a test can walk
+//! explicit paths through both (`kernel/tests/bdpt_mis.rs`: every path's weights sum to one over the
+//! strategies that can make it, merges included).
 //!
-//! A sub-path carries two scalars at its current vertex `v` (`SubpathMis`):
+//! A sub-path carries three scalars at its current vertex `v` (`SubpathMis`):
 //! - `vcm`: the density ratio, squared, of the strategy whose *other* sub-path reaches `v` (the other
 //!   side samples `v` by connecting to, or hitting, the vertex before it) to the strategy that made
 //!   `v` here, without `v`'s own reverse density;
 //! - `vc`: the sum of those ratios, squared, for the strategies whose other sub-path reaches further
-//!   along this one, without the reverse density at `v`.
+//!   along this one (connections, and merges at the vertices before `v`), without the reverse density
+//!   at `v`;
+//! - `vm`: the same sum relative to merging at `v` instead of connecting there.
+//!
+//! Merging enters through one factor (`Merging`): `eta = π r² · L`, the ratio of a merge's density to
+//! a connection's at the same vertex, with `r` the merging radius and `L` the light paths a camera
+//! vertex merges with per camera sample. BDPT is the case `eta = 0` (`Merging::OFF`): no merge, and
+//! `vm` unused.
 //!
 //! Densities are in solid angle at the vertex they leave; the cosines that turn them into area
 //! densities are taken with the geometric normal, on both sides alike.
@@ -19,23 +26,57 @@
 //! of a first vertex `x`, relative to light tracing's paths per camera sample, is `importance ·
 //! pixel density · film scale · |cos θx|` (`Camera::connect_through`'s importance), written `a` here.
 
+use crate::layout::{FrameParams, INTEGRATOR_VCM};
 use crate::math::is_finite;
 
-/// A sub-path's recursive MIS state at its current vertex (both terms squared).
+/// Vertex merging's weight factor, squared, and its inverse (both 0 without merging).
+#[derive(Clone, Copy)]
+pub struct Merging {
+    pub eta_sq: f32,
+    pub inv_eta_sq: f32,
+}
+
+impl Merging {
+    pub const OFF: Merging = Merging { eta_sq: 0.0, inv_eta_sq: 0.0 };
+
+    /// Merging within `radius` among the vertices of `light_paths` light paths per camera sample.
+    #[inline]
+    pub fn new(radius: f32, light_paths: f32) -> Self {
+        let eta = core::f32::consts::PI * radius * radius * light_paths;
+        if !(eta > 0.0) || !is_finite(eta) {
+            return Merging::OFF;
+        }
+        let eta_sq = eta * eta;
+        Merging { eta_sq, inv_eta_sq: 1.0 / eta_sq }
+    }
+
+    /// A pass's merging: under `INTEGRATOR_VCM`, each camera sample merges with the vertices of the
+    /// pass's light paths, one per pixel of the window.
+    #[inline]
+    pub fn of(params: &FrameParams) -> Self {
+        if params.integrator != INTEGRATOR_VCM {
+            return Merging::OFF;
+        }
+        Merging::new(params.merge_radius, (params.width * params.height) as f32)
+    }
+}
+
+/// A sub-path's recursive MIS state at its current vertex (every term squared).
 #[derive(Clone, Copy)]
 pub struct SubpathMis {
     pub vcm: f32,
     pub vc: f32,
+    pub vm: f32,
 }
 
 impl SubpathMis {
-    pub const ZERO: SubpathMis = SubpathMis { vcm: 0.0, vc: 0.0 };
+    pub const ZERO: SubpathMis = SubpathMis { vcm: 0.0, vc: 0.0, vm: 0.0 };
 
     /// The camera path's first vertex: light tracing reaches it by connecting it to the camera (`a`
     /// as above; 0 where it cannot: outside the film, an orthographic camera).
     #[inline]
     pub fn camera_first_vertex(a: f32) -> Self {
-        SubpathMis { vcm: if a > 0.0 { 1.0 / (a * a) } else { 0.0 }, vc: 0.0 }
+        SubpathMis { vcm: if a > 0.0 { 1.0 / (a * a) } else { 0.0 }, vc: 0.0, vm: 0.0 }
     }
 
     /// The light path's first vertex, met at `|cos|` `cos_in`: next-event estimation from it could have
@@ -43,12 +84,13 @@ impl SubpathMis {
     /// 0 for an emitter it cannot sample), and a camera path leaving it could have hit that point
     /// (`inv_hit_sq`: `1/E²` of `emission::hit_density`, 0 for point, spot and projector lights).
     #[inline]
-    pub fn light_first_vertex(inv_nee_sq: f32, inv_hit_sq: f32, cos_in: f32) -> Self {
+    pub fn light_first_vertex(inv_nee_sq: f32, inv_hit_sq: f32, cos_in: f32, m: Merging) -> Self {
         let c2 = cos_in * cos_in;
         if !(c2 > 0.0) {
             return SubpathMis::ZERO;
         }
-        SubpathMis { vcm: inv_nee_sq / c2, vc: inv_hit_sq / c2 }
+        let vc = inv_hit_sq / c2;
+        SubpathMis { vcm: inv_nee_sq / c2, vc, vm: vc * m.inv_eta_sq }
     }
 
     /// Arriving at the next vertex along a segment of squared length `dist_sq`, which meets the
@@ -60,29 +102,45 @@ impl SubpathMis {
             return SubpathMis::ZERO;
         }
         let g = dist_sq / cos_in;
-        SubpathMis { vcm: self.vcm * g * g, vc: self.vc / c2 }
+        SubpathMis { vcm: self.vcm * g * g, vc: self.vc / c2, vm: self.vm / c2 }
     }
 
     /// Leaving a vertex by a direction of solid-angle density `fwd` at `|cos|` `cos_out`; `rev` is the
     /// other side's density of sampling the way back from here. A Dirac lobe has the same probability
-    /// both ways: the ratios pass through it, and no strategy connects at it.
+    /// both ways: the ratios pass through it, and no strategy connects or merges at it.
     #[inline]
-    pub fn scatter(self, delta: bool, fwd: f32, rev: f32, cos_out: f32) -> Self {
+    pub fn scatter(self, delta: bool, fwd: f32, rev: f32, cos_out: f32, m: Merging) -> Self {
+        let c2 = cos_out * cos_out;
         if delta {
-            return SubpathMis { vcm: 0.0, vc: self.vc * cos_out * cos_out };
+            return SubpathMis { vcm: 0.0, vc: self.vc * c2, vm: self.vm * c2 };
         }
         if !(fwd > 0.0) {
             return SubpathMis::ZERO;
         }
-        let g = cos_out / fwd;
-        SubpathMis { vcm: 1.0 / (fwd * fwd), vc: g * g * (self.vc * rev * rev + self.vcm) }
+        let g2 = c2 / (fwd * fwd);
+        let r2 = rev * rev;
+        SubpathMis {
+            vcm: 1.0 / (fwd * fwd),
+            vc: g2 * (self.vc * r2 + self.vcm + m.eta_sq),
+            vm: g2 * (self.vm * r2 + self.vcm * m.inv_eta_sq + 1.0),
+        }
     }
 
     /// The sum of the other strategies' ratios, squared, where the other side samples this vertex with
-    /// area density `other_area` and would leave it back along this sub-path with density `rev`.
+    /// area density `other_area` and would leave it back along this sub-path with density `rev`
+    /// (merging at this vertex among them).
     #[inline]
-    pub fn others(self, other_area: f32, rev: f32) -> f32 {
-        other_area * other_area * (self.vcm + self.vc * rev * rev)
+    pub fn others(self, other_area: f32, rev: f32, m: Merging) -> f32 {
+        other_area * other_area * (m.eta_sq + self.vcm + self.vc * rev * rev)
+    }
+
+    /// The other strategies' ratios, squared, relative to merging at this vertex, where the other side
+    /// would leave it with density `other` (onwards along this sub-path for the light side's term:
+    /// the camera's BSDF towards where the light came from; back along the other sub-path for the
+    /// camera side's).
+    #[inline]
+    pub fn merge_others(self, other: f32, m: Merging) -> f32 {
+        self.vcm * m.inv_eta_sq + self.vm * other * other
     }
 }
 
@@ -122,6 +180,14 @@ pub fn hit_weight(camera: SubpathMis, direct_area: f32, emission: f32) -> f32 {
 /// cosine at the vertex towards the light, `rev` light tracing's density of leaving the vertex back
 /// along the camera path.
 #[inline]
-pub fn nee_weight(camera: SubpathMis, r_hit: f32, nee_ratio: f32, cos: f32, rev: f32) -> f32 {
-    weight(r_hit * r_hit, camera.others(nee_ratio * cos, rev))
+pub fn nee_weight(camera: SubpathMis, r_hit: f32, nee_ratio: f32, cos: f32, rev: f32, m: Merging) -> f32 {
+    weight(r_hit * r_hit, camera.others(nee_ratio * cos, rev, m))
+}
+
+/// A camera vertex (state `camera`) merged with a light vertex (state `light`) within the radius:
+/// `fwd` the camera's BSDF density of leaving towards where the light came from, `rev` its density
+/// of the reverse, the light side leaving back along the camera path.
+#[inline]
+pub fn merge_weight(light: SubpathMis, camera: SubpathMis, fwd: f32, rev: f32, m: Merging) -> f32 {
+    weight(light.merge_others(fwd, m), camera.merge_others(rev, m))
 }

@@ -6,6 +6,7 @@ pub mod mis;
 pub mod nee;
 pub mod path;
 pub mod ptracer;
+pub mod vcm_grid;
 
 use crate::bsdf::perturb::{self, Perturbation, Shading};
 use crate::camera::{Ray, CAMERA_IRRADIANCE_METER};
@@ -18,7 +19,7 @@ use crate::irradiance_meter;
 pub use crate::layout::SceneView;
 use crate::layout::{
     FrameParams, Material, PixelAccum, Primitive, INTEGRATOR_BDPT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER,
-    MATERIAL_TWO_SIDED,
+    INTEGRATOR_VCM, MATERIAL_TWO_SIDED,
 };
 use crate::math::is_finite3;
 use crate::rng::Sampler;
@@ -26,6 +27,7 @@ use crate::shape::{Hit, SurfacePoint};
 use crate::spectrum::Rgb;
 use crate::splat::AtomicWords;
 use crate::wavelength;
+use bdpt::LightVertex;
 
 /// What one dispatch adds to a pixel.
 #[derive(Clone, Copy)]
@@ -210,66 +212,95 @@ const LIGHT_PATH_STREAM: u32 = 0x9e37_79b9;
 /// The dimension that rounds a camera path's splat (past any bounce's).
 const DIM_SPLAT_ROUNDING: u32 = u32::MAX - 1;
 
+/// A splatted camera sample of `pixel` (IBPT's camera half, BDPT, VCM): its sampler, film sample and
+/// ray, and the density with which the pixel's camera samples land where the ray crosses the film
+/// (`film::pixel_density`).
+#[inline]
+fn splatted_camera_sample(
+    scene: &SceneView,
+    params: &FrameParams,
+    pixel: u32,
+    sample_index: u32,
+) -> (Sampler, film::FilmSample, Ray, f32) {
+    let (px, py) = (pixel % params.width, pixel / params.width);
+    // (The splatting integrators refuse the irradiance meter: no weight here.)
+    let (sampler, film_sample, ray) = camera_sample(scene, params, pixel, sample_index);
+    let film_pos = film_sample.pos;
+    let pos = Vec2::new(film_pos.x * params.full_width as f32, film_pos.y * params.full_height as f32);
+    let density = film::pixel_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);
+    (sampler, film_sample, ray, density)
+}
+
+/// Splats a camera path's estimate `l` into its pixel's own sums (so that camera and light paths
+/// resolve together), or counts it as invalid.
+#[inline]
+fn splat_camera_estimate<W: AtomicWords>(
+    params: &FrameParams,
+    pixel: u32,
+    film_sample: &film::FilmSample,
+    sampler: &mut Sampler,
+    l: Rgb,
+    words: &mut W,
+) {
+    let l = if params.filter_signed != 0 { l * film_sample.weight } else { l };
+    sampler.set_dimension(DIM_SPLAT_ROUNDING);
+    if is_finite3(l) {
+        crate::splat::splat(words, pixel, l, sampler.next_1d());
+    } else {
+        crate::splat::count_invalid(words, pixel);
+    }
+}
+
 /// IBPT's camera half: `params.sample_count` camera paths of `pixel`, weighted against light tracing,
-/// splatted into the pixel's own sums (so that camera and light paths resolve together).
+/// splatted into the pixel's own sums.
 pub fn splat_camera_paths<W: AtomicWords>(
     scene: &SceneView,
     params: &FrameParams,
     pixel: u32,
     words: &mut W,
 ) {
-    let (px, py) = (pixel % params.width, pixel / params.width);
     let mut s = 0;
     while s < params.sample_count {
-        // (IBPT refuses the irradiance meter: no weight here.)
-        let (mut sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
-        let film_pos = film_sample.pos;
-        let pos = Vec2::new(film_pos.x * params.full_width as f32, film_pos.y * params.full_height as f32);
-        let density = film::pixel_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);
-        let mut l = path::li(scene, params, ray, &mut sampler, density);
-        if params.filter_signed != 0 {
-            l *= film_sample.weight;
-        }
-        sampler.set_dimension(DIM_SPLAT_ROUNDING);
-        if is_finite3(l) {
-            crate::splat::splat(words, pixel, l, sampler.next_1d());
-        } else {
-            crate::splat::count_invalid(words, pixel);
-        }
+        let (mut sampler, film_sample, ray, density) =
+            splatted_camera_sample(scene, params, pixel, params.sample_base + s);
+        let l = path::li(scene, params, ray, &mut sampler, density);
+        splat_camera_estimate(params, pixel, &film_sample, &mut sampler, l, words);
         s += 1;
     }
 }
 
-/// BDPT: `params.sample_count` samples of `pixel`, each a light path (splatted wherever its camera
-/// connections land) and a camera path (`bdpt::li`), the camera path's estimate splatted into the
-/// pixel's own sums as IBPT's is. (Its own entry point on the GPU, `entry::bdpt`: inlined beside the
-/// path tracer's loops in `entry::render`, it ran rust-gpu's build out of 23 GB of memory.)
-pub fn splat_bdpt_samples<W: AtomicWords>(
+/// BDPT's and VCM's first step of a pass: the light path of index `pixel` (one a pixel, the pass's
+/// sample `params.sample_base`), its camera connections splatted into `words`, its vertices into its
+/// slots of the light vertex cache (`slots`: the cache from the path's first slot, `pixel ·
+/// MAX_LIGHT_VERTICES`, or its own slots).
+pub fn trace_cached_light_path<W: AtomicWords>(
     scene: &SceneView,
     params: &FrameParams,
     pixel: u32,
+    slots: &mut bdpt::CacheSlots,
     words: &mut W,
 ) {
-    let (px, py) = (pixel % params.width, pixel / params.width);
-    let mut s = 0;
-    while s < params.sample_count {
-        let (mut sampler, film_sample, ray) = camera_sample(scene, params, pixel, params.sample_base + s);
-        let film_pos = film_sample.pos;
-        let pos = Vec2::new(film_pos.x * params.full_width as f32, film_pos.y * params.full_height as f32);
-        let density = film::pixel_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);
-        let mut light_sampler = light_path_sampler(params, pixel, params.sample_base + s);
-        let mut l = bdpt::li(scene, params, ray, &mut sampler, &mut light_sampler, density, words);
-        if params.filter_signed != 0 {
-            l *= film_sample.weight;
-        }
-        sampler.set_dimension(DIM_SPLAT_ROUNDING);
-        if is_finite3(l) {
-            crate::splat::splat(words, pixel, l, sampler.next_1d());
-        } else {
-            crate::splat::count_invalid(words, pixel);
-        }
-        s += 1;
-    }
+    let mut sampler = light_path_sampler(params, pixel, params.sample_base);
+    bdpt::trace_light_path(scene, params, &mut sampler, words, slots);
+}
+
+/// BDPT's and VCM's last step of a pass (after the light paths and, for VCM, the grid: `vcm_grid`):
+/// the camera path of `pixel`'s sample `params.sample_base`, connected to its own light path's
+/// vertices and merged with every light vertex within the radius, splatted into the pixel's own sums.
+pub fn splat_cached_camera_path<W: AtomicWords>(
+    scene: &SceneView,
+    params: &FrameParams,
+    pixel: u32,
+    cache: &[LightVertex],
+    grid_words: &[u32],
+    words: &mut W,
+) {
+    let (mut sampler, film_sample, ray, density) =
+        splatted_camera_sample(scene, params, pixel, params.sample_base);
+    let vertices = bdpt::CacheView { cache, base: pixel * bdpt::MAX_LIGHT_VERTICES };
+    let grid = vcm_grid::GridView { cache, words: grid_words, grid: vcm_grid::Grid::of(params) };
+    let l = bdpt::camera_path(scene, params, ray, &mut sampler, density, &vertices, &grid);
+    splat_camera_estimate(params, pixel, &film_sample, &mut sampler, l, words);
 }
 
 /// Traces the light paths of `params.sample_count` samples of path index `pixel` (one light path per
@@ -299,11 +330,18 @@ pub fn splats_camera_paths(scene: &SceneView, params: &FrameParams) -> bool {
     params.integrator == INTEGRATOR_IBPT && features::has(scene.features, features::LIGHT_TRACER)
 }
 
-/// Whether integrator `kind` runs BDPT's entry point (`splat_bdpt_samples`) in place of the camera
-/// entry point (and no light entry point).
+/// Whether integrator `kind` runs the light vertex cache's passes (BDPT, VCM: light paths into the
+/// cache, for VCM the grid, then camera paths) in place of the camera and light entry points, one
+/// sample a pass.
 #[inline]
-pub fn traces_bdpt(kind: u32) -> bool {
-    kind == INTEGRATOR_BDPT
+pub fn traces_cached(kind: u32) -> bool {
+    kind == INTEGRATOR_BDPT || kind == INTEGRATOR_VCM
+}
+
+/// Whether integrator `kind` merges (VCM), so that its passes build the grid.
+#[inline]
+pub fn merges(kind: u32) -> bool {
+    kind == INTEGRATOR_VCM
 }
 
 /// Whether integrator `kind` runs the light entry point (`ptracer`, IBPT's light half; BDPT traces its
@@ -313,18 +351,14 @@ pub fn traces_light_paths(kind: u32) -> bool {
     kind == INTEGRATOR_PTRACER || kind == INTEGRATOR_IBPT
 }
 
-/// Whether integrator `kind` runs the camera entry point (everything but plain light tracing; for BDPT
-/// its own, `traces_bdpt`).
+/// Whether integrator `kind` runs the camera entry point (everything but plain light tracing; BDPT and
+/// VCM run their own, `traces_cached`).
 #[inline]
 pub fn traces_camera_paths(kind: u32) -> bool {
     kind != INTEGRATOR_PTRACER
 }
 
-/// Whether integrator `kind` splats into the `SPLAT` words (resolved by the host after each pass).
-#[inline]
-pub fn splats(kind: u32) -> bool {
-    kind == INTEGRATOR_PTRACER || kind == INTEGRATOR_IBPT || kind == INTEGRATOR_BDPT
-}
+pub use crate::layout::splats;
 
 /// A pixel's accumulator with one dispatch's sums added.
 #[inline]

@@ -59,9 +59,9 @@ pub fn film_scale(params: &FrameParams) -> f32 {
 
 /// How a camera connection is weighted against the camera strategies under IBPT (`mis`): not at all
 /// (plain light tracing), or as the emitter point, the first vertex or a later vertex of a light path.
-/// Under BDPT (`MIS_BDPT`): `d` and `vc` hold the light path's `bdpt_mis::SubpathMis` at the vertex,
-/// `rho` the camera path's density of leaving it back along the light path, `cos` the cosine there
-/// towards the camera.
+/// Under BDPT and VCM (`MIS_BDPT`): `d` and `vc` hold the light path's `bdpt_mis::SubpathMis` at the
+/// vertex, `rho` the camera path's density of leaving it back along the light path, `cos` the cosine
+/// there towards the camera, `eta_sq` vertex merging's factor (`bdpt_mis::Merging`).
 #[derive(Clone, Copy)]
 pub(super) struct ConnectionMis {
     kind: u32,
@@ -71,11 +71,20 @@ pub(super) struct ConnectionMis {
     d: f32,
     vc: f32,
     cos: f32,
+    eta_sq: f32,
 }
 
 const MIS_NONE: u32 = 0;
-const NO_MIS: ConnectionMis =
-    ConnectionMis { kind: MIS_NONE, rho: 0.0, inv_hit_sq: 0.0, inv_nee_sq: 0.0, d: 0.0, vc: 0.0, cos: 0.0 };
+const NO_MIS: ConnectionMis = ConnectionMis {
+    kind: MIS_NONE,
+    rho: 0.0,
+    inv_hit_sq: 0.0,
+    inv_nee_sq: 0.0,
+    d: 0.0,
+    vc: 0.0,
+    cos: 0.0,
+    eta_sq: 0.0,
+};
 const MIS_EMITTER: u32 = 1;
 const MIS_FIRST_VERTEX: u32 = 2;
 const MIS_LATER_VERTEX: u32 = 3;
@@ -85,8 +94,16 @@ impl ConnectionMis {
     /// A light vertex of BDPT with state `state`, `cos` towards the camera, `rev` the camera path's
     /// density of leaving it back along the light path.
     #[inline]
-    pub(super) fn bdpt(state: SubpathMis, cos: f32, rev: f32) -> Self {
-        ConnectionMis { kind: MIS_BDPT, rho: rev, d: state.vcm, vc: state.vc, cos, ..NO_MIS }
+    pub(super) fn bdpt(state: SubpathMis, cos: f32, rev: f32, m: bdpt_mis::Merging) -> Self {
+        ConnectionMis {
+            kind: MIS_BDPT,
+            rho: rev,
+            d: state.vcm,
+            vc: state.vc,
+            cos,
+            eta_sq: m.eta_sq,
+            ..NO_MIS
+        }
     }
 
     /// The weight of a splat whose camera strategies carry `importance` (`We·cos/d²`, the film scale and
@@ -100,8 +117,9 @@ impl ConnectionMis {
             }
             MIS_LATER_VERTEX => mis::connection_weight(importance, self.rho, self.d),
             MIS_BDPT => {
-                let state = SubpathMis { vcm: self.d, vc: self.vc };
-                bdpt_mis::weight(state.others(importance * self.cos, self.rho), 0.0)
+                let state = SubpathMis { vcm: self.d, vc: self.vc, vm: 0.0 };
+                let m = bdpt_mis::Merging { eta_sq: self.eta_sq, inv_eta_sq: 0.0 };
+                bdpt_mis::weight(state.others(importance * self.cos, self.rho, m), 0.0)
             }
             _ => 1.0,
         }

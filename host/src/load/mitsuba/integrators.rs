@@ -28,22 +28,27 @@ impl Loader {
                     max_depth,
                     rr_depth,
                     hide_emitters: props.boolean("hide_emitters", false)?,
+                    ..Default::default()
                 }
             }
-            "ptracer" | "ibpt" | "bdpt" => {
+            "ptracer" | "ibpt" | "bdpt" | "vcm" => {
                 let (max_depth, rr_depth) = depths(props, -1)?;
                 // Mitsuba's `samples_per_pass` only splits its own work; the image does not depend on it.
                 props.integer("samples_per_pass", -1)?;
                 let kind = match props.kind.as_str() {
                     "ibpt" => IntegratorKind::Ibpt,
                     "bdpt" => IntegratorKind::Bdpt,
+                    "vcm" => IntegratorKind::Vcm,
                     _ => IntegratorKind::Ptracer,
                 };
+                let merging =
+                    if kind == IntegratorKind::Vcm { merge_settings(props)? } else { Default::default() };
                 Integrator {
                     kind,
                     max_depth,
                     rr_depth,
                     hide_emitters: props.boolean("hide_emitters", false)?,
+                    merging,
                 }
             }
             "direct" => {
@@ -68,6 +73,7 @@ impl Loader {
                     max_depth: 2,
                     rr_depth: 5,
                     hide_emitters: props.boolean("hide_emitters", false)?,
+                    ..Default::default()
                 }
             }
             "moment" => {
@@ -91,7 +97,7 @@ impl Loader {
             "depth" => {
                 self.aovs = Some(crate::scene::aov::depth_integrator());
                 // The image is the depth (`aov`): the cheapest image integrator renders beside it.
-                Integrator { kind: IntegratorKind::Path, max_depth: 1, rr_depth: 5, hide_emitters: false }
+                Integrator { kind: IntegratorKind::Path, max_depth: 1, ..Default::default() }
             }
             other => {
                 let message = format!("{}: integrator '{other}' is not supported yet; using path", props.loc);
@@ -132,10 +138,7 @@ impl Loader {
                 }
                 (Some(name), self.load_integrator(&inner)?)
             }
-            None => (
-                None,
-                Integrator { kind: IntegratorKind::Path, max_depth: 1, rr_depth: 5, hide_emitters: false },
-            ),
+            None => (None, Integrator { kind: IntegratorKind::Path, max_depth: 1, ..Default::default() }),
         };
         if nested.len() > 1 {
             let message =
@@ -164,4 +167,26 @@ fn depths(props: &Props, default_depth: i64) -> Result<(i32, u32)> {
         bail!("{}: rr_depth must be in [1, 1000000], got {rr_depth}", props.loc);
     }
     Ok((max_depth as i32, rr_depth as u32))
+}
+
+/// `vcm`'s merging radius (`radius`, absolute; or `radius_factor` of the scene's bounding sphere's
+/// radius, 0.003 by default) and `alpha` (0.75: each pass's radius squared shrinks by `(i + α)/(i + 1)`
+/// on average), checked.
+fn merge_settings(props: &Props) -> Result<crate::scene::MergeSettings> {
+    let defaults = crate::scene::MergeSettings::default();
+    let radius = if props.has("radius") { Some(props.float("radius", 0.0)?) } else { None };
+    let radius_factor = props.float("radius_factor", defaults.radius_factor)?;
+    let alpha = props.float("alpha", defaults.alpha)?;
+    if let Some(r) = radius {
+        if !(r > 0.0 && r.is_finite()) {
+            bail!("{}: vcm's radius must be positive and finite, got {r}", props.loc);
+        }
+    }
+    if !(radius_factor > 0.0 && radius_factor.is_finite()) {
+        bail!("{}: vcm's radius_factor must be positive and finite, got {radius_factor}", props.loc);
+    }
+    if !(alpha > 0.0 && alpha <= 1.0) {
+        bail!("{}: vcm's alpha must be in (0, 1], got {alpha}", props.loc);
+    }
+    Ok(crate::scene::MergeSettings { radius, radius_factor, alpha })
 }
