@@ -21,7 +21,7 @@ __version__: str
 
 _Path = Union[str, "os.PathLike[str]"]
 _Backend = Literal["auto", "gpu", "cpu"]
-_Integrator = Literal["path", "direct", "ptracer", "ibpt", "bdpt"]
+_Integrator = Literal["path", "direct", "ptracer", "ibpt", "bdpt", "vcm"]
 _Film = Literal["splat", "fis"]
 _Gpus = Union[Literal["all"], int, Sequence[int]]
 _Image = npt.NDArray[np.float32]

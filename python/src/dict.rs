@@ -20,7 +20,7 @@ use std::fmt::Display;
 pub const NAME: &str = "<dict>";
 
 /// The XML tag of each plugin, by the family Mitsuba 3.9.1 puts it in (`tests/data/mitsuba_plugins.txt`
-/// lists them), with caustic's own (`ibpt`, `bdpt`, `phong`, `fuzzymetal`): a dictionary names the plugin
+/// lists them), with caustic's own (`ibpt`, `bdpt`, `vcm`, `phong`, `fuzzymetal`): a dictionary names the plugin
 /// only, and the tag says what kind of object it is. Plugins caustic does not render get their tag
 /// too, so that the loader reports them as it would in a file.
 #[rustfmt::skip]
@@ -39,7 +39,7 @@ const PLUGINS: &[(&str, &[&str])] = &[
     ("film", &["hdrfilm", "specfilm"]),
     ("rfilter", &["box", "tent", "gaussian", "mitchell", "catmullrom", "lanczos"]),
     ("sampler", &["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]),
-    ("integrator", &["path", "direct", "ptracer", "ibpt", "bdpt", "aov", "depth", "moment", "volpath",
+    ("integrator", &["path", "direct", "ptracer", "ibpt", "bdpt", "vcm", "aov", "depth", "moment", "volpath",
         "volpathmis", "prb", "prb_basic", "prb_projective", "direct_projective", "prbvolpath", "stokes",
         "volprim_rf_basic"]),
     ("texture", &["bitmap", "checkerboard", "mesh_attribute", "volume"]),

@@ -226,7 +226,7 @@ impl Scene {
     /// spp: samples per pixel (default: the scene's sampler's count). seed: different seeds give
     /// statistically independent images; the same seed the same image. backend: "auto" (a hardware
     /// GPU if there is one, else the CPU), "gpu" (software adapters such as lavapipe included) or
-    /// "cpu". integrator: "path", "direct", "ptracer", "ibpt" or "bdpt" in place of the scene's (its
+    /// "cpu". integrator: "path", "direct", "ptracer", "ibpt", "bdpt" or "vcm" in place of the scene's (its
     /// max_depth, rr_depth and hide_emitters kept). film: "splat" (Mitsuba's hdrfilm) or "fis"
     /// (filter importance sampling). gpus: "all", a count, or a list of adapter indices.
     /// progress: a progress bar on stderr when it is a terminal.

@@ -428,3 +428,21 @@ def test_strict_refuses_what_would_not_render_as_written():
     assert any("shininess" in w for w in caustic.load_dict(d).warnings)
     with pytest.raises(caustic.CausticError, match="shininess"):
         caustic.load_dict(d, strict=True)
+
+
+def test_vcm_from_a_dict_and_by_name():
+    """`vcm` (caustic's own) in a dictionary, its merging radius and alpha as properties, renders as
+    its XML does; and `integrator="vcm"` renders any scene so."""
+    d = cornell_dict(res=16, spp=4)
+    d["integrator"] = {"type": "vcm", "max_depth": 6, "radius_factor": 0.01, "alpha": 0.5}
+    scene = caustic.load_dict(d)
+    assert scene.warnings == []
+    image = render(scene)
+    assert image.shape == (16, 16, 3) and np.isfinite(image).all() and image.mean() > 0
+    by_name = caustic.load_dict(cornell_dict(res=16, spp=4)).render(
+        spp=4, seed=3, backend="cpu", integrator="vcm", progress=False
+    )
+    assert np.isfinite(by_name).all() and by_name.mean() > 0
+    d["integrator"]["alpha"] = 1.5
+    with pytest.raises(caustic.CausticError, match="alpha"):
+        caustic.load_dict(d)
