@@ -288,3 +288,29 @@ fn a_light_path_takes_1664_bytes_of_the_cache() {
     assert_eq!(std::mem::align_of::<LightVertex>(), 4);
     assert_eq!(std::mem::size_of::<LightVertex>() * MAX_LIGHT_VERTICES as usize, 1664);
 }
+
+/// A path of one segment, the camera seeing an emitter: its two strategies are the camera path
+/// hitting the point and the light path's emitter point connected to the camera. `integrator::bdpt`
+/// weighs the first with `bdpt_mis::hit_weight` at the camera's first vertex (light tracing's
+/// density of the point, `E·|cos|`, against the camera's `a = x·|cos|`), the second as `ibpt` does
+/// (`mis::emitter_connection_weight`, `x` the splat's importance): they sum to one, at any distance and
+/// angle, and the hit alone would count the path twice.
+#[test]
+fn the_emitter_point_and_the_camera_hit_sum_to_one() {
+    use caustic_kernel::integrator::mis;
+    let mut s = Sampler::new(7, 0, 0);
+    let mut shared = 0;
+    for _ in 0..10_000 {
+        let u = s.next_2d();
+        let v = s.next_2d();
+        let x = 10f32.powf(6.0 * u.x - 3.0);
+        let e = 10f32.powf(6.0 * u.y - 3.0);
+        let cos = v.x.max(1e-4);
+        let hit = bdpt_mis::hit_weight(SubpathMis::camera_first_vertex(x * cos), e * cos, 0.0);
+        let splat = mis::emitter_connection_weight(x, 1.0 / (e * e));
+        assert!((hit + splat - 1.0).abs() < 1e-5, "x {x} E {e} cos {cos}: {hit} + {splat}");
+        shared += (hit < 0.99) as u32;
+    }
+    // Where the point is as likely by light tracing as by the camera ray, the hit's weight is not 1.
+    assert!(shared > 1000, "{shared}");
+}

@@ -19,8 +19,8 @@
 //! Light paths and camera paths follow `ptracer` and `path`: Mitsuba's `max_depth` (segments),
 //! `rr_depth` and `hide_emitters`, null interfaces crossed without a vertex (`mask`), importance
 //! transport with Veach's shading-normal correction on the light side. As under IBPT, no light path
-//! starts on an emitter at infinity (camera paths alone carry their light), and the emitter point
-//! itself is not connected to the camera (a camera path seeing an emitter takes its whole value).
+//! starts on an emitter at infinity (camera paths alone carry their light), and a light path's emitter
+//! point is connected to the camera and weighed against the camera path that sees it there.
 //! The host refuses dispersion, the radiance and irradiance meters, the orthographic camera and
 //! `directionalarea` emitters under `bdpt` and `vcm`.
 #[cfg(target_arch = "spirv")]
@@ -32,8 +32,8 @@ use super::nee::{
 };
 use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE, DIM_MASK};
 use super::ptracer::{
-    film_scale, inv_nee_ratio_sq, lens_sample, shading_normal_correction, splat_to_camera, ConnectionMis,
-    DIM_LENS_IN_BOUNCE,
+    film_scale, inv_nee_ratio_sq, lens_sample, shading_normal_correction, splat_emitter_point,
+    splat_to_camera, ConnectionMis, DIM_LENS_AT_EMITTER, DIM_LENS_IN_BOUNCE,
 };
 use super::shading_frame;
 use super::vcm_grid::GridView;
@@ -55,7 +55,7 @@ use crate::splat::AtomicWords;
 
 /// The light path's vertices kept for connections, and its longest length in segments: paths up to
 /// one segment longer are weighted over all strategies, longer ones between the camera path's two.
-/// Each vertex takes 224 bytes of the invocation's memory (`kernel/tests/bdpt_mis.rs`).
+/// Each vertex takes 208 bytes of the light vertex cache (`kernel/tests/bdpt_mis.rs`).
 pub const MAX_LIGHT_VERTICES: u32 = 8;
 const SHADOW_EPSILON: f32 = 1.0e-4;
 const ONE_EACH: StrategyCounts = StrategyCounts::ONE_EACH;
@@ -276,6 +276,13 @@ pub fn bidirectional(segments: u32) -> bool {
     segments <= MAX_LIGHT_VERTICES + 1
 }
 
+/// Whether light paths connect their emitter points to the camera: where a camera path may see an
+/// emitter (not with `hide_emitters`; not where `max_depth` 0 allows no segment).
+#[inline]
+fn sees_emitter_points(params: &FrameParams) -> bool {
+    params.hide_emitters == 0 && params.max_depth != 0
+}
+
 /// Whether `max_depth` (`NONE`: unbounded) allows a path of `segments`.
 #[inline]
 pub fn within(max_depth: u32, segments: u32) -> bool {
@@ -317,6 +324,13 @@ fn light_path_vertices<W: AtomicWords>(
     let max_depth = params.max_depth;
     let hit_density = if es.delta_position { 0.0 } else { emission::hit_density(scene, es.light) };
     let inv_hit_sq = if hit_density > 0.0 { 1.0 / (hit_density * hit_density) } else { 0.0 };
+    if sees_emitter_points(params) && !es.delta_position && !es.infinite {
+        // The emitter point itself to the camera: against the camera path that sees it (`camera_path`).
+        let u_round = sampler.next_1d();
+        let u_lens = lens_sample(sampler, DIM_LENS_AT_EMITTER);
+        let weighting = ConnectionMis::emitter_point(inv_hit_sq);
+        splat_emitter_point(scene, params, &accel, words, &es, u_lens, u_round, weighting);
+    }
     let mut mis = SubpathMis::ZERO;
     let mut beta = es.weight;
     let mut ray = Ray { origin: es.origin, dir: es.dir, t_min: 0.0, t_max: f32::MAX };
@@ -501,10 +515,18 @@ pub fn camera_path(
         if prim.light != NONE {
             let emitter = scene.lights[prim.light as usize];
             let le = light::emitted_at(scene, &emitter, sp.ns, -ray.dir, sp.uv);
-            let weight = if prev.delta {
-                // Seen by the camera or through Dirac lobes alone: at the first vertex no other
-                // strategy makes the path; later the recursion's terms decide.
-                if depth == 0 || !bidirectional(segments) {
+            let weight = if depth == 0 {
+                // Seen by the camera: the light path's emitter point connected to the camera is the
+                // other strategy (`light_path_vertices`), at light tracing's density of that point.
+                let point = if sees_emitter_points(params) {
+                    emission::hit_density(scene, prim.light) * cos_in
+                } else {
+                    0.0
+                };
+                bdpt_mis::hit_weight(arrived, point, 0.0)
+            } else if prev.delta {
+                // Through Dirac lobes alone: the recursion's terms decide.
+                if !bidirectional(segments) {
                     1.0
                 } else {
                     bdpt_mis::hit_weight(arrived, 0.0, emission::hit_density(scene, prim.light) * cos_in)

@@ -106,6 +106,14 @@ impl ConnectionMis {
         }
     }
 
+    /// The emitter point itself, against the camera path that sees it there (`inv_hit_sq`: `1/E²` of
+    /// `emission::hit_density`): the only two strategies of a one-segment path, under IBPT and BDPT
+    /// alike.
+    #[inline]
+    pub(super) fn emitter_point(inv_hit_sq: f32) -> Self {
+        ConnectionMis { kind: MIS_EMITTER, inv_hit_sq, ..NO_MIS }
+    }
+
     /// The weight of a splat whose camera strategies carry `importance` (`We·cos/d²`, the film scale and
     /// the pixel's filter density at the point: the camera path's density of landing there).
     #[inline]
@@ -192,6 +200,26 @@ pub(super) fn splat_to_camera<W: AtomicWords>(
     }
 }
 
+/// Connects the emitter point of `es` (an emitter the camera can see: not a point, spot or projector,
+/// not at infinity) to the camera through the aperture point `u_lens` and splats what it emits
+/// towards the camera.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn splat_emitter_point<W: AtomicWords>(
+    scene: &SceneView,
+    params: &FrameParams,
+    accel: &Accel,
+    words: &mut W,
+    es: &emission::EmissionSample,
+    u_lens: Vec2,
+    u_round: f32,
+    weighting: ConnectionMis,
+) {
+    if let Some(c) = params.camera.connect(es.origin, u_lens) {
+        let le = emission::emitted_towards(scene, es, c.dir);
+        splat_to_camera(scene, params, accel, words, es.origin, &c, le, es.prim, u_round, weighting);
+    }
+}
+
 /// The light that crosses `shadow`, a segment from a light vertex to the camera (ignoring primitive
 /// `skip`): blocked by any surface, attenuated at each null interface (`mask::transmittance`). With
 /// `hide_emitters` camera rays pass through emitters (`path`), so the segment does too: otherwise
@@ -230,7 +258,7 @@ fn to_camera(scene: &SceneView, params: &FrameParams, accel: &Accel, shadow: &Ra
 
 /// The aperture point of a thin lens that the emitter's connections reach: a dimension past the
 /// emitter sample's, before the first bounce's.
-const DIM_LENS_AT_EMITTER: u32 = 6;
+pub(super) const DIM_LENS_AT_EMITTER: u32 = 6;
 /// Within a bounce's dimensions (`path::DIMS_PER_BOUNCE`), the two after Russian roulette's.
 pub(super) const DIM_LENS_IN_BOUNCE: u32 = 5;
 
@@ -273,12 +301,8 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         }
     }
     if !es.delta_position && params.hide_emitters == 0 && max_depth != 0 {
-        if let Some(c) = camera.connect(es.origin, u_lens_at_emitter) {
-            let weighting =
-                ConnectionMis { kind: if ibpt { MIS_EMITTER } else { MIS_NONE }, inv_hit_sq, ..NO_MIS };
-            let le = emission::emitted_towards(scene, &es, c.dir);
-            splat_to_camera(scene, params, &accel, words, es.origin, &c, le, es.prim, u_round, weighting);
-        }
+        let weighting = if ibpt { ConnectionMis::emitter_point(inv_hit_sq) } else { NO_MIS };
+        splat_emitter_point(scene, params, &accel, words, &es, u_lens_at_emitter, u_round, weighting);
     }
     // IBPT's scalar `d` (after the first vertex): Σ over the camera strategies of their squared density
     // ratios to light tracing, without the current vertex's reverse density.
