@@ -83,8 +83,6 @@ impl Backend for CpuBackend {
         if caustic_kernel::integrator::traces_cached(params.integrator) {
             // One pass of the light vertex cache (light paths, VCM's grid, camera paths) per sample,
             // each with VCM's radius for it.
-            use caustic_kernel::splat::{resolved, SPLAT_STRIDE};
-            let q = caustic_kernel::layout::square_scale(params);
             for i in 0..params.sample_count {
                 let iteration = params.sample_base + i;
                 let one = FrameParams {
@@ -94,19 +92,13 @@ impl Backend for CpuBackend {
                     ..*params
                 };
                 let words = caustic_cpu::cached_pass(&view, &one, &mut self.cache);
-                for (px, w) in self.device.iter_mut().zip(words.chunks_exact(SPLAT_STRIDE as usize)) {
-                    *px = resolved(*px, w.try_into().expect("a pixel's words"), 1, q);
-                }
+                fold_splats(&mut self.device, &words, &one);
             }
         } else if params.film_reach != 0 && !caustic_kernel::integrator::splats(params.integrator) {
             caustic_cpu::film_pass(&view, params, &mut self.device, self.regenerate, &mut self.cells);
         } else if caustic_kernel::integrator::splats(params.integrator) {
-            use caustic_kernel::splat::{resolved, SPLAT_STRIDE};
             let words = caustic_cpu::light_pass(&view, params);
-            let q = caustic_kernel::layout::square_scale(params);
-            for (px, w) in self.device.iter_mut().zip(words.chunks_exact(SPLAT_STRIDE as usize)) {
-                *px = resolved(*px, w.try_into().expect("a pixel's words"), params.sample_count, q);
-            }
+            fold_splats(&mut self.device, &words, params);
         } else {
             caustic_cpu::render_pass(&view, params, &mut self.device, self.regenerate);
         }
@@ -125,5 +117,16 @@ impl Backend for CpuBackend {
         self.folding.replace(accum)?;
         self.device.fill(PixelAccum::default());
         Ok(())
+    }
+}
+
+/// Folds a splatting pass's words (`caustic_kernel::splat` layout, `SPLAT_STRIDE` a pixel) into the
+/// accumulator, as the GPU's `entry::resolve` does: `params.sample_count` samples a pixel.
+fn fold_splats(device: &mut [PixelAccum], words: &[u32], params: &FrameParams) {
+    use caustic_kernel::splat::{resolved, SPLAT_STRIDE};
+    let q = caustic_kernel::layout::square_scale(params);
+    let (pixels, _) = words.as_chunks::<{ SPLAT_STRIDE as usize }>();
+    for (px, w) in device.iter_mut().zip(pixels) {
+        *px = resolved(*px, *w, params.sample_count, q);
     }
 }

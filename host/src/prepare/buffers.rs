@@ -128,8 +128,8 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     crate::prepare::instance_buffers::place_transforms(&mut prims, &mut tables, &scene.instancing);
     let mut textures = place_textures(scene, &mut tables, &blocks);
     blocks.place(&mut tables, &mut attributes);
-    let env_light =
-        emitter_lights(scene, &textures, &mut tables, &mut light_list, bounding_sphere(&nodes, has_prims));
+    let scene_sphere = bounding_sphere(&nodes, has_prims);
+    let env_light = emitter_lights(scene, &textures, &mut tables, &mut light_list, scene_sphere);
 
     let uniform_share = match scene.integrator.kind {
         IntegratorKind::Ptracer | IntegratorKind::Ibpt | IntegratorKind::Bdpt | IntegratorKind::Vcm => {
@@ -182,7 +182,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let merge_radius = match scene.integrator.kind {
         IntegratorKind::Vcm => {
             let m = scene.integrator.merging;
-            m.radius.unwrap_or_else(|| m.radius_factor * bounding_sphere(&nodes, has_prims).1)
+            m.radius.unwrap_or(m.radius_factor * scene_sphere.1)
         }
         _ => 0.0,
     };
