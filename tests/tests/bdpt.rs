@@ -150,11 +150,10 @@ fn bdpt_stiff_cases_stay_finite_and_agree() {
     }
 }
 
-/// What `bdpt` does not render is refused with the file and line where it can be named: a dispersive
-/// dielectric, a `directionalarea` emitter, the orthographic camera.
+/// What `bdpt` does not render is refused with the file and line where it can be named: a
+/// `directionalarea` emitter, the orthographic camera.
 #[test]
 fn bdpt_refuses_what_it_does_not_render() {
-    let dispersive = r#"<bsdf type="dielectric"><float name="int_ior" value="1.6"/><float name="abbe_number" value="20"/></bsdf>"#;
     let directional = r#"<shape type="rectangle"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate z="1.9"/></transform>
             <emitter type="directionalarea"><rgb name="radiance" value="12"/></emitter></shape>"#;
     let ortho = corner("bdpt", EMITTERS[0].1, "5", ROUGH_PLASTIC).replace(
@@ -163,11 +162,6 @@ fn bdpt_refuses_what_it_does_not_render() {
         r#"<sensor type="orthographic">"#,
     );
     let cases = [
-        (
-            corner("bdpt", EMITTERS[0].1, "5", dispersive),
-            "dispersive dielectric is not rendered by bdpt",
-            ".xml:",
-        ),
         (corner("bdpt", directional, "5", ROUGH_PLASTIC), "not by bdpt", ".xml:"),
         (ortho, "orthographic sensor is not supported", "bdpt"),
     ];

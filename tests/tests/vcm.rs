@@ -133,16 +133,14 @@ fn vcm_stiff_cases_and_extreme_radii_stay_finite() {
     }
 }
 
-/// Refused with the file and line where it can be named: a dispersive dielectric, a `directionalarea`
-/// emitter, a radius that is not positive, an `alpha` outside (0, 1]; and on the GPU, for now.
+/// Refused with the file and line where it can be named: a `directionalarea` emitter, a radius that
+/// is not positive, an `alpha` outside (0, 1].
 #[test]
 fn vcm_refuses_what_it_does_not_render() {
-    let dispersive = r#"<bsdf type="dielectric"><float name="int_ior" value="1.6"/><float name="abbe_number" value="20"/></bsdf>"#;
     let directional = r#"<shape type="rectangle"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate z="1.9"/></transform>
             <emitter type="directionalarea"><rgb name="radiance" value="12"/></emitter></shape>"#;
     let plain = corner("vcm", EMITTERS[0].1, "5", ROUGH_PLASTIC);
     let cases = [
-        (corner("vcm", EMITTERS[0].1, "5", dispersive), "dispersive dielectric is not rendered by vcm"),
         (corner("vcm", directional, "5", ROUGH_PLASTIC), "not by vcm"),
         (with_merging(plain.clone(), r#"<float name="radius" value="0"/>"#), "radius must be positive"),
         (with_merging(plain.clone(), r#"<float name="alpha" value="1.5"/>"#), "alpha must be in (0, 1]"),
