@@ -84,7 +84,8 @@ fn vcm_converges_as_its_radius_shrinks() {
     );
 }
 
-/// Stiff cases (a lamp sealed in glass, index-matched glass, a camera inside glass) and the radius at
+/// Stiff cases (a lamp sealed in glass, index-matched glass, a camera inside glass, and inside glass
+/// whose index runs from 2.5 to 1.7 over 380-780 nm) and the radius at
 /// its extremes (a millionth and ten times the scene): finite samples, and agreement with path
 /// tracing where the radius is small.
 #[test]
@@ -113,6 +114,11 @@ fn vcm_stiff_cases_and_extreme_radii_stay_finite() {
             .replace(r#"origin="0, -3, 1.6""#, r#"origin="0.3, 0.2, 0.45""#)
     };
     agrees_with_path("vcm", "camera inside glass", inside, 256, 4096, 174);
+    let dispersive = |k: &str| {
+        corner(k, EMITTERS[0].1, "8", r#"<bsdf type="roughdielectric"><float name="alpha" value="0.05"/><float name="int_ior" value="1.9"/><float name="abbe_number" value="3"/></bsdf>"#)
+            .replace(r#"origin="0, -3, 1.6""#, r#"origin="0.3, 0.2, 0.45""#)
+    };
+    agrees_with_path("vcm", "camera inside glass of extreme dispersion", dispersive, 256, 4096, 178);
     let tiny = |k: &str| {
         with_merging(corner(k, EMITTERS[0].1, "5", ROUGH_PLASTIC), r#"<float name="radius" value="1e-6"/>"#)
     };
