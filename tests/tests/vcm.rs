@@ -85,9 +85,8 @@ fn vcm_converges_as_its_radius_shrinks() {
 }
 
 /// Stiff cases (a lamp sealed in glass, index-matched glass, a camera inside glass, and inside glass
-/// whose index runs from 2.5 to 1.7 over 380-780 nm) and the radius at
-/// its extremes (a millionth and ten times the scene): finite samples, and agreement with path
-/// tracing where the radius is small.
+/// whose index runs from 2.5 to 1.7 over 380-780 nm) and the radius at its extremes (a millionth and
+/// ten times the scene): finite samples, and agreement with path tracing where the radius is small.
 #[test]
 fn vcm_stiff_cases_and_extreme_radii_stay_finite() {
     let lamp_in_glass = r#"<shape type="sphere"><float name="radius" value="0.05"/><point name="center" x="0.3" y="0.2" z="0.4"/>
