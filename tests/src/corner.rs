@@ -78,18 +78,24 @@ pub fn agrees_with_path(
         seed + 1,
     );
     let result = render_replicated(&load_xml(&xml(integrator), &format!("{what}-{integrator}")), spp, seed);
-    let (z, worst) = agreement(&result, &path);
+    assert_agrees(integrator, what, &result, &path);
+    (result, path)
+}
+
+/// Asserts that `result` (of `integrator`, replicated) and the path-traced `path` estimate one image:
+/// whole-image z and worst pixel |z| (`agreement`), no invalid sample, a scene that is not dark.
+pub fn assert_agrees(integrator: &str, what: &str, result: &Replicated, path: &Film) {
+    let (z, worst) = agreement(result, path);
     println!(
         "{what}: {integrator} mean {:.5}, path {:.5}: image z {z:+.2}, worst pixel |z| {worst:.2}",
         result.mean,
-        image_mean(&path)
+        image_mean(path)
     );
-    assert!(image_mean(&path) > 1e-3, "{what}: the scene is dark");
+    assert!(image_mean(path) > 1e-3, "{what}: the scene is dark");
     assert_eq!(result.film.invalid_samples, 0, "{what}: {integrator} gave NaN or infinite samples");
     // 24×24×3 values: |z| ≤ 5.0 is the Šidák-corrected 0.1% two-sided bound per value.
     assert!(
         z.abs() < 4.5 && worst < 5.0,
         "{what}: {integrator} and path disagree (z {z:+.2}, worst {worst:.2})"
     );
-    (result, path)
 }

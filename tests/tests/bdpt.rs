@@ -196,16 +196,7 @@ fn bdpt_and_path_agree_on_the_mitsuba_and_seed_scenes() {
         let path = render_scene(&scene, BackendChoice::Cpu, path_spp, seed + 1);
         scene.integrator.kind = IntegratorKind::Bdpt;
         let bdpt = render_replicated(&scene, 256, seed);
-        let (z, worst) = agreement(&bdpt, &path);
-        println!(
-            "{what}: bdpt mean {:.5}, path {:.5}: image z {z:+.2}, worst pixel |z| {worst:.2}",
-            bdpt.mean,
-            image_mean(&path)
-        );
-        assert!(image_mean(&path) > 1e-3, "{what}: the window is dark");
-        assert_eq!(bdpt.film.invalid_samples, 0, "{what}: bdpt gave NaN or infinite samples");
-        // 24×24×3 values: |z| ≤ 5.0 is the Šidák-corrected 0.1% two-sided bound per value.
-        assert!(z.abs() < 4.5 && worst < 5.0, "{what}: bdpt and path disagree (z {z:+.2}, worst {worst:.2})");
+        assert_agrees("bdpt", &what, &bdpt, &path);
     }
 }
 
