@@ -89,3 +89,87 @@ fn cauchy_dispersion_has_the_abbe_numbers_meaning() {
     assert!(eta_at(&m, 420.0) > eta_at(&m, 550.0) && eta_at(&m, 550.0) > eta_at(&m, 700.0));
     assert!(disperses(&m) && !disperses(&Material::default()));
 }
+
+/// The scene of a dispersive material (only the table and the feature matter to `PassWavelength`).
+fn dispersive_scene(t: &[f32]) -> caustic_kernel::layout::SceneView<'_> {
+    caustic_kernel::layout::SceneView {
+        nodes: &[],
+        prims: &[],
+        attributes: &[],
+        materials: &[],
+        lights: &[],
+        textures: &[],
+        tables: t,
+        features: caustic_kernel::features::DISPERSION,
+        wide_bvh: false,
+    }
+}
+
+/// BDPT's and VCM's wavelength of a pass (`integrator::pass_wavelength`): over the passes of one
+/// render, and over the first pass of many seeds, it follows the table's density (χ²); its weight
+/// averages to one per channel over the passes of one render, and more closely than independent draws
+/// would (the lattice stratifies them); a scene without dispersion gets no wavelength and weight one.
+#[test]
+fn the_pass_wavelength_follows_the_density() {
+    use caustic_kernel::integrator::pass_wavelength::PassWavelength;
+    use caustic_kernel::layout::FrameParams;
+    let t = table();
+    let scene = dispersive_scene(&t);
+    let cells = 2 * WAVELENGTH_BINS as usize;
+    let n = 200_000u32;
+    let histogram = |of: &dyn Fn(u32) -> FrameParams| {
+        let mut observed = vec![0.0f64; cells];
+        let mut sum = [0.0f64; 3];
+        for i in 0..n {
+            let w = PassWavelength::of(&scene, &of(i));
+            let cell = ((w.lambda - WAVELENGTH_MIN) / WAVELENGTH_STEP * 2.0) as usize;
+            observed[cell.min(cells - 1)] += 1.0;
+            for (c, s) in sum.iter_mut().enumerate() {
+                *s += w.weight[c] as f64 / n as f64;
+            }
+        }
+        let expected: Vec<f64> = (0..cells)
+            .map(|k| {
+                let mid = WAVELENGTH_MIN + (k as f32 + 0.5) * WAVELENGTH_STEP / 2.0;
+                pdf(&t, 0, mid) as f64 * (WAVELENGTH_STEP / 2.0) as f64 * n as f64
+            })
+            .collect();
+        (chi2_p_value(&observed, &expected), sum)
+    };
+    let (p_passes, mean_passes) =
+        histogram(&|i| FrameParams { seed: 11, sample_base: i, ..Default::default() });
+    let (p_seeds, mean_seeds) = histogram(&|i| FrameParams { seed: i, sample_base: 0, ..Default::default() });
+    println!("over passes: p {p_passes:.4}, mean weight {mean_passes:?}");
+    println!("over seeds: p {p_seeds:.4}, mean weight {mean_seeds:?}");
+    assert!(p_passes > 1e-3 && p_seeds > 1e-3, "pass wavelengths do not follow the density");
+    for c in 0..3 {
+        // Measured: the passes' lattice misses one by ~1e-5, the seeds' independent draws by ~9e-3.
+        assert!((mean_passes[c] - 1.0).abs() < 2e-4, "over passes, weights average {mean_passes:?}");
+        assert!((mean_seeds[c] - 1.0).abs() < 0.02, "over seeds, weights average {mean_seeds:?}");
+    }
+    let plain = caustic_kernel::layout::SceneView { features: 0, ..scene };
+    let none = PassWavelength::of(&plain, &FrameParams::default());
+    assert_eq!(none.lambda, 0.0);
+    assert_eq!(none.factor(true), caustic_kernel::glam::Vec3::ONE);
+}
+
+/// A pass's wavelength refracts a dispersive material only, and weights only the paths that met one.
+#[test]
+fn the_pass_wavelength_disperses_only_dispersive_materials() {
+    use caustic_kernel::integrator::pass_wavelength::PassWavelength;
+    let t = table();
+    let scene = dispersive_scene(&t);
+    let w = PassWavelength::of(
+        &scene,
+        &caustic_kernel::layout::FrameParams { sample_base: 3, ..Default::default() },
+    );
+    let mut glass = Material { eta: 1.6, flags: MATERIAL_DISPERSIVE, ..Default::default() };
+    glass.params[PARAM_CAUCHY_B] = 0.02;
+    let mut plain = Material { eta: 1.6, ..Default::default() };
+    assert!(w.disperse(&mut glass) && !w.disperse(&mut plain));
+    assert_eq!(glass.eta, eta_at(&Material { eta: 1.6, ..glass }, w.lambda));
+    assert_ne!(glass.eta, 1.6);
+    assert_eq!(plain.eta, 1.6);
+    assert_eq!(w.factor(false), caustic_kernel::glam::Vec3::ONE);
+    assert_eq!(w.factor(true), w.weight);
+}

@@ -1,7 +1,7 @@
 //! Dispersion (`caustic_kernel::wavelength`): a prism fans white light into ordered colours and
-//! recombines it to the RGB image's energy, a dispersive glass keeps a white furnace white, light
-//! tracing and IBPT agree with path tracing through dispersive glass, and the GPU splats the same
-//! signed sums as the CPU.
+//! recombines it to the RGB image's energy (light tracing, BDPT and VCM), a dispersive glass keeps a
+//! white furnace white, light tracing, IBPT, BDPT and VCM agree with path tracing through dispersive
+//! glass, and the GPU splats the same signed sums as the CPU.
 use caustic::backend::BackendChoice;
 use caustic::output::film::Film;
 use caustic::scene::{IntegratorKind, Scene};
@@ -10,13 +10,13 @@ use caustic_tests::replicas::*;
 use caustic_tests::*;
 use std::path::PathBuf;
 
-/// The prism scene at 48×48 without its ceiling light (only the beam lights it), light-traced;
+/// The prism scene at 48×48 without its ceiling light (only the beam lights it), rendered by `kind`;
 /// `disperse: false` renders its glass as plain RGB glass.
-fn prism(disperse: bool) -> Scene {
+fn prism(disperse: bool, kind: IntegratorKind) -> Scene {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes/prism.xml");
     let mut scene = caustic::load::load_scene(&path, &defines(&[("res", "48"), ("ceiling", "0")]))
         .unwrap_or_else(|e| panic!("{e:#}"));
-    scene.integrator.kind = IntegratorKind::Ptracer;
+    scene.integrator.kind = kind;
     for m in scene.materials.iter_mut().filter(|_| !disperse) {
         m.flags &= !MATERIAL_DISPERSIVE;
     }
@@ -50,19 +50,26 @@ fn over_replicas(scene: &Scene, seed: u32, f: impl Fn(&Film) -> [f64; 3]) -> ([f
     (mean, se)
 }
 
-/// The prism scene light-traced with and without dispersion: with it, red, green and blue land in
-/// order at separate places on the screen (the channels' centroids); and the light is the same in
-/// both (white recombines: each channel's total agrees with the RGB render's).
+/// The prism scene with and without dispersion: with it, red, green and blue land in order at
+/// separate places on the screen (the channels' centroids); and the light is the same in both (white
+/// recombines: each channel's total agrees with the RGB render's). By light tracing, where each path
+/// draws its wavelength, and by BDPT and VCM, where each pass refracts at one.
 #[test]
 fn a_prism_fans_white_light_into_its_spectrum() {
-    let (dispersed, plain) = (prism(true), prism(false));
+    for kind in [IntegratorKind::Ptracer, IntegratorKind::Bdpt, IntegratorKind::Vcm] {
+        println!("{kind:?}:");
+        fans_into_its_spectrum(&prism(true, kind), &prism(false, kind));
+    }
+}
+
+fn fans_into_its_spectrum(dispersed: &Scene, plain: &Scene) {
     // The centroids along the axis the spectrum spreads on in this view.
-    let (cx, _) = over_replicas(&dispersed, 4, |f| sums_and_centroids(f)[1]);
-    let (cy, _) = over_replicas(&dispersed, 5, |f| sums_and_centroids(f)[2]);
+    let (cx, _) = over_replicas(dispersed, 4, |f| sums_and_centroids(f)[1]);
+    let (cy, _) = over_replicas(dispersed, 5, |f| sums_and_centroids(f)[2]);
     let axis = if (cx[0] - cx[2]).abs() > (cy[0] - cy[2]).abs() { 1 } else { 2 };
-    let (centre, centre_se) = over_replicas(&dispersed, 1, |f| sums_and_centroids(f)[axis]);
-    let (sum_d, se_d) = over_replicas(&dispersed, 2, |f| sums_and_centroids(f)[0]);
-    let (sum_p, se_p) = over_replicas(&plain, 3, |f| sums_and_centroids(f)[0]);
+    let (centre, centre_se) = over_replicas(dispersed, 1, |f| sums_and_centroids(f)[axis]);
+    let (sum_d, se_d) = over_replicas(dispersed, 2, |f| sums_and_centroids(f)[0]);
+    let (sum_p, se_p) = over_replicas(plain, 3, |f| sums_and_centroids(f)[0]);
     println!("dispersed: centroids x {centre:.2?} ± {centre_se:.2?}; sums {sum_d:.2?} ± {se_d:.2?}");
     println!("RGB glass: sums {sum_p:.2?} ± {se_p:.2?}");
     let spread = centre[0] - centre[2];
@@ -142,8 +149,19 @@ fn dispersive_corner(integrator: &str) -> Scene {
 
 #[test]
 fn light_tracing_and_ibpt_agree_with_path_through_dispersive_glass() {
+    agree_with_path_through_dispersive_glass(&[("ptracer", 12), ("ibpt", 13)]);
+}
+
+/// BDPT and VCM refract every path of a pass at the pass's wavelength (`pass_wavelength`), so their
+/// connections and merges join paths of one wavelength: they estimate path tracing's image too.
+#[test]
+fn bdpt_and_vcm_agree_with_path_through_dispersive_glass() {
+    agree_with_path_through_dispersive_glass(&[("bdpt", 14), ("vcm", 15)]);
+}
+
+fn agree_with_path_through_dispersive_glass(integrators: &[(&str, u32)]) {
     let path = render_scene(&dispersive_corner("path"), BackendChoice::Cpu, 2048, 11);
-    for (integrator, seed) in [("ptracer", 12), ("ibpt", 13)] {
+    for &(integrator, seed) in integrators {
         let other = render_replicated(&dispersive_corner(integrator), 512, seed);
         let (z, worst) = agreement(&other, &path);
         println!(
@@ -156,16 +174,19 @@ fn light_tracing_and_ibpt_agree_with_path_through_dispersive_glass() {
     }
 }
 
-/// The GPU draws the same wavelengths and splats the same signed sums as the CPU.
+/// The GPU draws the same wavelengths and splats the same signed sums as the CPU (IBPT's per path,
+/// VCM's per pass).
 #[test]
 fn dispersion_gpu_matches_cpu() {
-    let scene = dispersive_corner("ibpt");
-    let cpu = render_scene(&scene, BackendChoice::Cpu, 4, 5);
-    let gpu = render_scene(&scene, BackendChoice::Gpu, 4, 5);
-    let max_diff = max_abs_difference(&cpu, &gpu);
-    let negative = cpu.rgb.iter().flatten().filter(|&&c| c < 0.0).count();
-    println!("dispersive ibpt GPU vs CPU: max |difference| {max_diff:e}; {negative} negative CPU values");
-    assert!(max_diff < 1e-3, "GPU and CPU differ by {max_diff}");
+    for integrator in ["ibpt", "vcm"] {
+        let scene = dispersive_corner(integrator);
+        let cpu = render_scene(&scene, BackendChoice::Cpu, 4, 5);
+        let gpu = render_scene(&scene, BackendChoice::Gpu, 4, 5);
+        let max_diff = max_abs_difference(&cpu, &gpu);
+        let negative = cpu.rgb.iter().flatten().filter(|&&c| c < 0.0).count();
+        println!("dispersive {integrator} GPU vs CPU: max |difference| {max_diff:e}; {negative} negative CPU values");
+        assert!(max_diff < 1e-3, "{integrator}: GPU and CPU differ by {max_diff}");
+    }
 }
 
 /// The dielectric of `<string name="glass" value="NAME"/>` in vacuum.

@@ -84,9 +84,9 @@ fn vcm_converges_as_its_radius_shrinks() {
     );
 }
 
-/// Stiff cases (a lamp sealed in glass, index-matched glass, a camera inside glass) and the radius at
-/// its extremes (a millionth and ten times the scene): finite samples, and agreement with path
-/// tracing where the radius is small.
+/// Stiff cases (a lamp sealed in glass, index-matched glass, a camera inside glass, and inside glass
+/// whose index runs from 2.5 to 1.7 over 380-780 nm) and the radius at its extremes (a millionth and
+/// ten times the scene): finite samples, and agreement with path tracing where the radius is small.
 #[test]
 fn vcm_stiff_cases_and_extreme_radii_stay_finite() {
     let lamp_in_glass = r#"<shape type="sphere"><float name="radius" value="0.05"/><point name="center" x="0.3" y="0.2" z="0.4"/>
@@ -113,6 +113,11 @@ fn vcm_stiff_cases_and_extreme_radii_stay_finite() {
             .replace(r#"origin="0, -3, 1.6""#, r#"origin="0.3, 0.2, 0.45""#)
     };
     agrees_with_path("vcm", "camera inside glass", inside, 256, 4096, 174);
+    let dispersive = |k: &str| {
+        corner(k, EMITTERS[0].1, "8", r#"<bsdf type="roughdielectric"><float name="alpha" value="0.05"/><float name="int_ior" value="1.9"/><float name="abbe_number" value="3"/></bsdf>"#)
+            .replace(r#"origin="0, -3, 1.6""#, r#"origin="0.3, 0.2, 0.45""#)
+    };
+    agrees_with_path("vcm", "camera inside glass of extreme dispersion", dispersive, 256, 4096, 178);
     let tiny = |k: &str| {
         with_merging(corner(k, EMITTERS[0].1, "5", ROUGH_PLASTIC), r#"<float name="radius" value="1e-6"/>"#)
     };
@@ -133,16 +138,14 @@ fn vcm_stiff_cases_and_extreme_radii_stay_finite() {
     }
 }
 
-/// Refused with the file and line where it can be named: a dispersive dielectric, a `directionalarea`
-/// emitter, a radius that is not positive, an `alpha` outside (0, 1]; and on the GPU, for now.
+/// Refused with the file and line where it can be named: a `directionalarea` emitter, a radius that
+/// is not positive, an `alpha` outside (0, 1].
 #[test]
 fn vcm_refuses_what_it_does_not_render() {
-    let dispersive = r#"<bsdf type="dielectric"><float name="int_ior" value="1.6"/><float name="abbe_number" value="20"/></bsdf>"#;
     let directional = r#"<shape type="rectangle"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate z="1.9"/></transform>
             <emitter type="directionalarea"><rgb name="radiance" value="12"/></emitter></shape>"#;
     let plain = corner("vcm", EMITTERS[0].1, "5", ROUGH_PLASTIC);
     let cases = [
-        (corner("vcm", EMITTERS[0].1, "5", dispersive), "dispersive dielectric is not rendered by vcm"),
         (corner("vcm", directional, "5", ROUGH_PLASTIC), "not by vcm"),
         (with_merging(plain.clone(), r#"<float name="radius" value="0"/>"#), "radius must be positive"),
         (with_merging(plain.clone(), r#"<float name="alpha" value="1.5"/>"#), "alpha must be in (0, 1]"),

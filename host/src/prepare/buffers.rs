@@ -170,12 +170,10 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         }
         IntegratorKind::Bdpt => {
             check_bidirectional(scene, "bdpt")?;
-            check_one_wavelength(scene, "bdpt")?;
             (INTEGRATOR_BDPT, 1, 1)
         }
         IntegratorKind::Vcm => {
             check_bidirectional(scene, "vcm")?;
-            check_one_wavelength(scene, "vcm")?;
             (INTEGRATOR_VCM, 1, 1)
         }
     };
@@ -266,25 +264,6 @@ fn check_bidirectional(scene: &Scene, name: &str) -> Result<()> {
              and by path and direct (as black), not by {name}",
             s.origin
         );
-    }
-    Ok(())
-}
-
-/// What BDPT and VCM refuse besides: dispersive dielectrics (their light and camera paths would
-/// carry different wavelengths), naming the first shape that wears one.
-fn check_one_wavelength(scene: &Scene, name: &str) -> Result<()> {
-    let disperses = |s: &&crate::scene::Shape| {
-        scene.materials.get(s.material as usize).is_some_and(caustic_kernel::wavelength::disperses)
-    };
-    if let Some(s) = scene.shapes.iter().find(disperses) {
-        bail!(
-            "{}: a dispersive dielectric is not rendered by {name} yet (its light and camera paths would \
-             carry different wavelengths): render this scene with ibpt or path",
-            s.origin
-        );
-    }
-    if scene.materials.iter().any(caustic_kernel::wavelength::disperses) {
-        bail!("{name}: a dispersive dielectric is not rendered by {name} yet: render this scene with ibpt or path");
     }
     Ok(())
 }

@@ -21,8 +21,10 @@
 //! transport with Veach's shading-normal correction on the light side. As under IBPT, no light path
 //! starts on an emitter at infinity (camera paths alone carry their light), and a light path's emitter
 //! point is connected to the camera and weighed against the camera path that sees it there.
-//! The host refuses dispersion, the radiance and irradiance meters, the orthographic camera and
-//! `directionalarea` emitters under `bdpt` and `vcm`.
+//! Dispersive glass refracts every path of a pass at the pass's one wavelength (`pass_wavelength`), so
+//! that light and camera vertices of any two paths can be joined; a light vertex records whether its
+//! path dispersed (`LightVertex::dispersed`). The host refuses the radiance and irradiance meters, the
+//! orthographic camera and `directionalarea` emitters under `bdpt` and `vcm`.
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
@@ -30,6 +32,7 @@ use super::bdpt_mis::{self, Merging, SubpathMis};
 use super::nee::{
     environment, first_hit_past_emitters, next_event, LightTracingMis, PreviousVertex, StrategyCounts,
 };
+use super::pass_wavelength::PassWavelength;
 use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE, DIM_MASK};
 use super::ptracer::{
     film_scale, inv_nee_ratio_sq, lens_sample, shading_normal_correction, splat_emitter_point,
@@ -86,7 +89,8 @@ pub struct LightVertex {
     pub t: [f32; 3],
     pub vc: f32,
     pub n: [f32; 3],
-    /// Segments from the emitter; 0 for an empty slot.
+    /// Segments from the emitter (0 for an empty slot), with `DISPERSED` set where the light path
+    /// met a dispersive material up to and including this vertex.
     pub depth: u32,
     pub shading_ng: [f32; 3],
     pub vm: f32,
@@ -108,6 +112,9 @@ fn v3(a: [f32; 3]) -> Vec3 {
 fn a3(v: Vec3) -> [f32; 3] {
     [v.x, v.y, v.z]
 }
+
+/// `LightVertex::depth`'s flag of a path that dispersed (`pass_wavelength`).
+pub const DISPERSED: u32 = 1 << 31;
 
 impl LightVertex {
     pub const EMPTY: LightVertex = LightVertex {
@@ -172,6 +179,18 @@ impl LightVertex {
             tilt_nt: a3(shading.tilt.nt),
             tilt_n: a3(shading.tilt.n),
         }
+    }
+
+    /// Segments from the emitter (0 for an empty slot).
+    #[inline]
+    pub fn segments(&self) -> u32 {
+        self.depth & !DISPERSED
+    }
+
+    /// Whether the light path dispersed on its way here (this vertex included).
+    #[inline]
+    pub fn dispersed(&self) -> bool {
+        self.depth & DISPERSED != 0
     }
 
     #[inline]
@@ -270,6 +289,19 @@ impl CacheView<'_> {
     }
 }
 
+/// A camera vertex's path state, as the strategies that join it to light vertices see it: its MIS
+/// state, its `segments` from the camera and whether its path `dispersed` on the way (this vertex
+/// included), with the pass's `wavelength`. Its BSDF, shading and point travel beside it as separate
+/// references: a struct of pointers to function-local values is a type naga rejects in the SPIR-V
+/// rust-gpu emits ("Type [68] '' is invalid", on every entry point), where plain values pass.
+#[derive(Clone, Copy)]
+pub struct CameraVertex {
+    pub mis: SubpathMis,
+    pub segments: u32,
+    pub dispersed: bool,
+    pub wavelength: PassWavelength,
+}
+
 /// Whether a path of `segments` is weighted over every strategy (within the light path's reach).
 #[inline]
 pub fn bidirectional(segments: u32) -> bool {
@@ -313,6 +345,8 @@ fn light_path_vertices<W: AtomicWords>(
     let accel = Accel::of(scene);
     let camera = params.camera;
     let merging = Merging::of(params);
+    let wavelength = PassWavelength::of(scene, params);
+    let mut dispersed = false;
     // The emitter sample's dimensions as `ptracer` draws them.
     let u_select = sampler.next_1d();
     let u_pos = sampler.next_2d();
@@ -364,7 +398,8 @@ fn light_path_vertices<W: AtomicWords>(
             continue;
         }
         let material_index = crate::two_sided::seen(scene, prim.material, &sp, ray.dir);
-        let material = scene.materials[material_index as usize];
+        let mut material = scene.materials[material_index as usize];
+        dispersed |= wavelength.disperse(&mut material);
         let shading = shading_frame(scene, &material, &prim, &hit, &sp, ray.dir);
         let (frame, ng, wo) = (shading.frame(), shading.ng, shading.wo);
         let bsdf = Bsdf::new(
@@ -391,7 +426,8 @@ fn light_path_vertices<W: AtomicWords>(
             // A camera vertex merges with this one (connects: one segment more) only if the path stays
             // within `max_depth`.
             if within(max_depth, depth + 1) && count < MAX_LIGHT_VERTICES {
-                vertices.put(count, LightVertex::new(&sp, &shading, material_index, beta, mis, depth));
+                let flagged = if dispersed { depth | DISPERSED } else { depth };
+                vertices.put(count, LightVertex::new(&sp, &shading, material_index, beta, mis, flagged));
                 count += 1;
             }
             if let Some(c) = camera.connect(sp.p, lens_sample(sampler, bounce_dims + DIM_LENS_IN_BOUNCE)) {
@@ -409,7 +445,7 @@ fn light_path_vertices<W: AtomicWords>(
                     words,
                     origin,
                     &c,
-                    beta * f * corr,
+                    beta * f * corr * wavelength.factor(dispersed),
                     NONE,
                     u_round,
                     weighting,
@@ -467,6 +503,8 @@ pub fn camera_path(
     let accel = Accel::of(scene);
     let max_depth = params.max_depth;
     let merging = Merging::of(params);
+    let wavelength = PassWavelength::of(scene, params);
+    let mut dispersed = false;
     let lens = params.camera.lens_point_of(camera_ray.origin);
     let mut ray = camera_ray;
     let mut throughput = Rgb::ONE;
@@ -490,7 +528,8 @@ pub fn camera_path(
             None => {
                 if visible_emitter {
                     // Environments start no light path: weighed against next-event estimation alone.
-                    result += throughput * environment(scene, params, ray.dir, &prev, ONE_EACH);
+                    let le = environment(scene, params, ray.dir, &prev, ONE_EACH);
+                    result += throughput * le * wavelength.factor(dispersed);
                 }
                 break;
             }
@@ -541,10 +580,11 @@ pub fn camera_path(
                     power_heuristic(prev.pdf, direct)
                 }
             };
-            result += throughput * le * weight;
+            result += throughput * le * (weight * wavelength.factor(dispersed));
         }
 
-        let material = scene.materials[crate::two_sided::seen(scene, prim.material, &sp, ray.dir) as usize];
+        let mut material =
+            scene.materials[crate::two_sided::seen(scene, prim.material, &sp, ray.dir) as usize];
         let mut reflect_only = false;
         if mask::is_null(scene, &material) {
             sampler.set_dimension(DIM_MASK + mask_passes);
@@ -565,6 +605,7 @@ pub fn camera_path(
         if max_depth != NONE && segments >= max_depth {
             break;
         }
+        dispersed |= wavelength.disperse(&mut material);
         let shading = shading_frame(scene, &material, &prim, &hit, &sp, ray.dir);
         let (frame, ng, wo) = (shading.frame(), shading.ng, shading.wo);
         let bsdf = Bsdf::new(
@@ -582,17 +623,18 @@ pub fn camera_path(
         let u_light = sampler.next_2d();
         if bsdf.flags().has_smooth() {
             let weighting = LightTracingMis::bdpt(mis, bidirectional(segments + 1));
-            result += throughput
-                * next_event(
-                    scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, ONE_EACH, weighting,
-                );
-            result += throughput * grid.merge(&bsdf, &shading, &sp, mis, segments, max_depth, merging);
+            let nee = next_event(
+                scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, ONE_EACH, weighting,
+            );
+            result += throughput * nee * wavelength.factor(dispersed);
+            let vertex = CameraVertex { mis, segments, dispersed, wavelength };
+            result += throughput * grid.merge(&bsdf, &shading, &sp, vertex, max_depth, merging);
             let mut k = 0;
             while k < count {
                 let v = vertices.vertex(k);
-                let length = segments + v.depth + 1;
+                let length = segments + v.segments() + 1;
                 if within(max_depth, length) && bidirectional(length) {
-                    result += throughput * connect(scene, &accel, &bsdf, &shading, &sp, mis, &v, merging);
+                    result += throughput * connect(scene, &accel, &bsdf, &shading, &sp, vertex, &v, merging);
                 }
                 k += 1;
             }
@@ -629,8 +671,9 @@ pub fn camera_path(
     result
 }
 
-/// A camera vertex (`bsdf`, `shading` at `sp`, state `camera`) connected to light vertex `v` by a
-/// shadow ray: both BSDFs, the geometry between them, the light path's throughput and the weight.
+/// Camera vertex `camera` connected to light vertex `v` by a shadow ray: both BSDFs (the light
+/// vertex's material refracting at the pass's wavelength), the geometry between them, the light path's
+/// throughput and the weight.
 #[allow(clippy::too_many_arguments)]
 fn connect(
     scene: &SceneView,
@@ -638,7 +681,7 @@ fn connect(
     bsdf: &Bsdf,
     shading: &Shading,
     sp: &SurfacePoint,
-    camera: SubpathMis,
+    camera: CameraVertex,
     v: &LightVertex,
     merging: Merging,
 ) -> Rgb {
@@ -658,8 +701,10 @@ fn connect(
     let light_shading = v.shading();
     let light_frame = light_shading.frame();
     let light_sp = v.surface_point();
+    let mut light_material = scene.materials[v.material as usize];
+    camera.wavelength.disperse(&mut light_material);
     let light_bsdf = Bsdf::new(
-        &scene.materials[v.material as usize],
+        &light_material,
         scene.materials,
         scene.textures,
         scene.tables,
@@ -683,8 +728,11 @@ fn connect(
     let light_rev = light_bsdf.pdf(to_camera, light_shading.wo, TransportMode::Radiance);
     let light_side =
         v.mis().others(bdpt_mis::to_area(ep.pdf, dist_sq, v3(v.ng).dot(dir).abs()), light_rev, merging);
-    let camera_side =
-        camera.others(bdpt_mis::to_area(light_ep.pdf, dist_sq, sp.ng.dot(dir).abs()), camera_rev, merging);
+    let camera_side = camera.mis.others(
+        bdpt_mis::to_area(light_ep.pdf, dist_sq, sp.ng.dot(dir).abs()),
+        camera_rev,
+        merging,
+    );
     let weight = bdpt_mis::weight(light_side, camera_side);
     let value = ep.f * light_ep.f * v.throughput() * (corr * weight / dist_sq);
     if max_component(value) <= 0.0 {
@@ -695,5 +743,6 @@ fn connect(
     let to_target = target - origin;
     let length = to_target.length();
     let shadow = Ray { origin, dir: to_target / length, t_min: 0.0, t_max: length * (1.0 - SHADOW_EPSILON) };
-    value * mask::transmittance(scene, accel, &shadow, NONE)
+    let factor = camera.wavelength.factor(camera.dispersed || v.dispersed());
+    value * factor * mask::transmittance(scene, accel, &shadow, NONE)
 }

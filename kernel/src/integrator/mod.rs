@@ -4,6 +4,7 @@ pub mod bdpt_mis;
 pub mod direct;
 pub mod mis;
 pub mod nee;
+pub mod pass_wavelength;
 pub mod path;
 pub mod ptracer;
 pub mod vcm_grid;

@@ -11,8 +11,8 @@
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
-use super::bdpt::{bidirectional, within, LightVertex, MAX_LIGHT_VERTICES};
-use super::bdpt_mis::{self, Merging, SubpathMis};
+use super::bdpt::{bidirectional, within, CameraVertex, LightVertex, MAX_LIGHT_VERTICES};
+use super::bdpt_mis::{self, Merging};
 use crate::bsdf::perturb::Shading;
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::glam::Vec3;
@@ -84,21 +84,21 @@ pub struct GridView<'a> {
 }
 
 impl GridView<'_> {
-    /// The merged estimate at camera vertex `sp` (`bsdf`, `shading`; state `camera`, `segments` from
-    /// the camera), before the camera path's throughput: every light vertex within the radius of `sp`
+    /// The merged estimate at the camera vertex `sp` (its `bsdf` and `shading`, its path state
+    /// `camera`), before the camera path's throughput: every light vertex within the radius of `sp`
     /// whose path stays within `max_depth` and the bidirectional reach, the camera's BSDF towards
     /// where the light came from times the light path's throughput, over `π r² L` (`1/eta`), each
     /// weighted by `bdpt_mis::merge_weight`. The BSDF's cosine is the shading normal's, divided by the
     /// geometric normal's that the vertices' density per area carries (Veach's correction for shading
-    /// normals, as light tracing applies it). Nothing without merging (BDPT).
+    /// normals, as light tracing applies it), and by the pass's wavelength's factor where either path
+    /// dispersed. Nothing without merging (BDPT).
     #[allow(clippy::too_many_arguments)]
     pub fn merge(
         &self,
         bsdf: &Bsdf,
         shading: &Shading,
         sp: &SurfacePoint,
-        camera: SubpathMis,
-        segments: u32,
+        camera: CameraVertex,
         max_depth: u32,
         merging: Merging,
     ) -> Rgb {
@@ -133,7 +133,7 @@ impl GridView<'_> {
             while j != 0 {
                 let v = self.cache[(j - 1) as usize];
                 j = self.words[(grid.buckets + j - 1) as usize];
-                let length = segments + v.depth;
+                let length = camera.segments + v.segments();
                 if (v.position() - sp.p).length_squared() > r_sq
                     || !within(max_depth, length)
                     || !bidirectional(length)
@@ -149,8 +149,9 @@ impl GridView<'_> {
                 let wi = frame.to_local(towards_light);
                 let ep = bsdf.eval_pdf(shading.wo, wi, TransportMode::Radiance);
                 let rev = bsdf.pdf(wi, shading.wo, TransportMode::Importance);
-                let weight = bdpt_mis::merge_weight(v.mis(), camera, ep.pdf, rev, merging);
-                sum += ep.f * v.throughput() * (weight / cos_g);
+                let weight = bdpt_mis::merge_weight(v.mis(), camera.mis, ep.pdf, rev, merging);
+                let factor = camera.wavelength.factor(camera.dispersed || v.dispersed());
+                sum += ep.f * v.throughput() * factor * (weight / cos_g);
             }
         }
         sum * merging.inv_eta_sq.sqrt()
