@@ -152,6 +152,10 @@ struct RunArgs {
     /// (uncorrelated noise between pixels, more of it per sample). Light tracing always uses `fis`.
     #[arg(long, value_enum, default_value = "splat")]
     film: FilmMode,
+    /// Run ibpt's, bdpt's or vcm's own kernel even where no light path can start (every emitter at
+    /// infinity); by default path's kernel renders them there, being the same estimator.
+    #[arg(long)]
+    own_kernel: bool,
     /// Refuse a scene that would not render as written (an unsupported plugin replaced or left out,
     /// a property not read) instead of warning.
     #[arg(long)]
@@ -230,6 +234,7 @@ fn main() {
                 checkpoint: checkpoint.map(|path| (path, every)),
                 tev,
                 film: run.film,
+                own_kernel: run.own_kernel,
                 integrator: match run.integrator.as_slice() {
                     [] => None,
                     [one] => Some(*one),
@@ -408,7 +413,8 @@ fn cmd_convergence(
     peers: &[PathBuf],
 ) -> Result<()> {
     use caustic::render::convergence;
-    let RunArgs { backend: choice, gpus, spp, define: defines, seed, integrator, strict, film } = run;
+    let RunArgs { backend: choice, gpus, spp, define: defines, seed, integrator, strict, film, own_kernel } =
+        run;
     let (choice, seed) = (*choice, *seed);
     for path in [csv, plot].into_iter().flatten() {
         caustic::output::film::check_writable(path)?;
@@ -430,6 +436,7 @@ fn cmd_convergence(
             scene.integrator = scene.integrator.overridden(choice);
         }
         scene.sensor.film = *film;
+        scene.integrator.own_kernel = *own_kernel;
         let name = integrator_name(&scene.integrator.kind);
         let spp = spp.unwrap_or(scene.sensor.spp);
         let buffers = buffers::build(&scene)

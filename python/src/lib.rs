@@ -205,7 +205,8 @@ impl Scene {
     }
 
     fn prepare(&self, setup: Setup) -> anyhow::Result<Kept> {
-        let buffers = session::build_scene(self.scene.clone(), &self.path, setup.integrator, setup.film)?;
+        let buffers =
+            session::build_scene(self.scene.clone(), &self.path, setup.integrator, setup.film, false)?;
         let backend = backend::create_on(setup.backend, &setup.gpus, &buffers)
             .with_context(|| format!("{}: its sensor's film", self.path.display()))?;
         Ok(Kept { setup, buffers, backend })
@@ -363,8 +364,13 @@ impl Scene {
             .detach(|| {
                 caustic::output::compare::check_finite(&reference, &reference_name)?;
                 let spp = session::samples_per_pixel(&self.scene, spp)?;
-                let buffers =
-                    session::build_scene(self.scene.clone(), &self.path, setup.integrator, setup.film)?;
+                let buffers = session::build_scene(
+                    self.scene.clone(),
+                    &self.path,
+                    setup.integrator,
+                    setup.film,
+                    false,
+                )?;
                 convergence::check_reference_size(&reference, &reference_name, &buffers, &self.path)?;
                 convergence::measure_warmed_up(setup.backend, &setup.gpus, &buffers, &reference, spp, seed)
             })

@@ -203,9 +203,51 @@ fn bdpt_and_path_agree_on_the_mitsuba_and_seed_scenes() {
         let path_spp = if res.is_some() { 4096 } else { 1024 };
         let path = render_scene(&scene, BackendChoice::Cpu, path_spp, seed + 1);
         scene.integrator.kind = IntegratorKind::Bdpt;
+        // Under an environment alone `path`'s kernel would render bdpt (`buffers::kernel_kind`):
+        // bdpt's own is the one under test.
+        scene.integrator.own_kernel = true;
         let bdpt = render_replicated(&scene, 256, seed);
         assert_agrees("bdpt", &what, &bdpt, &path);
     }
+}
+
+/// `ibpt`, `bdpt` and `vcm` in a scene where no light path can start (an environment, a sun) are
+/// path tracing, and `path`'s kernel renders them; a finite emitter beside the sky, or `own_kernel`,
+/// keeps their own; a scene they refuse stays refused.
+#[test]
+fn without_a_light_path_bdpt_is_rendered_by_paths_kernel() {
+    use caustic_kernel::layout::{INTEGRATOR_BDPT, INTEGRATOR_IBPT, INTEGRATOR_PATH, INTEGRATOR_VCM};
+    let sky = r#"<emitter type="constant"><rgb name="radiance" value="0.3"/></emitter>"#;
+    let sun = r#"<emitter type="directional"><vector name="direction" x="0.2" y="0.3" z="-1"/><rgb name="irradiance" value="2"/></emitter>"#;
+    let lamp_and_sky = format!("{}{sky}", EMITTERS[0].1);
+    let kernel = |integrator: &str, emitters: &str, own: bool| {
+        let mut scene = load_xml(&corner(integrator, emitters, "5", ROUGH_PLASTIC), "kernel-kind");
+        scene.integrator.own_kernel = own;
+        caustic::prepare::buffers::build(&scene).unwrap().params.integrator
+    };
+    for (integrator, own_kernel) in
+        [("ibpt", INTEGRATOR_IBPT), ("bdpt", INTEGRATOR_BDPT), ("vcm", INTEGRATOR_VCM)]
+    {
+        assert_eq!(kernel(integrator, sky, false), INTEGRATOR_PATH, "{integrator} under a sky");
+        assert_eq!(
+            kernel(integrator, &format!("{sky}{sun}"), false),
+            INTEGRATOR_PATH,
+            "{integrator}, sky and sun"
+        );
+        assert_eq!(kernel(integrator, sky, true), own_kernel, "{integrator}, own kernel");
+        assert_eq!(kernel(integrator, &lamp_and_sky, false), own_kernel, "{integrator}, a lamp and a sky");
+        for (_, emitter) in EMITTERS {
+            assert_eq!(kernel(integrator, emitter, false), own_kernel, "{integrator}: {emitter}");
+        }
+    }
+    let ortho = corner("bdpt", sky, "5", ROUGH_PLASTIC).replace(
+        r#"<sensor type="perspective">
+        <float name="fov" value="50"/>"#,
+        r#"<sensor type="orthographic">"#,
+    );
+    let scene = load_xml(&ortho, "kernel-kind-ortho");
+    let error = format!("{:#}", caustic::prepare::buffers::build(&scene).map(|_| ()).expect_err("refused"));
+    assert!(error.contains("orthographic sensor is not supported"), "{error}");
 }
 
 /// What `bdpt` does not render is refused with the file and line where it can be named: a

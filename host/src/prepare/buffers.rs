@@ -11,7 +11,7 @@ use super::features::features_of;
 use super::lights::{cdf_of, emitter_lights, square_scale_log2, LightList, LIGHT_TRACING_UNIFORM_SHARE};
 use super::materials::{place_materials, place_textures, place_wavelengths};
 use super::primitives::{prim_origins, primitives};
-use crate::scene::{IntegratorKind, Projection, SamplerKind, Scene};
+use crate::scene::{Emitter, IntegratorKind, Projection, SamplerKind, Scene};
 use anyhow::{bail, Result};
 use caustic_kernel::layout::*;
 use glam::Vec3;
@@ -77,9 +77,42 @@ impl SceneBuffers {
     }
 }
 
+/// The kernel that renders `scene`'s integrator: its own, except that `ibpt`, `bdpt` and `vcm` in a
+/// scene where no light path can start (every emitter at infinity, where their light paths do not
+/// start, or none) are `path`'s estimator, every strategy beyond the camera path's two contributing
+/// nothing, so `path`'s kernel renders them (unless `Integrator::own_kernel`). `path`'s kernel does the
+/// same work without the light pass, the light vertex cache and the MIS state (on the H200 a `bdpt`
+/// sample cost 2.1-2.9 `path` samples on such scenes: BENCHMARKS.md, "BDPT against path on the shared
+/// scenes"). The scene is checked as the integrator asked for would check it, so a scene it refuses
+/// stays refused whatever its emitters.
+pub fn kernel_kind(scene: &Scene) -> Result<IntegratorKind> {
+    let kind = scene.integrator.kind;
+    let name = match kind {
+        IntegratorKind::Ibpt => "ibpt",
+        IntegratorKind::Bdpt => "bdpt",
+        IntegratorKind::Vcm => "vcm",
+        _ => return Ok(kind),
+    };
+    check_bidirectional(scene, name)?;
+    let finite_emitter = scene.shapes.iter().any(|s| s.emission.is_some())
+        || scene.emitters.iter().any(|e| match e {
+            Emitter::Point { .. } | Emitter::Spot { .. } | Emitter::Projector { .. } => true,
+            Emitter::Directional { .. } | Emitter::Constant { .. } | Emitter::Envmap { .. } => false,
+        });
+    if finite_emitter || scene.integrator.own_kernel {
+        return Ok(kind);
+    }
+    eprintln!(
+        "note: {name}: no light path can start in this scene (its emitters are all at infinity), so \
+         {name} is path tracing here and path's kernel renders it (--own-kernel runs {name}'s)"
+    );
+    Ok(IntegratorKind::Path)
+}
+
 pub fn build(scene: &Scene) -> Result<SceneBuffers> {
+    let kind = kernel_kind(scene)?;
     let mut light_list = LightList::default();
-    let light_tracing = scene.integrator.kind == IntegratorKind::Ptracer;
+    let light_tracing = kind == IntegratorKind::Ptracer;
     let mut blocks = crate::prepare::attribute_buffers::AttributeBlocks::of(scene);
     let (mut prims, mut attributes) = primitives(&scene.shapes, light_tracing, &mut light_list, &mut blocks);
     let mut prim_origins = if scene.aovs.is_some() { prim_origins(scene) } else { Vec::new() };
@@ -129,9 +162,9 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     let mut textures = place_textures(scene, &mut tables, &blocks);
     blocks.place(&mut tables, &mut attributes);
     let scene_sphere = bounding_sphere(&nodes, has_prims);
-    let env_light = emitter_lights(scene, &textures, &mut tables, &mut light_list, scene_sphere);
+    let env_light = emitter_lights(scene, kind, &textures, &mut tables, &mut light_list, scene_sphere);
 
-    let uniform_share = match scene.integrator.kind {
+    let uniform_share = match kind {
         IntegratorKind::Ptracer | IntegratorKind::Ibpt | IntegratorKind::Bdpt | IntegratorKind::Vcm => {
             LIGHT_TRACING_UNIFORM_SHARE
         }
@@ -155,7 +188,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
 
     let s = &scene.sensor;
     let crop = s.crop.unwrap_or(crate::scene::Crop { x: 0, y: 0, width: s.width, height: s.height });
-    let (integrator_kind, emitter_samples, bsdf_samples) = match scene.integrator.kind {
+    let (integrator_kind, emitter_samples, bsdf_samples) = match kind {
         IntegratorKind::Path => (INTEGRATOR_PATH, 1, 1),
         IntegratorKind::Direct { emitter_samples, bsdf_samples } => {
             (INTEGRATOR_DIRECT, emitter_samples, bsdf_samples)
@@ -164,20 +197,12 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
             check_light_tracing(scene, "ptracer")?;
             (INTEGRATOR_PTRACER, 1, 1)
         }
-        IntegratorKind::Ibpt => {
-            check_bidirectional(scene, "ibpt")?;
-            (INTEGRATOR_IBPT, 1, 1)
-        }
-        IntegratorKind::Bdpt => {
-            check_bidirectional(scene, "bdpt")?;
-            (INTEGRATOR_BDPT, 1, 1)
-        }
-        IntegratorKind::Vcm => {
-            check_bidirectional(scene, "vcm")?;
-            (INTEGRATOR_VCM, 1, 1)
-        }
+        // `kernel_kind` checked the scene.
+        IntegratorKind::Ibpt => (INTEGRATOR_IBPT, 1, 1),
+        IntegratorKind::Bdpt => (INTEGRATOR_BDPT, 1, 1),
+        IntegratorKind::Vcm => (INTEGRATOR_VCM, 1, 1),
     };
-    let merge_radius = match scene.integrator.kind {
+    let merge_radius = match kind {
         IntegratorKind::Vcm => {
             let m = scene.integrator.merging;
             m.radius.unwrap_or(m.radius_factor * scene_sphere.1)
@@ -243,11 +268,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         aovs,
         prim_origins,
         placed_prims,
-        merge_alpha: if scene.integrator.kind == IntegratorKind::Vcm {
-            scene.integrator.merging.alpha
-        } else {
-            0.0
-        },
+        merge_alpha: if kind == IntegratorKind::Vcm { scene.integrator.merging.alpha } else { 0.0 },
     })
 }
 

@@ -140,6 +140,7 @@ fn compensation_offset(luminances: &[f64]) -> f64 {
 /// Light records of the emitters that are not shapes; returns the environment light's index.
 pub(super) fn emitter_lights(
     scene: &Scene,
+    kind: IntegratorKind,
     textures: &[Texture],
     tables: &mut Vec<f32>,
     lights: &mut LightList,
@@ -201,8 +202,8 @@ pub(super) fn emitter_lights(
                 let texels = texels(t, tables);
                 // Light tracing draws emission from these tables alone, with nothing to cover the
                 // directions compensation leaves out: compensation is for NEE beside BSDF sampling.
-                let compensate = *mis_compensation
-                    && matches!(scene.integrator.kind, IntegratorKind::Path | IntegratorKind::Direct { .. });
+                let compensate =
+                    *mis_compensation && matches!(kind, IntegratorKind::Path | IntegratorKind::Direct { .. });
                 let (table, integral, offset) = envmap_distribution(t, texels, compensate);
                 light.kind = LIGHT_ENVMAP;
                 light.params[0] = offset;

@@ -117,6 +117,7 @@ mod tests {
             tev: None,
             integrator: None,
             film: Default::default(),
+            own_kernel: false,
         }
     }
 

@@ -49,6 +49,8 @@ pub struct RenderJob {
     pub integrator: Option<IntegratorChoice>,
     /// How camera samples reach the film (`--film`).
     pub film: crate::scene::FilmMode,
+    /// `Integrator::own_kernel` (`--own-kernel`).
+    pub own_kernel: bool,
 }
 
 /// What a finished session did.
@@ -186,7 +188,7 @@ pub(crate) fn prepare_scene(job: &RenderJob) -> Result<(buffers::SceneBuffers, u
     let options = crate::load::LoadOptions { strict: job.strict };
     let scene = crate::load::load_scene_with(&job.scene, &job.defines, options)?;
     let spp = samples_per_pixel(&scene, job.spp)?;
-    let buffers = build_scene(scene, &job.scene, job.integrator, job.film)?;
+    let buffers = build_scene(scene, &job.scene, job.integrator, job.film, job.own_kernel)?;
     Ok((buffers, spp))
 }
 
@@ -200,17 +202,20 @@ pub fn samples_per_pixel(scene: &Scene, spp: Option<u32>) -> Result<u32> {
 }
 
 /// Builds the buffers of a loaded scene (read from `path`, which errors name) for a render with
-/// `integrator` in place of the scene's own and `film` (`--integrator`, `--film`).
+/// `integrator` in place of the scene's own, `film` and `own_kernel` (`--integrator`, `--film`,
+/// `--own-kernel`).
 pub fn build_scene(
     mut scene: Scene,
     path: &Path,
     integrator: Option<IntegratorChoice>,
     film: FilmMode,
+    own_kernel: bool,
 ) -> Result<buffers::SceneBuffers> {
     if let Some(choice) = integrator {
         scene.integrator = scene.integrator.overridden(choice);
     }
     scene.sensor.film = film;
+    scene.integrator.own_kernel = own_kernel;
     buffers::build(&scene).with_context(|| format!("{}: cannot build the scene", path.display()))
 }
 

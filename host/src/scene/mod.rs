@@ -184,6 +184,10 @@ pub struct Integrator {
     pub hide_emitters: bool,
     /// Vertex merging's radius and its shrinking (`vcm`; read, unused, by the others).
     pub merging: MergeSettings,
+    /// Run `ibpt`'s, `bdpt`'s or `vcm`'s own kernel even in a scene where no light path can start
+    /// (every emitter at infinity), where by default `path`'s kernel renders their estimator
+    /// (`prepare::buffers::kernel_kind`); `--own-kernel`.
+    pub own_kernel: bool,
 }
 
 impl Default for Integrator {
@@ -194,6 +198,7 @@ impl Default for Integrator {
             rr_depth: 5,
             hide_emitters: false,
             merging: MergeSettings::default(),
+            own_kernel: false,
         }
     }
 }

@@ -49,6 +49,7 @@ impl Loader {
                     rr_depth,
                     hide_emitters: props.boolean("hide_emitters", false)?,
                     merging,
+                    ..Default::default()
                 }
             }
             "direct" => {
