@@ -13,6 +13,7 @@ backends, pass loop, image writers, statistics and convergence curves.
 import os
 import pathlib
 from typing import Any, Dict, Literal, Optional, Sequence, Tuple, TypedDict, Union, overload
+from typing_extensions import NotRequired
 
 import numpy as np
 import numpy.typing as npt
@@ -41,6 +42,9 @@ class Convergence(TypedDict):
     rmse: npt.NDArray[np.float64]
     rel_mse: npt.NDArray[np.float64]
     luminance_ratio: npt.NDArray[np.float64]
+    # Only where the reference file has its variance beside it.
+    net_mse: NotRequired[npt.NDArray[np.float64]]
+    net_rel_mse: NotRequired[npt.NDArray[np.float64]]
     backend: str
     log_log_slope: Optional[float]
 
@@ -155,7 +159,9 @@ class Scene:
         the command line, an untimed one-sample render on a backend of its own comes first, and
         seconds count the passes only. Returns arrays spp (int64), seconds, rmse, rel_mse and
         luminance_ratio (float64), the backend's description and log_log_slope (of rel_mse against
-        seconds after the first point; about -1 for an unbiased estimator). The GIL is released;
+        seconds after the first point; about -1 for an unbiased estimator); where the reference is
+        an EXR file with its variance beside it (`render --variance`), also net_mse and net_rel_mse,
+        the error against the truth with the reference's noise taken out. The GIL is released;
         Ctrl-C takes effect when it returns. Raises CausticError."""
     def __repr__(self) -> str: ...
 

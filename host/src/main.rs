@@ -390,6 +390,24 @@ fn cmd_compare(
 
 /// A convergence curve as the table `convergence` prints.
 fn say_points(points: &[caustic::render::convergence::ConvergencePoint]) {
+    // Where the reference has a variance: the error against the truth, its noise taken out.
+    if points.iter().all(|p| p.net_mse.is_some()) {
+        say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio | net MSE | net relative MSE |");
+        say!("|---|---|---|---|---|---|---|");
+        for p in points {
+            say!(
+                "| {} | {:.4} | {:.6} | {:.6e} | {:.5} | {:.6e} | {:.6e} |",
+                p.spp,
+                p.seconds,
+                p.rmse,
+                p.rel_mse,
+                p.luminance_ratio,
+                p.net_mse.unwrap_or(f64::NAN),
+                p.net_rel_mse.unwrap_or(f64::NAN)
+            );
+        }
+        return;
+    }
     say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
     say!("|---|---|---|---|---|");
     for p in points {
@@ -420,7 +438,9 @@ fn cmd_convergence(
         caustic::output::film::check_writable(path)?;
     }
     let loaded = caustic::load::load_scene_with(scene_path, defines, LoadOptions { strict: *strict })?;
-    let reference_film = Film::load_exr(reference)?;
+    // With its variance where `render --variance` wrote one: the curves then also say the error
+    // against the truth (`ConvergencePoint::net_mse`).
+    let reference_film = Film::load_with_variance(reference)?;
     compare::check_finite(&reference_film, reference)?;
     // No output may be an input (the scene, the reference), found before rendering.
     for path in [csv, plot].into_iter().flatten() {

@@ -343,8 +343,10 @@ impl Scene {
     /// (relative MSE) and luminance_ratio (mean luminance of the image over the reference's), all
     /// float64; and backend (the backend's description) and log_log_slope (the least-squares slope
     /// of log rel_mse against log seconds after the first point, about -1 for an unbiased
-    /// estimator at constant throughput; None with fewer than two points). The GIL is released
-    /// meanwhile; Ctrl-C takes effect when it returns. Raises CausticError.
+    /// estimator at constant throughput; None with fewer than two points). Where the reference is an
+    /// EXR file with its variance beside it (`render --variance`), also net_mse and net_rel_mse: the
+    /// error against the truth, the reference's noise taken out. The GIL is released meanwhile;
+    /// Ctrl-C takes effect when it returns. Raises CausticError.
     #[pyo3(signature = (reference, spp=None, seed=0, backend="auto", integrator=None, film="splat", gpus=None))]
     #[allow(clippy::too_many_arguments)]
     fn convergence<'py>(
@@ -359,7 +361,7 @@ impl Scene {
         gpus: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let setup = Setup::parse(backend, gpus, integrator, film)?;
-        let (reference, reference_name) = film_or_file(py, reference, "reference", Film::load_exr)?;
+        let (reference, reference_name) = film_or_file(py, reference, "reference", Film::load_with_variance)?;
         let (backend, points) = py
             .detach(|| {
                 caustic::output::compare::check_finite(&reference, &reference_name)?;
@@ -384,6 +386,13 @@ impl Scene {
         curve.set_item("rmse", column(|p| p.rmse).into_pyarray(py))?;
         curve.set_item("rel_mse", column(|p| p.rel_mse).into_pyarray(py))?;
         curve.set_item("luminance_ratio", column(|p| p.luminance_ratio).into_pyarray(py))?;
+        if points.iter().all(|p| p.net_mse.is_some()) {
+            let net = |f: fn(&convergence::ConvergencePoint) -> Option<f64>| {
+                points.iter().map(|p| f(p).unwrap_or(f64::NAN)).collect::<Vec<f64>>()
+            };
+            curve.set_item("net_mse", net(|p| p.net_mse).into_pyarray(py))?;
+            curve.set_item("net_rel_mse", net(|p| p.net_rel_mse).into_pyarray(py))?;
+        }
         curve.set_item("backend", backend)?;
         curve.set_item("log_log_slope", convergence::log_log_slope(&points))?;
         Ok(curve)

@@ -64,6 +64,21 @@ def test_a_reference_file_is_read_as_the_command_line_reads_it(tiny, tmp_path):
     np.testing.assert_array_equal(from_array["rmse"], from_file["rmse"])
 
 
+def test_a_reference_file_with_its_variance_gives_the_net_error(tiny, tmp_path):
+    """Its variance beside it (as `render --variance` writes it): the curve also says the error with
+    the reference's noise taken out, below the raw error at every point."""
+    scene, _ = tiny
+    image, variance = scene.render(spp=16, seed=7, backend="cpu", progress=False, variance=True)
+    caustic.write(tmp_path / "noisy.exr", image)
+    caustic.write(tmp_path / "noisy.variance.exr", variance)
+    curve = scene.convergence(tmp_path / "noisy.exr", spp=16, backend="cpu")
+    for key in ("net_mse", "net_rel_mse"):
+        assert curve[key].shape == curve["rmse"].shape and np.isfinite(curve[key]).all(), key
+    assert (curve["net_mse"] < curve["rmse"] ** 2).all()
+    assert (curve["net_rel_mse"] < curve["rel_mse"]).all()
+    assert "net_mse" not in scene.convergence(image, spp=2, backend="cpu")
+
+
 def test_a_reference_of_another_size_is_refused(tiny, tmp_path):
     scene, _ = tiny
     with pytest.raises(caustic.CausticError, match=r"reference is 8×8 but .*cornell-box.xml renders 16×16"):

@@ -187,3 +187,40 @@ fn convergence_against_the_exact_furnace_image() {
     assert!((-1.2..-0.8).contains(&slope), "relative MSE falls as spp^{slope:.3}, not 1/spp");
     assert!((points.last().unwrap().luminance_ratio - 1.0).abs() < 0.01);
 }
+
+/// A noisy reference with its variance: the curve's net MSE (`ConvergencePoint::net_mse`) takes the
+/// reference's own noise out, so it estimates the error against the exact image, which the raw MSE
+/// against that reference overstates. The reference has as many samples as the render's last point,
+/// so there the raw MSE is about twice the true one, and the net MSE must be the true one.
+#[test]
+fn the_net_error_takes_the_references_noise_out() {
+    use caustic::output::film::Film;
+    use caustic::render::convergence::measure;
+    let mut scene = furnace(white_lambert());
+    (scene.sensor.width, scene.sensor.height) = (64, 64);
+    let buffers = caustic::prepare::buffers::build(&scene).unwrap();
+    let (w, h) = (buffers.params.width, buffers.params.height);
+    let exact = Film::from_rgb(w, h, vec![[1.0; 3]; (w * h) as usize]);
+    let noisy = render_scene(&scene, BackendChoice::Cpu, 64, 21);
+    assert!(noisy.variance.is_some(), "the reference needs its variance");
+    let curve = |reference: &Film| {
+        let mut backend = caustic::backend::create(BackendChoice::Cpu, &buffers).unwrap();
+        measure(backend.as_mut(), &buffers, reference, 64, 22).unwrap()
+    };
+    let (truth, against_noisy) = (curve(&exact), curve(&noisy));
+    assert!(truth.iter().all(|p| p.net_mse.is_none()), "a reference without variance has no net error");
+    for (t, n) in truth.iter().zip(&against_noisy).filter(|(t, _)| t.spp >= 16) {
+        let true_mse = t.rmse * t.rmse;
+        let (raw, net) = (n.rmse * n.rmse, n.net_mse.unwrap());
+        println!(
+            "{} spp: true MSE {true_mse:.4e}, against the noisy reference {raw:.4e}, net {net:.4e}",
+            t.spp
+        );
+        assert!((net / true_mse - 1.0).abs() < 0.25, "{} spp: net MSE {net:.4e}, true {true_mse:.4e}", t.spp);
+        let rel = n.net_rel_mse.unwrap() / t.rel_mse;
+        assert!((rel - 1.0).abs() < 0.25, "{} spp: net relative MSE {rel:.3} of the true one", t.spp);
+        if t.spp == 64 {
+            assert!(raw > 1.6 * true_mse, "64 spp: the reference's noise should double the raw MSE");
+        }
+    }
+}

@@ -187,7 +187,15 @@ fn writers_never_overwrite_an_input_or_leave_half_a_file() {
         aovs: Vec::new(),
         sum_variance_factor: 1.0,
     };
-    let point = ConvergencePoint { spp: 4, seconds: 0.5, rmse: 0.1, rel_mse: 0.01, luminance_ratio: 1.0 };
+    let point = ConvergencePoint {
+        spp: 4,
+        seconds: 0.5,
+        rmse: 0.1,
+        rel_mse: 0.01,
+        luminance_ratio: 1.0,
+        net_mse: None,
+        net_rel_mse: None,
+    };
     let mut rng = Rng(seed | 1);
     let (mut written, mut refused) = (0, 0);
     for round in 0..300 {

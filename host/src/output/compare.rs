@@ -31,6 +31,18 @@ pub struct Comparison {
     pub luminance_z: Option<f64>,
     /// Per-pixel largest |z| (or relative error without a variance), for the false-colour image.
     pub error_map: Vec<f32>,
+    /// The reference's own noise in `rmse`² and `rel_mse`, from its variance where it has one
+    /// (`Film::load_with_variance`): independent noise adds, so the render's error against the
+    /// truth is estimated by the difference (`ConvergencePoint::net_mse`).
+    pub reference_noise: Option<ReferenceNoise>,
+}
+
+/// The reference's expected share of the mean squared error and of the relative MSE: its variance
+/// averaged over the values as `Comparison::rmse`² and `rel_mse` average the squared differences.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReferenceNoise {
+    pub mse: f64,
+    pub rel_mse: f64,
 }
 
 /// The kernel's luminance (one set of weights for the renderer and its statistics), summed in f64.
@@ -68,6 +80,7 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
     let mut passed = 0usize;
     let mut lum_var = 0.0f64;
     let mut error_map = Vec::with_capacity(n);
+    let (mut noise_se, mut noise_rel) = (0.0f64, 0.0f64);
     let variance = image.variance.as_ref().map(|v| pooled_variance(v, image.width, image.height));
     for i in 0..n {
         let (a, b) = (image.rgb[i], reference.rgb[i]);
@@ -75,8 +88,13 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
         let mut ok = true;
         for c in 0..3 {
             let d = a[c] as f64 - b[c] as f64;
+            let weight = 1.0 / ((b[c] as f64).powi(2) + 1e-2);
             se += d * d;
-            rel += d * d / ((b[c] as f64).powi(2) + 1e-2);
+            rel += d * d * weight;
+            if let Some(v) = &reference.variance {
+                noise_se += v[i][c];
+                noise_rel += v[i][c] * weight;
+            }
             match &variance {
                 Some(v) => {
                     let var = v[i][c] * (1.0 + samples_ratio)
@@ -111,6 +129,10 @@ pub fn compare(image: &Film, reference: &Film, samples_ratio: f64) -> Result<Com
             .map(|_| (lum_a - lum_b) / (lum_var * image.sum_variance_factor).sqrt().max(1e-12)),
         z_critical,
         error_map,
+        reference_noise: reference
+            .variance
+            .as_ref()
+            .map(|_| ReferenceNoise { mse: noise_se / values, rel_mse: noise_rel / values }),
     })
 }
 

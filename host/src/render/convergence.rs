@@ -19,6 +19,27 @@ pub struct ConvergencePoint {
     pub rmse: f64,
     pub rel_mse: f64,
     pub luminance_ratio: f64,
+    /// The error against the truth, where the reference has a variance (`render --variance`): `rmse`²
+    /// and `rel_mse` less the reference's own noise (`compare::ReferenceNoise`). An estimate, so it
+    /// may fall below zero once the render is as good as the reference; it lets a curve be followed
+    /// past the reference's noise floor.
+    pub net_mse: Option<f64>,
+    pub net_rel_mse: Option<f64>,
+}
+
+impl ConvergencePoint {
+    /// The point of an image at `spp` after `seconds`, from its comparison with the reference.
+    pub fn of(spp: u32, seconds: f64, c: &crate::output::compare::Comparison) -> ConvergencePoint {
+        ConvergencePoint {
+            spp,
+            seconds,
+            rmse: c.rmse,
+            rel_mse: c.rel_mse,
+            luminance_ratio: c.luminance_ratio,
+            net_mse: c.reference_noise.map(|n| c.rmse * c.rmse - n.mse),
+            net_rel_mse: c.reference_noise.map(|n| c.rel_mse - n.rel_mse),
+        }
+    }
 }
 
 /// Sample counts at which the image is compared: powers of two up to `max_spp`, and `max_spp`.
@@ -120,13 +141,7 @@ impl PassObserver for &mut Curve<'_> {
         if self.stops.contains(&done) {
             let film = Film::from_accum(self.size.0, self.size.1, &backend.read_accum()?);
             let c = compare(&film, self.reference, 0.0)?;
-            self.points.push(ConvergencePoint {
-                spp: done,
-                seconds,
-                rmse: c.rmse,
-                rel_mse: c.rel_mse,
-                luminance_ratio: c.luminance_ratio,
-            });
+            self.points.push(ConvergencePoint::of(done, seconds, &c));
         }
         Ok(std::ops::ControlFlow::Continue(()))
     }
@@ -155,13 +170,7 @@ pub fn peer_curve(csv: &Path, reference: &Film) -> Result<Vec<ConvergencePoint>>
         let film = Film::load_exr(&dir.join(image)).with_context(at)?;
         crate::output::compare::check_finite(&film, &dir.join(image))?;
         let c = compare(&film, reference, 0.0).with_context(at)?;
-        points.push(ConvergencePoint {
-            spp,
-            seconds,
-            rmse: c.rmse,
-            rel_mse: c.rel_mse,
-            luminance_ratio: c.luminance_ratio,
-        });
+        points.push(ConvergencePoint::of(spp, seconds, &c));
     }
     if points.is_empty() {
         bail!("{}: no renders listed (a header, then spp,seconds,image rows)", csv.display());
@@ -190,14 +199,23 @@ pub fn least_squares_log_slope(pairs: impl Iterator<Item = (f64, f64)>) -> Optio
     (sxx > 0.0).then(|| sxy / sxx)
 }
 
-/// Writes the curves as CSV, one row per point (`integrator,spp,seconds,rmse,rel_mse,luminance_ratio`).
+/// Writes the curves as CSV, one row per point
+/// (`integrator,spp,seconds,rmse,rel_mse,luminance_ratio,net_mse,net_rel_mse`, the last two empty
+/// where the reference has no variance).
 pub fn write_csv(path: &Path, curves: &[(&str, &[ConvergencePoint])]) -> Result<()> {
-    let mut text = String::from("integrator,spp,seconds,rmse,rel_mse,luminance_ratio\n");
+    let mut text = String::from("integrator,spp,seconds,rmse,rel_mse,luminance_ratio,net_mse,net_rel_mse\n");
+    let net = |x: Option<f64>| x.map(|x| format!("{x:.8e}")).unwrap_or_default();
     for (integrator, points) in curves {
         for p in points.iter() {
             text += &format!(
-                "{integrator},{},{:.6},{:.8e},{:.8e},{:.6}\n",
-                p.spp, p.seconds, p.rmse, p.rel_mse, p.luminance_ratio
+                "{integrator},{},{:.6},{:.8e},{:.8e},{:.6},{},{}\n",
+                p.spp,
+                p.seconds,
+                p.rmse,
+                p.rel_mse,
+                p.luminance_ratio,
+                net(p.net_mse),
+                net(p.net_rel_mse)
             );
         }
     }
