@@ -69,6 +69,8 @@ pub struct GpuBackend {
     /// the grid's, the camera entry points'.
     bind_groups: [wgpu::BindGroup; 3],
     params_buffer: wgpu::Buffer,
+    /// The parameters of a submission's dispatches, copied into `params_buffer` one before each.
+    params_ring: wgpu::Buffer,
     accum_buffer: wgpu::Buffer,
     accum_size: u64,
     /// The host's f64 totals that `accum_buffer`'s f32 sums are read back into and cleared, every
@@ -94,6 +96,10 @@ pub struct GpuBackend {
 /// spp) for the extra dispatches. The kernel counts samples cut short as invalid, so a scene whose
 /// single samples run that long is reported, not silently darker.
 const SOFTWARE_DISPATCH_SAMPLES: u32 = 4;
+
+/// Dispatches in one submission, waited for once: BDPT's and VCM's passes are one sample each, and
+/// a wait for every one of them left the GPU idle between them on small images.
+const SUBMITTED_DISPATCHES: usize = 16;
 
 fn adapter_rank(info: &wgpu::AdapterInfo) -> u32 {
     match info.device_type {
@@ -255,6 +261,12 @@ impl GpuBackend {
             contents: bytemuck::bytes_of(&buffers.params),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
         });
+        let params_ring = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("params of a submission"),
+            size: (SUBMITTED_DISPATCHES * std::mem::size_of::<FrameParams>()) as u64,
+            usage: wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let nodes = storage("nodes", bytemuck::cast_slice(&buffers.nodes));
         let prims = storage("prims", bytemuck::cast_slice(&buffers.prims));
         let attributes = storage("attributes", bytemuck::cast_slice(&buffers.attributes));
@@ -333,6 +345,7 @@ impl GpuBackend {
             merge: (buffers.params.merge_radius, buffers.merge_alpha),
             bind_groups,
             params_buffer,
+            params_ring,
             accum_buffer,
             accum_size,
             folding: Folding::new(pixels as usize, batched, buffers.params.square_scale_log2),
@@ -431,10 +444,14 @@ impl Backend for GpuBackend {
         let mut chunk = *params;
         let end = chunk.sample_base + chunk.sample_count;
         let clock = Instant::now();
+        let mut chunks = Vec::new();
         while chunk.sample_base < end {
             chunk.sample_count = (end - chunk.sample_base).min(self.max_dispatch_samples);
-            self.dispatch(&chunk, choice)?;
+            chunks.push(chunk);
             chunk.sample_base += chunk.sample_count;
+        }
+        for submission in chunks.chunks(SUBMITTED_DISPATCHES) {
+            self.dispatch(submission, choice)?;
         }
         // (`dispatch` waits for the GPU: the clock measures the samples alone.)
         let elapsed = clock.elapsed();
@@ -527,19 +544,41 @@ impl GpuBackend {
         Ok(())
     }
 
-    /// One dispatch of the kernel: `params.sample_count` samples per pixel (at most
-    /// `max_dispatch_samples`; BDPT and VCM: one, whose radius VCM takes from `merge`).
-    fn dispatch(&mut self, params: &FrameParams, choice: usize) -> Result<()> {
+    /// Dispatches of the kernel, one submission: each `params.sample_count` samples per pixel (at most
+    /// `max_dispatch_samples`; BDPT and VCM: one, whose radius VCM takes from `merge`), in order, each
+    /// seeing the one before; then one wait for the GPU. Several (BDPT's and VCM's one-sample passes)
+    /// take their parameters from `params_ring`, copied into the parameters' binding before each.
+    fn dispatch(&mut self, params: &[FrameParams], choice: usize) -> Result<()> {
         let (first_radius, alpha) = self.merge;
-        let radius = crate::prepare::buffers::merge_radius(first_radius, alpha, params.sample_base);
-        let params = FrameParams { merge_radius: radius, ..*params };
-        self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
+        let params: Vec<FrameParams> = params
+            .iter()
+            .map(|p| FrameParams {
+                merge_radius: crate::prepare::buffers::merge_radius(first_radius, alpha, p.sample_base),
+                ..*p
+            })
+            .collect();
+        let size = std::mem::size_of::<FrameParams>() as u64;
+        if let [one] = params.as_slice() {
+            self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(one));
+        } else {
+            self.queue.write_buffer(&self.params_ring, 0, bytemuck::cast_slice(&params));
+        }
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pass") });
-        if let Some((_, grid)) = &self.grid {
-            encoder.clear_buffer(grid, 0, None);
-        }
-        {
+        let mut fold = false;
+        for (k, p) in params.iter().enumerate() {
+            if params.len() > 1 {
+                encoder.copy_buffer_to_buffer(
+                    &self.params_ring,
+                    k as u64 * size,
+                    &self.params_buffer,
+                    0,
+                    size,
+                );
+            }
+            if let Some((_, grid)) = &self.grid {
+                encoder.clear_buffer(grid, 0, None);
+            }
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("render"),
                 timestamp_writes: None,
@@ -565,9 +604,13 @@ impl GpuBackend {
                 pass.set_pipeline(pipeline);
                 pass.dispatch_workgroups(self.width.div_ceil(w), self.height.div_ceil(h), 1);
             }
+            drop(pass);
+            // (Folded after the submission: at most `SUBMITTED_DISPATCHES` - 1 samples later than
+            // `FOLD_SAMPLES`, which leaves the sums' precision as it was.)
+            fold |= self.folding.passed(p.sample_count);
         }
         self.queue.submit([encoder.finish()]);
-        if self.folding.passed(params.sample_count) {
+        if fold {
             self.fold()
         } else {
             self.wait()
