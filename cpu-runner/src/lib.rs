@@ -140,107 +140,15 @@ impl AtomicWords for CpuWords<'_> {
     }
 }
 
-/// A thread's splat words: its own, added to without atomics, or the shared atomic ones.
-enum ThreadWords<'a> {
-    Own(std::sync::MutexGuard<'a, Vec<u32>>),
-    Shared(&'a [AtomicU32]),
-}
-
-impl AtomicWords for ThreadWords<'_> {
-    #[inline]
-    fn fetch_add(&mut self, index: u32, value: u32) -> u32 {
-        match self {
-            ThreadWords::Own(words) => {
-                let word = &mut words[index as usize];
-                let old = *word;
-                *word = old.wrapping_add(value);
-                old
-            }
-            ThreadWords::Shared(words) => CpuWords(words).fetch_add(index, value),
-        }
-    }
-
-    #[inline]
-    fn exchange(&mut self, index: u32, value: u32) -> u32 {
-        match self {
-            ThreadWords::Own(words) => std::mem::replace(&mut words[index as usize], value),
-            ThreadWords::Shared(words) => CpuWords(words).exchange(index, value),
-        }
-    }
-}
-
-/// The splat words of a pass on the CPU. Atomic adds into one shared buffer took a quarter of an
-/// IBPT render of the Cornell box (`perf`, this 2-core machine: `splat::splat` 25% of the samples,
-/// the words in L2 or beyond), so where memory allows each rayon thread adds into words of its own
-/// without atomics, and the pass sums them: every channel a 64-bit fixed-point number kept as
-/// (low, high) words (`caustic_kernel::splat`), whose sums are exact in any order, so the image is
-/// the same to the bit.
-struct SplatWords {
-    shared: Vec<AtomicU32>,
-    /// One buffer per thread, empty where they would take more than `LOCAL_WORDS_BUDGET` bytes.
-    local: Vec<std::sync::Mutex<Vec<u32>>>,
-}
-
-/// The most memory the threads' own splat words may take (16 threads at 960×720: 354 MB).
-const LOCAL_WORDS_BUDGET: usize = 512 << 20;
-
-impl SplatWords {
-    fn new(pixels: u32) -> Self {
-        let words = (pixels * SPLAT_STRIDE) as usize;
-        let threads = rayon::current_num_threads();
-        if threads > 1 && threads * words * 4 <= LOCAL_WORDS_BUDGET {
-            let local = (0..threads).map(|_| std::sync::Mutex::new(vec![0u32; words])).collect();
-            SplatWords { shared: Vec::new(), local }
-        } else {
-            SplatWords { shared: (0..words).map(|_| AtomicU32::new(0)).collect(), local: Vec::new() }
-        }
-    }
-
-    /// This thread's words (its own, or the shared atomics). Each rayon thread locks its own buffer,
-    /// so the lock is never contended; a thread outside the pool shares the first.
-    fn of_this_thread(&self) -> ThreadWords<'_> {
-        if self.local.is_empty() {
-            return ThreadWords::Shared(&self.shared);
-        }
-        let i = rayon::current_thread_index().filter(|&i| i < self.local.len()).unwrap_or(0);
-        ThreadWords::Own(self.local[i].lock().expect("a splat buffer's lock"))
-    }
-
-    /// The pass's words: the threads' summed, channel by channel as 64-bit numbers.
-    fn into_words(self) -> Vec<u32> {
-        if self.local.is_empty() {
-            return self.shared.into_iter().map(AtomicU32::into_inner).collect();
-        }
-        let local: Vec<Vec<u32>> =
-            self.local.into_iter().map(|m| m.into_inner().expect("a splat buffer's lock")).collect();
-        let mut out = vec![0u32; local[0].len()];
-        out.par_chunks_mut(SPLAT_STRIDE as usize).enumerate().for_each(|(pixel, words)| {
-            let base = pixel * SPLAT_STRIDE as usize;
-            for channel in 0..3 {
-                let at = base + 2 * channel;
-                let sum = local
-                    .iter()
-                    .fold(0u64, |sum, l| sum.wrapping_add(l[at] as u64 | (l[at + 1] as u64) << 32));
-                words[2 * channel] = sum as u32;
-                words[2 * channel + 1] = (sum >> 32) as u32;
-            }
-            for k in 6..SPLAT_STRIDE as usize {
-                words[k] = local.iter().fold(0u32, |sum, l| sum.wrapping_add(l[base + k]));
-            }
-        });
-        out
-    }
-}
-
 /// Traces `params.sample_count` light paths per pixel (IBPT: and camera paths), exactly as the GPU's
 /// dispatches do, and returns the splat words (`caustic_kernel::splat` layout) for the host to resolve.
 pub fn light_pass(scene: &SceneView, params: &FrameParams) -> Vec<u32> {
     let pixels = params.width * params.height;
-    let words = SplatWords::new(pixels);
+    let words: Vec<AtomicU32> = (0..pixels * SPLAT_STRIDE).map(|_| AtomicU32::new(0)).collect();
     let camera_half = splats_camera_paths(scene, params);
     let light_half = traces_light_paths(params.integrator);
     (0..pixels).into_par_iter().for_each(|pixel| {
-        let mut words = words.of_this_thread();
+        let mut words = CpuWords(&words);
         if camera_half {
             splat_camera_paths(scene, params, pixel, &mut words);
         }
@@ -248,7 +156,7 @@ pub fn light_pass(scene: &SceneView, params: &FrameParams) -> Vec<u32> {
             trace_light_paths(scene, params, pixel, &mut words);
         }
     });
-    words.into_words()
+    words.into_iter().map(AtomicU32::into_inner).collect()
 }
 
 /// BDPT's and VCM's memory kept between passes: the light vertex cache (`MAX_LIGHT_VERTICES` slots a
@@ -272,12 +180,12 @@ impl CacheScratch {
 /// path; returns the splat words for the host to resolve.
 pub fn cached_pass(scene: &SceneView, params: &FrameParams, scratch: &mut CacheScratch) -> Vec<u32> {
     let pixels = params.width * params.height;
-    let words = SplatWords::new(pixels);
+    let words: Vec<AtomicU32> = (0..pixels * SPLAT_STRIDE).map(|_| AtomicU32::new(0)).collect();
     let grid = vcm_grid::Grid::of(params);
     scratch.cache.resize(vcm_grid::slots(params) as usize, LightVertex::EMPTY);
     scratch.cache.par_chunks_mut(MAX_LIGHT_VERTICES as usize).enumerate().for_each(|(pixel, own)| {
         let mut slots = CacheSlots { cache: own, base: 0 };
-        trace_cached_light_path(scene, params, pixel as u32, &mut slots, &mut words.of_this_thread());
+        trace_cached_light_path(scene, params, pixel as u32, &mut slots, &mut CpuWords(&words));
     });
     scratch.grid.clear();
     let cache = &scratch.cache;
@@ -290,9 +198,9 @@ pub fn cached_pass(scene: &SceneView, params: &FrameParams, scratch: &mut CacheS
     }
     let grid_words = &scratch.grid;
     (0..pixels).into_par_iter().for_each(|pixel| {
-        splat_cached_camera_path(scene, params, pixel, cache, grid_words, &mut words.of_this_thread());
+        splat_cached_camera_path(scene, params, pixel, cache, grid_words, &mut CpuWords(&words));
     });
-    words.into_words()
+    words.into_iter().map(AtomicU32::into_inner).collect()
 }
 
 /// `words` as atomics, for the grid's step that links vertices into it from every thread.
