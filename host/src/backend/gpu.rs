@@ -605,8 +605,8 @@ impl GpuBackend {
                 pass.dispatch_workgroups(self.width.div_ceil(w), self.height.div_ceil(h), 1);
             }
             drop(pass);
-            // (Folded after the submission: at most `SUBMITTED_DISPATCHES` - 1 samples later than
-            // `FOLD_SAMPLES`, which leaves the sums' precision as it was.)
+            // (Folded after the submission: at most `SUBMITTED_DISPATCHES` - 1 dispatches later than
+            // `FOLD_SAMPLES`, a few samples against thousands, which leaves the sums' precision.)
             fold |= self.folding.passed(p.sample_count);
         }
         self.queue.submit([encoder.finish()]);
