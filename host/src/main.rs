@@ -390,29 +390,18 @@ fn cmd_compare(
 
 /// A convergence curve as the table `convergence` prints.
 fn say_points(points: &[caustic::render::convergence::ConvergencePoint]) {
-    // Where the reference has a variance: the error against the truth, its noise taken out.
-    if points.iter().all(|p| p.net_mse.is_some()) {
-        say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio | net MSE | net relative MSE |");
-        say!("|---|---|---|---|---|---|---|");
-        for p in points {
-            say!(
-                "| {} | {:.4} | {:.6} | {:.6e} | {:.5} | {:.6e} | {:.6e} |",
-                p.spp,
-                p.seconds,
-                p.rmse,
-                p.rel_mse,
-                p.luminance_ratio,
-                p.net_mse.unwrap_or(f64::NAN),
-                p.net_rel_mse.unwrap_or(f64::NAN)
-            );
-        }
-        return;
-    }
-    say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |");
-    say!("|---|---|---|---|---|");
+    // Where the reference has a variance: also the error against the truth, its noise taken out.
+    let net = points.iter().all(|p| p.net_mse.is_some());
+    let (head, rule) = if net { (" net MSE | net relative MSE |", "---|---|") } else { ("", "") };
+    say!("| spp | seconds | RMSE | relative MSE | mean-luminance ratio |{head}");
+    say!("|---|---|---|---|---|{rule}");
     for p in points {
+        let tail = match (p.net_mse, p.net_rel_mse) {
+            (Some(m), Some(r)) if net => format!(" {m:.6e} | {r:.6e} |"),
+            _ => String::new(),
+        };
         say!(
-            "| {} | {:.4} | {:.6} | {:.6e} | {:.5} |",
+            "| {} | {:.4} | {:.6} | {:.6e} | {:.5} |{tail}",
             p.spp,
             p.seconds,
             p.rmse,
@@ -451,16 +440,11 @@ fn cmd_convergence(
         if integrator.is_empty() { vec![None] } else { integrator.iter().copied().map(Some).collect() };
     let mut curves = Vec::new();
     for integrator in choices {
-        let mut scene = loaded.clone();
-        if let Some(choice) = integrator {
-            scene.integrator = scene.integrator.overridden(choice);
-        }
-        scene.sensor.film = *film;
-        scene.integrator.own_kernel = *own_kernel;
-        let name = integrator_name(&scene.integrator.kind);
-        let spp = spp.unwrap_or(scene.sensor.spp);
-        let buffers = buffers::build(&scene)
-            .with_context(|| format!("{}: cannot build the scene", scene_path.display()))?;
+        let kind =
+            integrator.map_or(loaded.integrator.kind, |c| loaded.integrator.clone().overridden(c).kind);
+        let name = integrator_name(&kind);
+        let spp = spp.unwrap_or(loaded.sensor.spp);
+        let buffers = session::build_scene(loaded.clone(), scene_path, integrator, *film, *own_kernel)?;
         convergence::check_reference_size(&reference_film, reference, &buffers, scene_path)?;
         let (backend, points) =
             convergence::measure_warmed_up(choice, gpus, &buffers, &reference_film, spp, seed)?;
