@@ -8,7 +8,8 @@ use crate::integrator::{
     trace_cached_light_path, trace_light_paths, vcm_grid, SceneView,
 };
 use crate::layout::{
-    square_scale, BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture, TriangleAttributes,
+    splats, square_scale, BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture,
+    TriangleAttributes,
 };
 use crate::splat::{resolved, GpuWords, SPLAT_STRIDE};
 use spirv_std::glam::UVec3;
@@ -209,7 +210,8 @@ pub fn resolve(
     if id.x >= params.width || id.y >= params.height {
         return;
     }
-    if params.film_reach != 0 {
+    // (The splatting integrators' camera samples, splatted film or not, go to the splat words.)
+    if params.film_reach != 0 && !splats(params.integrator) {
         let pixel = (id.y * params.width + id.x) as usize;
         let cells = WordCells(splat);
         let gathered = gather(&cells, params, id.x, id.y);

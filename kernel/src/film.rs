@@ -188,6 +188,25 @@ pub fn pixel_density(tables: &[f32], params: &FrameParams, pos: Vec2, px: u32, p
     filter_at(tables, params, params.filter_cdf_offset, pos, px, py)
 }
 
+/// The density (per unit of pixel area) with which camera samples land at `pos`, as the MIS between
+/// the camera strategies and light tracing weighs a path reaching pixel (`px`, `py`) there: under
+/// filter importance sampling the pixel's own (`pixel_density`); with the splatting film
+/// (`FrameParams::film_reach` > 0) one anywhere in the rendered window, since every pixel draws its
+/// samples uniformly over its own area and each reaches pixel (`px`, `py`) with the weight a
+/// light-tracing connection landing at the same point has (`pixel_weight`).
+pub fn camera_density(tables: &[f32], params: &FrameParams, pos: Vec2, px: u32, py: u32) -> f32 {
+    if params.film_reach == 0 {
+        return pixel_density(tables, params, pos, px, py);
+    }
+    let (x0, x1) = window(params.crop_x, params.width);
+    let (y0, y1) = window(params.crop_y, params.height);
+    if pos.x >= x0 && pos.x < x1 && pos.y >= y0 && pos.y < y1 {
+        1.0
+    } else {
+        0.0
+    }
+}
+
 /// What a light-tracing connection landing at `pos` (pixels of the full image) contributes to pixel
 /// (`px`, `py`) per unit of its value: the filter w centred on the pixel, truncated to the rendered
 /// window and divided by its sum there, so that splats and camera samples (`sample_position`)

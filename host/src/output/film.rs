@@ -266,7 +266,7 @@ pub const SUM_VARIANCE_NOTE: &str = "caustic: variance of a sum of pixels / sum 
 /// uniform in a pixel; the filter is separable, so that is the square of the same ratio along one
 /// axis. Measured by midpoints over a pixel.
 pub fn splat_sum_variance_factor(params: &caustic_kernel::layout::FrameParams, tables: &[f32]) -> f64 {
-    if params.film_reach == 0 || caustic_kernel::integrator::splats(params.integrator) {
+    if params.film_reach == 0 {
         return 1.0;
     }
     const STEPS: u32 = 1024;

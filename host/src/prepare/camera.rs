@@ -44,20 +44,15 @@ pub fn camera(scene: &Scene) -> Camera {
 }
 
 /// How far the splatting film spreads a camera sample (`FrameParams::film_reach`), or 0 for filter
-/// importance sampling: asked for (`--film fis`), where light tracing's MIS weighs camera samples by
-/// the filter's density (ptracer, ibpt), for the irradiance and radiance meters (one value, no
-/// neighbours), where splatting is the same (a box of radius ½), and for a filter wider than
-/// `film_splat::MAX_REACH` pixels, with a warning.
+/// importance sampling: asked for (`--film fis`), for `ptracer` (no camera samples), for the
+/// irradiance and radiance meters (one value, no neighbours), where splatting is the same (a box of
+/// radius ½), and for a filter wider than `film_splat::MAX_REACH` pixels, with a warning. The camera
+/// halves of `ibpt`, `bdpt` and `vcm` splat into the pixels their filter reaches as `path`'s samples
+/// do (their MIS against light tracing then sees camera samples of density one: `film::camera_density`).
 pub(super) fn film_reach(sensor: &crate::scene::Sensor, integrator: u32) -> u32 {
     use caustic_kernel::film_splat::{reach_for_radius, MAX_REACH};
     let meter = matches!(sensor.projection, Projection::RadianceMeter | Projection::IrradianceMeter { .. });
-    if sensor.film != crate::scene::FilmMode::Splat
-        || meter
-        || integrator == INTEGRATOR_PTRACER
-        || integrator == INTEGRATOR_IBPT
-        || integrator == INTEGRATOR_BDPT
-        || integrator == INTEGRATOR_VCM
-    {
+    if sensor.film != crate::scene::FilmMode::Splat || meter || integrator == INTEGRATOR_PTRACER {
         return 0;
     }
     let reach = reach_for_radius(sensor.filter.radius());

@@ -214,8 +214,8 @@ const LIGHT_PATH_STREAM: u32 = 0x9e37_79b9;
 const DIM_SPLAT_ROUNDING: u32 = u32::MAX - 1;
 
 /// A splatted camera sample of `pixel` (IBPT's camera half, BDPT, VCM): its sampler, film sample and
-/// ray, and the density with which the pixel's camera samples land where the ray crosses the film
-/// (`film::pixel_density`).
+/// ray, and the density with which camera samples land where the ray crosses the film, as the MIS
+/// against light tracing weighs it (`film::camera_density`).
 #[inline]
 fn splatted_camera_sample(
     scene: &SceneView,
@@ -226,16 +226,27 @@ fn splatted_camera_sample(
     let (px, py) = (pixel % params.width, pixel / params.width);
     // (The splatting integrators refuse the irradiance meter: no weight here.)
     let (sampler, film_sample, ray) = camera_sample(scene, params, pixel, sample_index);
-    let film_pos = film_sample.pos;
-    let pos = Vec2::new(film_pos.x * params.full_width as f32, film_pos.y * params.full_height as f32);
-    let density = film::pixel_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);
+    let pos = film_position(params, &film_sample);
+    let density = film::camera_density(scene.tables, params, pos, params.crop_x + px, params.crop_y + py);
     (sampler, film_sample, ray, density)
 }
 
-/// Splats a camera path's estimate `l` into its pixel's own sums (so that camera and light paths
-/// resolve together), or counts it as invalid.
+/// Where a film sample lies, in pixels of the full image.
 #[inline]
+fn film_position(params: &FrameParams, film_sample: &film::FilmSample) -> Vec2 {
+    Vec2::new(film_sample.pos.x * params.full_width as f32, film_sample.pos.y * params.full_height as f32)
+}
+
+/// Splats a camera path's estimate `l` (weighted against light tracing) where light tracing's splats
+/// go, so that camera and light paths resolve together: under filter importance sampling into the
+/// pixel's own sums; with the splatting film (`film_reach` > 0) into every pixel of the rendered
+/// window that the filter reaches from the sample's place, times the filter's weight there
+/// (`film::pixel_weight`, which a light-tracing connection at that point would carry too), each
+/// pixel's sums divided by its samples as before. Or counts it as invalid.
+#[inline]
+#[allow(clippy::too_many_arguments)]
 fn splat_camera_estimate<W: AtomicWords>(
+    scene: &SceneView,
     params: &FrameParams,
     pixel: u32,
     film_sample: &film::FilmSample,
@@ -243,12 +254,36 @@ fn splat_camera_estimate<W: AtomicWords>(
     l: Rgb,
     words: &mut W,
 ) {
-    let l = if params.filter_signed != 0 { l * film_sample.weight } else { l };
     sampler.set_dimension(DIM_SPLAT_ROUNDING);
-    if is_finite3(l) {
-        crate::splat::splat(words, pixel, l, sampler.next_1d());
-    } else {
+    let u = sampler.next_1d();
+    if !is_finite3(l) {
         crate::splat::count_invalid(words, pixel);
+        return;
+    }
+    if params.film_reach == 0 {
+        let l = if params.filter_signed != 0 { l * film_sample.weight } else { l };
+        crate::splat::splat(words, pixel, l, u);
+        return;
+    }
+    let pos = film_position(params, film_sample);
+    let (px, py) = (pixel % params.width, pixel / params.width);
+    let r = params.film_reach as i32;
+    let mut j = -r;
+    while j <= r {
+        let y = py as i32 + j;
+        let mut i = -r;
+        while i <= r {
+            let x = px as i32 + i;
+            if x >= 0 && x < params.width as i32 && y >= 0 && y < params.height as i32 {
+                let (x, y) = (x as u32, y as u32);
+                let w = film::pixel_weight(scene.tables, params, pos, params.crop_x + x, params.crop_y + y);
+                if w != 0.0 {
+                    crate::splat::splat(words, y * params.width + x, l * w, u);
+                }
+            }
+            i += 1;
+        }
+        j += 1;
     }
 }
 
@@ -265,7 +300,7 @@ pub fn splat_camera_paths<W: AtomicWords>(
         let (mut sampler, film_sample, ray, density) =
             splatted_camera_sample(scene, params, pixel, params.sample_base + s);
         let l = path::li(scene, params, ray, &mut sampler, density);
-        splat_camera_estimate(params, pixel, &film_sample, &mut sampler, l, words);
+        splat_camera_estimate(scene, params, pixel, &film_sample, &mut sampler, l, words);
         s += 1;
     }
 }
@@ -301,7 +336,7 @@ pub fn splat_cached_camera_path<W: AtomicWords>(
     let vertices = bdpt::CacheView { cache, base: pixel * bdpt::MAX_LIGHT_VERTICES };
     let grid = vcm_grid::GridView { cache, words: grid_words, grid: vcm_grid::Grid::of(params) };
     let l = bdpt::camera_path(scene, params, ray, &mut sampler, density, &vertices, &grid);
-    splat_camera_estimate(params, pixel, &film_sample, &mut sampler, l, words);
+    splat_camera_estimate(scene, params, pixel, &film_sample, &mut sampler, l, words);
 }
 
 /// Traces the light paths of `params.sample_count` samples of path index `pixel` (one light path per

@@ -34,7 +34,7 @@ pub const DIM_WAVELENGTH: u32 = DIMS_PER_BOUNCE - 1;
 pub const DIM_MASK: u32 = 1 << 24;
 
 /// Radiance arriving along `ray`. `pixel_density`: under IBPT, the density with which the pixel's
-/// camera samples land where this ray crosses the film (`film::pixel_density`; unused otherwise).
+/// camera samples land where this ray crosses the film (`film::camera_density`; unused otherwise).
 pub fn li(
     scene: &SceneView,
     params: &FrameParams,

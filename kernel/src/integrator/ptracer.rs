@@ -182,16 +182,17 @@ pub(super) fn splat_to_camera<W: AtomicWords>(
     while y <= y1 {
         let mut x = x0;
         while x <= x1 {
-            let density = film::pixel_density(scene.tables, params, pos, x, y);
-            if density > 0.0 {
+            let density = film::camera_density(scene.tables, params, pos, x, y);
+            // The filter itself (negative on a negative lobe) where the MIS weight takes the camera
+            // samples' density; the two are one under filter importance sampling without lobes.
+            let filter = if params.filter_signed != 0 || params.film_reach != 0 {
+                film::pixel_weight(scene.tables, params, pos, x, y)
+            } else {
+                density
+            };
+            if density > 0.0 && filter != 0.0 {
                 let pixel = (y - params.crop_y) * params.width + (x - params.crop_x);
                 let weight = weighting.weight(importance * density);
-                // The filter itself (negative on a negative lobe) where the MIS weight takes the density.
-                let filter = if params.filter_signed != 0 {
-                    film::pixel_weight(scene.tables, params, pos, x, y)
-                } else {
-                    density
-                };
                 splat(words, pixel, value * (importance * filter * weight), u);
             }
             x += 1;
