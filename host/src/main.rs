@@ -149,7 +149,8 @@ struct RunArgs {
     integrator: Vec<IntegratorChoice>,
     /// How camera samples reach the film: `splat` adds each to every pixel its filter covers, as
     /// Mitsuba does; `fis` draws its offset from the filter and gives it to its own pixel
-    /// (uncorrelated noise between pixels, more of it per sample). Light tracing always uses `fis`.
+    /// (uncorrelated noise between pixels, more of it per sample). The bidirectional integrators'
+    /// camera samples follow it; `ptracer` has none.
     #[arg(long, value_enum, default_value = "splat")]
     film: FilmMode,
     /// Run ibpt's, bdpt's or vcm's own kernel even where no light path can start (every emitter at

@@ -186,6 +186,23 @@ fn the_bidirectional_camera_halves_have_the_splatting_films_lower_error() {
     }
 }
 
+/// The GPU runs the same splatted camera halves: `ibpt` (the `render` entry point's camera paths) and
+/// `vcm` (`cache_camera`'s, which `bdpt` shares) with the default gaussian, the same seed, the same
+/// image to float rounding.
+#[test]
+fn the_bidirectional_camera_halves_splat_alike_on_gpu_and_cpu() {
+    for kind in [IntegratorKind::Ibpt, IntegratorKind::Vcm] {
+        let defines = defines(&[("filter", "gaussian"), ("res", "24")]);
+        let mut scene = caustic::load::load_scene(&test_data("filters_black.xml"), &defines).expect("loads");
+        scene.integrator.kind = kind;
+        let cpu = render_scene(&scene, BackendChoice::Cpu, 2, 5);
+        let gpu = render_scene(&scene, BackendChoice::Gpu, 2, 5);
+        let max_diff = max_abs_difference(&cpu, &gpu);
+        println!("{kind:?} GPU vs CPU, gaussian: max |difference| {max_diff:e}");
+        assert!(max_diff < 1e-3, "{kind:?}: GPU and CPU differ by {max_diff}");
+    }
+}
+
 fn against(filter: &str, film: FilmMode) -> (f64, f64) {
     let image = render_filters_scene(filter, film, 256, 9);
     let reference = Film::load_exr(&test_data(&format!("filters_{filter}.exr"))).expect("reference");
