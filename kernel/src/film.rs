@@ -215,6 +215,21 @@ pub fn pixel_weight(tables: &[f32], params: &FrameParams, pos: Vec2, px: u32, py
     filter_at(tables, params, signed_table(params), pos, px, py)
 }
 
+/// One axis of `pixel_weight` for the pixel centred at `c` (pixels of the full image) along x
+/// (`x_axis`) or y: the filter at `pos` and, where that is not zero, its mass in the rendered window
+/// along the axis. `pixel_weight` at a point of the window is the product of the two axes' filters
+/// over the product of their masses, where that is positive: a neighbourhood needs each column's and
+/// each row's once (`integrator::splat_camera_estimate`).
+pub fn axis_pixel_weight(tables: &[f32], params: &FrameParams, pos: f32, c: f32, x_axis: bool) -> (f32, f32) {
+    let (start, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
+    let base = signed_table(params);
+    let f = filter_density(tables, params, base, pos - c);
+    if f == 0.0 {
+        return (0.0, 0.0);
+    }
+    (f, axis_mass(tables, params, base, c, window(start, size)))
+}
+
 /// The filter of table `base` centred on pixel (`px`, `py`) at `pos`, over its truncated sum: zero
 /// outside the rendered window, where no camera sample lands (a light path's connection landing
 /// there reaches no pixel, or a crop's edge pixels would gain what its camera samples cannot).

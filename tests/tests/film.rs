@@ -90,6 +90,59 @@ fn one_sample_reaches_each_pixel_with_the_filters_weight() {
     }
 }
 
+/// `film::pixel_weight` (light tracing's weight for a pixel, which the bidirectional camera halves
+/// splat with) is the product of its two axes' filters over the product of their masses
+/// (`film::axis_pixel_weight`, how `splat_camera_estimate` evaluates a neighbourhood): the same to the bit,
+/// for every filter, inside a crop window and at its edges.
+#[test]
+fn a_pixels_weight_is_the_product_of_its_axes() {
+    for filter in ["gaussian", "tent", "mitchell", "lanczos"] {
+        let scene = load_xml(
+            &format!(
+                "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
+                 <integer name=\"width\" value=\"16\"/><integer name=\"height\" value=\"12\"/>\
+                 <integer name=\"crop_offset_x\" value=\"3\"/><integer name=\"crop_offset_y\" value=\"2\"/>\
+                 <integer name=\"crop_width\" value=\"9\"/><integer name=\"crop_height\" value=\"7\"/>\
+                 <rfilter type=\"{filter}\"/></film></sensor></scene>"
+            ),
+            "pixel-weight-axes",
+        );
+        let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
+        let (params, tables) = (buffers.params, &buffers.tables);
+        let (mut nonzero, mut checked) = (0, 0);
+        for k in 0..400 {
+            // Points of the window, its edges' pixels included (a golden-ratio lattice).
+            let u = ((k as f32 * 0.618_034) % 1.0, (k as f32 * 0.754_878) % 1.0);
+            let pos = Vec2::new(3.0 + 9.0 * u.0, 2.0 + 7.0 * u.1);
+            for py in 2..9 {
+                for px in 3..12 {
+                    let w = caustic_kernel::film::pixel_weight(tables, &params, pos, px, py);
+                    let (fx, mx) = caustic_kernel::film::axis_pixel_weight(
+                        tables,
+                        &params,
+                        pos.x,
+                        px as f32 + 0.5,
+                        true,
+                    );
+                    let (fy, my) = caustic_kernel::film::axis_pixel_weight(
+                        tables,
+                        &params,
+                        pos.y,
+                        py as f32 + 0.5,
+                        false,
+                    );
+                    let mass = mx * my;
+                    let separable = if fx != 0.0 && fy != 0.0 && mass > 0.0 { fx * fy / mass } else { 0.0 };
+                    assert_eq!(w.to_bits(), separable.to_bits(), "{filter}: pixel ({px}, {py}) at {pos}");
+                    nonzero += (w != 0.0) as u32;
+                    checked += 1;
+                }
+            }
+        }
+        assert!(nonzero * 20 > checked, "{filter}: only {nonzero} of {checked} weights were not zero");
+    }
+}
+
 fn render_filters_scene(filter: &str, film: FilmMode, spp: u32, seed: u32) -> Film {
     render_sized(filter, film, spp, seed, "32")
 }
