@@ -25,24 +25,42 @@ fn a_pruned_kernel_renders_the_specialised_image() {
     // Vulkan's own validator, where it is installed (CI installs it: .ci/run), on this module and on
     // every single feature's, none and all, under both loops; naga, which wgpu reads modules with,
     // checks the same in `prune`'s unit tests.
+    // One validator a core at once (the whole kernel's, mask `u32::MAX`, takes it a minute here).
     let file = std::env::temp_dir().join(format!("caustic-pruned-{}.spv", std::process::id()));
     let masks = (0..32).map(|bit| 1u32 << bit).chain([0, u32::MAX]);
-    let modules = masks.flat_map(|mask| [(mask, 0), (mask, 1)]).chain([(buffers.features, regenerate)]);
-    for (mask, path_loop) in modules {
-        let module = caustic::backend::prune::pruned(&words, mask, path_loop).expect("the kernel prunes");
-        std::fs::write(&file, bytemuck::cast_slice(&module)).unwrap();
-        let run =
-            std::process::Command::new("spirv-val").arg("--target-env").arg("vulkan1.2").arg(&file).output();
-        match run {
-            Ok(out) => assert!(
+    let modules: Vec<(u32, u32)> =
+        masks.flat_map(|mask| [(mask, 0), (mask, 1)]).chain([(buffers.features, regenerate)]).collect();
+    let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
+    'batches: for batch in modules.chunks(cores) {
+        let mut runs = Vec::new();
+        for (k, &(mask, path_loop)) in batch.iter().enumerate() {
+            let module = caustic::backend::prune::pruned(&words, mask, path_loop).expect("the kernel prunes");
+            let path = file.with_extension(format!("{k}.spv"));
+            std::fs::write(&path, bytemuck::cast_slice(&module)).unwrap();
+            let child = std::process::Command::new("spirv-val")
+                .arg("--target-env")
+                .arg("vulkan1.2")
+                .arg(&path)
+                .stdout(std::process::Stdio::piped())
+                .stderr(std::process::Stdio::piped())
+                .spawn();
+            match child {
+                Ok(child) => runs.push((mask, path_loop, path, child)),
+                Err(_) => {
+                    std::fs::remove_file(&path).ok();
+                    eprintln!("spirv-val is not installed: the modules are not checked by it");
+                    break 'batches;
+                }
+            }
+        }
+        for (mask, path_loop, path, child) in runs {
+            let out = child.wait_with_output().expect("spirv-val ran");
+            std::fs::remove_file(&path).ok();
+            assert!(
                 out.status.success(),
                 "mask {mask:#x}, loop {path_loop}: spirv-val: {}",
                 String::from_utf8_lossy(&out.stderr)
-            ),
-            Err(_) => {
-                eprintln!("spirv-val is not installed: the modules are not checked by it");
-                break;
-            }
+            );
         }
     }
 
