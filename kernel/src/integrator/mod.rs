@@ -271,8 +271,9 @@ fn splat_camera_estimate<W: AtomicWords>(
     // `film::pixel_weight` separably: each column's filter and mass along x once, each row's along y
     // once (per pixel, the weights' table lookups made the CPU's `ibpt` samples 53% dearer than
     // under `--film fis` on bsdf_dielectric_glass; separably, 17%).
-    let (fx, mx) = axis_weights(scene, params, pos.x, px, true);
-    let (fy, my) = axis_weights(scene, params, pos.y, py, false);
+    let span = (2 * r + 1) as u32;
+    let (fx, mx) = axis_weights(scene, params, pos.x, px as i32 - r, span, true);
+    let (fy, my) = axis_weights(scene, params, pos.y, py as i32 - r, span, false);
     let mut j = 0;
     while j <= 2 * r {
         let mut i = 0;
@@ -289,24 +290,28 @@ fn splat_camera_estimate<W: AtomicWords>(
     }
 }
 
+/// The most pixels `axis_weights` covers along an axis: a light-tracing connection's footprint,
+/// `floor(pos ± filter radius)` with the radius at most `MAX_REACH + 0.5`.
+pub(super) const SPAN: usize = (2 * MAX_REACH + 2) as usize;
+
 /// The filter at `pos` and its mass in the rendered window along one axis (`film::axis_pixel_weight`)
-/// for the 2r+1 pixels from `p − r` to `p + r` (`x_axis`: columns, else rows); zero for those past the
-/// window's edge.
+/// for the `count` (at most `SPAN`) pixels from `first`, counted from the window's start (`x_axis`:
+/// columns, else rows); zero for those outside the window.
 #[inline]
-fn axis_weights(
+pub(super) fn axis_weights(
     scene: &SceneView,
     params: &FrameParams,
     pos: f32,
-    p: u32,
+    first: i32,
+    count: u32,
     x_axis: bool,
-) -> ([f32; (2 * MAX_REACH + 1) as usize], [f32; (2 * MAX_REACH + 1) as usize]) {
+) -> ([f32; SPAN], [f32; SPAN]) {
     let (crop, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
-    let r = params.film_reach as i32;
-    let mut f = [0.0f32; (2 * MAX_REACH + 1) as usize];
-    let mut m = [0.0f32; (2 * MAX_REACH + 1) as usize];
+    let mut f = [0.0f32; SPAN];
+    let mut m = [0.0f32; SPAN];
     let mut i = 0;
-    while i <= 2 * r {
-        let q = p as i32 + i - r;
+    while i < count && i < SPAN as u32 {
+        let q = first + i as i32;
         if q >= 0 && q < size as i32 {
             let c = (crop + q as u32) as f32 + 0.5;
             let (a, b) = film::axis_pixel_weight(scene.tables, params, pos, c, x_axis);
