@@ -10,11 +10,16 @@
 //! A pass traces every pixel's light path first, keeping its vertices in the pass's light vertex
 //! cache (`CacheSlots`: `MAX_LIGHT_VERTICES` slots of `LightVertex` a path, so memory is bounded per
 //! path and per pass), then every pixel's camera path, which connects to its own light path's
-//! vertices (`CacheView`) and merges with all of them (`vcm_grid::GridView`). Paths of up to
-//! `MAX_LIGHT_VERTICES + 1` segments are weighted over every strategy; the light path stops there, so
-//! longer paths (where `max_depth` allows them) are made by the camera path alone, hitting an emitter
-//! or by next-event estimation, weighted between those two as `path` weighs them. Each path length
-//! therefore has a set of strategies that all exist, and the weights sum to one over it.
+//! vertices (`CacheView`) and merges with all of them (`vcm_grid::GridView`). A path whose vertices
+//! with a non-Dirac lobe number at most `MAX_LIGHT_VERTICES`, within `MAX_LIGHT_SEGMENTS + 1`
+//! segments, is weighted over every strategy (`bidirectional`): a light path stops before a vertex it
+//! could not keep, so every light sub-path of such a path is one a light path can be. Other paths
+//! (where `max_depth` allows them) are made by the camera path alone, hitting an emitter or by
+//! next-event estimation, weighted between those two as `path` weighs them. Each path therefore has a
+//! set of strategies that all exist, and the weights sum to one over it. (Counting segments alone, a
+//! chain of Dirac vertices in glass used up the light path's reach: the prism seen through itself
+//! took a camera path of ten segments through the glass to the lamp at full weight: one sample of
+//! 15,868 in a pixel of 0.006.)
 //!
 //! Light paths and camera paths follow `ptracer` and `path`: Mitsuba's `max_depth` (segments),
 //! `rr_depth` and `hide_emitters`, null interfaces crossed without a vertex (`mask`), importance
@@ -56,10 +61,13 @@ use crate::shape::{offset_origin, SurfacePoint};
 use crate::spectrum::Rgb;
 use crate::splat::AtomicWords;
 
-/// The light path's vertices kept for connections, and its longest length in segments: paths up to
-/// one segment longer are weighted over all strategies, longer ones between the camera path's two.
-/// Each vertex takes 208 bytes of the light vertex cache (`kernel/tests/bdpt_mis.rs`).
+/// The light path's vertices kept for connections (those with a non-Dirac lobe): paths with more are
+/// weighted between the camera path's two strategies. Each vertex takes 208 bytes of the light vertex
+/// cache (`kernel/tests/bdpt_mis.rs`).
 pub const MAX_LIGHT_VERTICES: u32 = 8;
+/// The light path's longest length in segments, Dirac vertices included: paths up to one segment
+/// longer are weighted over all strategies where their non-Dirac vertices fit the cache.
+pub const MAX_LIGHT_SEGMENTS: u32 = 32;
 const SHADOW_EPSILON: f32 = 1.0e-4;
 const ONE_EACH: StrategyCounts = StrategyCounts::ONE_EACH;
 
@@ -290,22 +298,25 @@ impl CacheView<'_> {
 }
 
 /// A camera vertex's path state, as the strategies that join it to light vertices see it: its MIS
-/// state, its `segments` from the camera and whether its path `dispersed` on the way (this vertex
-/// included), with the pass's `wavelength`. Its BSDF, shading and point travel beside it as separate
+/// state, its `segments` from the camera, its vertices with a non-Dirac lobe (`smooth`, this one
+/// included) and whether its path `dispersed` on the way (this vertex included), with the pass's
+/// `wavelength`. Its BSDF, shading and point travel beside it as separate
 /// references: a struct of pointers to function-local values is a type naga rejects in the SPIR-V
 /// rust-gpu emits ("Type [68] '' is invalid", on every entry point), where plain values pass.
 #[derive(Clone, Copy)]
 pub struct CameraVertex {
     pub mis: SubpathMis,
     pub segments: u32,
+    pub smooth: u32,
     pub dispersed: bool,
     pub wavelength: PassWavelength,
 }
 
-/// Whether a path of `segments` is weighted over every strategy (within the light path's reach).
+/// Whether a path of `segments`, `smooth` of whose vertices between its ends have a non-Dirac lobe,
+/// is weighted over every strategy: whether each of its light sub-paths is within a light path's reach.
 #[inline]
-pub fn bidirectional(segments: u32) -> bool {
-    segments <= MAX_LIGHT_VERTICES + 1
+pub fn bidirectional(segments: u32, smooth: u32) -> bool {
+    segments <= MAX_LIGHT_SEGMENTS + 1 && smooth <= MAX_LIGHT_VERTICES
 }
 
 /// Whether light paths connect their emitter points to the camera: where a camera path may see an
@@ -372,7 +383,7 @@ fn light_path_vertices<W: AtomicWords>(
     let mut depth = 1u32;
     let mut count = 0u32;
     let mut mask_passes = 0u32;
-    while depth <= MAX_LIGHT_VERTICES && (max_depth == NONE || depth < max_depth) {
+    while depth <= MAX_LIGHT_SEGMENTS && (max_depth == NONE || depth < max_depth) {
         let bounce_dims = DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE;
         sampler.set_dimension(bounce_dims);
         let hit = match accel.trace(&ray, false, NONE) {
@@ -423,13 +434,15 @@ fn light_path_vertices<W: AtomicWords>(
         };
 
         if smooth {
-            // A camera vertex merges with this one (connects: one segment more) only if the path stays
-            // within `max_depth`.
-            if within(max_depth, depth + 1) && count < MAX_LIGHT_VERTICES {
-                let flagged = if dispersed { depth | DISPERSED } else { depth };
-                vertices.put(count, LightVertex::new(&sp, &shading, material_index, beta, mis, flagged));
-                count += 1;
+            // A path through more such vertices than the cache keeps is the camera path's alone. Each
+            // one is kept (a camera vertex connecting to it makes a path of `depth + 1` segments, which
+            // the loop's bound keeps within `max_depth`), so its slot says how many came before it.
+            if count >= MAX_LIGHT_VERTICES {
+                break;
             }
+            let flagged = if dispersed { depth | DISPERSED } else { depth };
+            vertices.put(count, LightVertex::new(&sp, &shading, material_index, beta, mis, flagged));
+            count += 1;
             if let Some(c) = camera.connect(sp.p, lens_sample(sampler, bounce_dims + DIM_LENS_IN_BOUNCE)) {
                 let to_camera = frame.to_local(c.dir);
                 let f = bsdf.eval(wo, to_camera, TransportMode::Importance);
@@ -452,7 +465,7 @@ fn light_path_vertices<W: AtomicWords>(
                 );
             }
         }
-        if depth >= MAX_LIGHT_VERTICES || (max_depth != NONE && depth + 1 >= max_depth) {
+        if depth >= MAX_LIGHT_SEGMENTS || (max_depth != NONE && depth + 1 >= max_depth) {
             break;
         }
 
@@ -511,6 +524,8 @@ pub fn camera_path(
     let mut result = Rgb::ZERO;
     let mut eta_scale = 1.0f32;
     let mut mis = SubpathMis::ZERO;
+    // The path's vertices with a non-Dirac lobe so far (`bidirectional`).
+    let mut smooth = 0u32;
     let mut prev = PreviousVertex::camera(camera_ray.origin);
     // Segments to the vertex about to be found, less one.
     let mut depth = 0u32;
@@ -565,14 +580,14 @@ pub fn camera_path(
                 bdpt_mis::hit_weight(arrived, point, 0.0)
             } else if prev.delta {
                 // Through Dirac lobes alone: the recursion's terms decide.
-                if !bidirectional(segments) {
+                if !bidirectional(segments, smooth) {
                     1.0
                 } else {
                     bdpt_mis::hit_weight(arrived, 0.0, emission::hit_density(scene, prim.light) * cos_in)
                 }
             } else {
                 let direct = light::pdf(&emitter, &prim, prev.p, sp.p, sp.ng);
-                if bidirectional(segments) {
+                if bidirectional(segments, smooth) {
                     let direct_area = bdpt_mis::to_area(direct, dist_sq, cos_in);
                     let emission = emission::hit_density(scene, prim.light) * cos_in;
                     bdpt_mis::hit_weight(arrived, direct_area, emission)
@@ -622,18 +637,19 @@ pub fn camera_path(
         let u_select = sampler.next_1d();
         let u_light = sampler.next_2d();
         if bsdf.flags().has_smooth() {
-            let weighting = LightTracingMis::bdpt(mis, bidirectional(segments + 1));
+            smooth += 1;
+            let weighting = LightTracingMis::bdpt(mis, bidirectional(segments + 1, smooth));
             let nee = next_event(
                 scene, params, &accel, &bsdf, &frame, &sp, ng, wo, u_select, u_light, ONE_EACH, weighting,
             );
             result += throughput * nee * wavelength.factor(dispersed);
-            let vertex = CameraVertex { mis, segments, dispersed, wavelength };
+            let vertex = CameraVertex { mis, segments, smooth, dispersed, wavelength };
             result += throughput * grid.merge(&bsdf, &shading, &sp, vertex, max_depth, merging);
             let mut k = 0;
             while k < count {
                 let v = vertices.vertex(k);
                 let length = segments + v.segments() + 1;
-                if within(max_depth, length) && bidirectional(length) {
+                if within(max_depth, length) && bidirectional(length, smooth + k + 1) {
                     result += throughput * connect(scene, &accel, &bsdf, &shading, &sp, vertex, &v, merging);
                 }
                 k += 1;

@@ -131,12 +131,16 @@ impl GridView<'_> {
             }
             let mut j = self.words[b as usize];
             while j != 0 {
-                let v = self.cache[(j - 1) as usize];
-                j = self.words[(grid.buckets + j - 1) as usize];
+                let slot = j - 1;
+                let v = self.cache[slot as usize];
+                j = self.words[(grid.buckets + slot) as usize];
                 let length = camera.segments + v.segments();
+                // The light path's vertices with a non-Dirac lobe up to this one: its slot in the path's
+                // slots, plus one; the merged vertex is both paths' last.
+                let light_smooth = slot % MAX_LIGHT_VERTICES + 1;
                 if (v.position() - sp.p).length_squared() > r_sq
                     || !within(max_depth, length)
-                    || !bidirectional(length)
+                    || !bidirectional(length, camera.smooth + light_smooth - 1)
                 {
                     continue;
                 }
