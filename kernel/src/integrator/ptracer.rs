@@ -17,7 +17,7 @@ use super::bdpt_mis::{self, SubpathMis};
 use super::mis;
 use super::nee::first_hit_past_emitters;
 use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE, DIM_WAVELENGTH};
-use super::{axis_weights, disperse, shading_frame, NO_WAVELENGTH, SPAN};
+use super::{axis_weights, disperse, shading_frame, splat_footprint, NO_WAVELENGTH, SPAN};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::{CameraConnection, Ray};
@@ -188,24 +188,11 @@ pub(super) fn splat_to_camera<W: AtomicWords>(
             return;
         }
         let weight = weighting.weight(importance);
-        let (fx, mx) = axis_weights(scene, params, pos.x, (x0 - params.crop_x) as i32, columns, true);
-        let (fy, my) = axis_weights(scene, params, pos.y, (y0 - params.crop_y) as i32, rows, false);
-        let mut j = 0;
-        while j < rows {
-            let mut i = 0;
-            while fy[j as usize] != 0.0 && i < columns {
-                let mass = mx[i as usize] * my[j as usize];
-                if fx[i as usize] != 0.0 && mass > 0.0 {
-                    let filter = fx[i as usize] * fy[j as usize] / mass;
-                    if filter != 0.0 {
-                        let pixel = (y0 + j - params.crop_y) * params.width + (x0 + i - params.crop_x);
-                        splat(words, pixel, value * (importance * filter * weight), u);
-                    }
-                }
-                i += 1;
-            }
-            j += 1;
-        }
+        let first = ((x0 - params.crop_x) as i32, (y0 - params.crop_y) as i32);
+        let along_x = axis_weights(scene, params, pos.x, first.0, columns, true);
+        let along_y = axis_weights(scene, params, pos.y, first.1, rows, false);
+        let value = value * (importance * weight);
+        splat_footprint(words, params.width, first, along_x, along_y, (columns, rows), value, u);
         return;
     }
     let mut y = y0;
