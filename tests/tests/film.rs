@@ -143,6 +143,102 @@ fn a_pixels_weight_is_the_product_of_its_axes() {
     }
 }
 
+/// Splats into a footprint (`integrator::splat_footprint`) keep each pixel's expectation: the pixels
+/// whose weight is below `FOOTPRINT_FLOOR` of the largest are reached by chance, with the floor's
+/// weight. For every filter (negative lobes included), at points of a crop window and its edges, the
+/// mean over 4096 rounding numbers of what each pixel got is its weight (`film::pixel_weight`) within
+/// five standard errors, and a gaussian's splat reaches 5.5 of the 12.3 pixels its footprint has in
+/// the window on average (asserted: under 0.6 of them). (Splatting
+/// the floor's weight with probability ½ instead fails it: pixel (1, 0) of
+/// the gaussian's first point, 0.0114 against 0.0064.)
+#[test]
+fn a_footprints_chance_splats_keep_each_pixels_expectation() {
+    use caustic_kernel::integrator::{axis_weights, splat_footprint, FOOTPRINT_FLOOR};
+    use caustic_kernel::splat::{resolved as resolved_words, AtomicWords, SPLAT_STRIDE};
+    struct Words(Vec<u32>);
+    impl AtomicWords for Words {
+        fn fetch_add(&mut self, index: u32, value: u32) -> u32 {
+            let old = self.0[index as usize];
+            self.0[index as usize] = old.wrapping_add(value);
+            old
+        }
+        fn exchange(&mut self, index: u32, value: u32) -> u32 {
+            std::mem::replace(&mut self.0[index as usize], value)
+        }
+    }
+    const TRIALS: u32 = 4096;
+    for filter in ["gaussian", "tent", "mitchell", "lanczos"] {
+        let scene = load_xml(
+            &format!(
+                "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
+                 <integer name=\"width\" value=\"16\"/><integer name=\"height\" value=\"12\"/>\
+                 <integer name=\"crop_offset_x\" value=\"3\"/><integer name=\"crop_offset_y\" value=\"2\"/>\
+                 <integer name=\"crop_width\" value=\"9\"/><integer name=\"crop_height\" value=\"7\"/>\
+                 <rfilter type=\"{filter}\"/></film></sensor></scene>"
+            ),
+            "footprint-chance",
+        );
+        let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
+        let (params, tables) = (buffers.params, &buffers.tables);
+        let view = buffers.view();
+        let (w, h) = (params.width, params.height);
+        let r = params.filter_radius;
+        let (mut splats, mut footprint) = (0u64, 0u64);
+        for k in 0..24 {
+            let u = ((k as f32 * 0.618_034) % 1.0, (k as f32 * 0.754_878) % 1.0);
+            let pos = Vec2::new(3.0 + 9.0 * u.0, 2.0 + 7.0 * u.1);
+            // The footprint as light tracing takes it (`ptracer::splat_to_camera`), in the window.
+            let x0 = ((pos.x - r).floor().max(3.0)) as u32;
+            let y0 = ((pos.y - r).floor().max(2.0)) as u32;
+            let x1 = ((pos.x + r).floor() as u32).min(3 + w - 1);
+            let y1 = ((pos.y + r).floor() as u32).min(2 + h - 1);
+            let (columns, rows) = (x1 - x0 + 1, y1 - y0 + 1);
+            let first = (x0 as i32 - 3, y0 as i32 - 2);
+            let along_x = axis_weights(&view, &params, pos.x, first.0, columns, true);
+            let along_y = axis_weights(&view, &params, pos.y, first.1, rows, false);
+            let mut sums = vec![0.0f64; (w * h) as usize];
+            for t in 0..TRIALS {
+                let mut words = Words(vec![0; (w * h * SPLAT_STRIDE) as usize]);
+                let u = (t as f32 + 0.5) / TRIALS as f32;
+                splat_footprint(&mut words, w, first, along_x, along_y, (columns, rows), Vec3::ONE, u);
+                for (pixel, sum) in sums.iter_mut().enumerate() {
+                    let base = pixel * SPLAT_STRIDE as usize;
+                    let mut cell = [0u32; SPLAT_STRIDE as usize];
+                    cell.copy_from_slice(&words.0[base..base + SPLAT_STRIDE as usize]);
+                    let a = resolved_words(PixelAccum::default(), cell, 1, 1.0);
+                    *sum += a.sum[0] as f64;
+                    splats += (cell[..6].iter().any(|&x| x != 0)) as u64;
+                }
+            }
+            let weights: Vec<f32> = (0..h)
+                .flat_map(|y| (0..w).map(move |x| (x, y)))
+                .map(|(x, y)| caustic_kernel::film::pixel_weight(tables, &params, pos, x + 3, y + 2))
+                .collect();
+            let largest = weights.iter().fold(0.0f32, |m, x| m.max(x.abs())) as f64;
+            let floor = FOOTPRINT_FLOOR as f64 * largest;
+            for (pixel, (&sum, &weight)) in sums.iter().zip(&weights).enumerate() {
+                let mean = sum / TRIALS as f64;
+                let weight = weight as f64;
+                footprint += (weight != 0.0) as u64;
+                let se = (floor * weight.abs() / TRIALS as f64).sqrt();
+                assert!(
+                    (mean - weight).abs() <= 5.0 * se + 1e-5 * largest,
+                    "{filter}: pixel ({}, {}) at {pos}: {mean:.6} against {weight:.6}",
+                    pixel as u32 % w,
+                    pixel as u32 / w
+                );
+            }
+        }
+        let per_splat = splats as f64 / TRIALS as f64 / 24.0;
+        let per_footprint = footprint as f64 / 24.0;
+        println!("{filter}: {per_splat:.2} pixels splatted of {per_footprint:.2} with a weight");
+        assert!(per_splat < per_footprint, "{filter}: no pixel was left to chance");
+        if filter == "gaussian" {
+            assert!(per_splat < 0.6 * per_footprint, "the gaussian's tail still takes most splats");
+        }
+    }
+}
+
 fn render_filters_scene(filter: &str, film: FilmMode, spp: u32, seed: u32) -> Film {
     render_sized(filter, film, spp, seed, "32")
 }

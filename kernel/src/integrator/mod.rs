@@ -282,7 +282,7 @@ fn splat_camera_estimate<W: AtomicWords>(
 /// chance (`splat_footprint`). Mitsuba's default gaussian (stddev ½, radius 2) covers 16 pixels; with
 /// 1/16 a splat reaches 6.4 of them on average and adds 0.2% to the footprint's sum of squared weights
 /// as variance, 1/8 5.3 and 0.9% (averaged over positions uniform in the pixel).
-pub(super) const FOOTPRINT_FLOOR: f32 = 1.0 / 16.0;
+pub const FOOTPRINT_FLOOR: f32 = 1.0 / 16.0;
 
 /// Splats `value` times the filter's weight into each pixel of a footprint: the `count`×`count` (at
 /// most `SPAN`) pixels from (`x0`, `y0`) in the window, the filter and its mass along each axis from
@@ -293,7 +293,7 @@ pub(super) const FOOTPRINT_FLOOR: f32 = 1.0 / 16.0;
 /// pixel deciding by a hash of the rounding number `u` and its index.
 #[inline]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn splat_footprint<W: AtomicWords>(
+pub fn splat_footprint<W: AtomicWords>(
     words: &mut W,
     width: u32,
     (x0, y0): (i32, i32),
@@ -338,13 +338,13 @@ pub(super) fn splat_footprint<W: AtomicWords>(
 
 /// The most pixels `axis_weights` covers along an axis: a light-tracing connection's footprint,
 /// `floor(pos ± filter radius)` with the radius at most `MAX_REACH + 0.5`.
-pub(super) const SPAN: usize = (2 * MAX_REACH + 2) as usize;
+pub const SPAN: usize = (2 * MAX_REACH + 2) as usize;
 
 /// The filter at `pos` and its mass in the rendered window along one axis (`film::axis_pixel_weight`)
 /// for the `count` (at most `SPAN`) pixels from `first`, counted from the window's start (`x_axis`:
 /// columns, else rows); zero for those outside the window.
 #[inline]
-pub(super) fn axis_weights(
+pub fn axis_weights(
     scene: &SceneView,
     params: &FrameParams,
     pos: f32,
