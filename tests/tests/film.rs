@@ -148,9 +148,8 @@ fn a_pixels_weight_is_the_product_of_its_axes() {
 /// weight. For every filter (negative lobes included), at points of a crop window and its edges, the
 /// mean over 4096 rounding numbers of what each pixel got is its weight (`film::pixel_weight`) within
 /// five standard errors, and a gaussian's splat reaches 5.5 of the 12.3 pixels its footprint has in
-/// the window on average (asserted: under 0.6 of them). (Splatting
-/// the floor's weight with probability ½ instead fails it: pixel (1, 0) of
-/// the gaussian's first point, 0.0114 against 0.0064.)
+/// the window on average (asserted: under 0.6 of them). (Splatting the floor's weight with probability
+/// ½ instead fails it: pixel (1, 0) of the gaussian's first point, 0.0114 against 0.0064.)
 #[test]
 fn a_footprints_chance_splats_keep_each_pixels_expectation() {
     use caustic_kernel::integrator::{axis_weights, splat_footprint, FOOTPRINT_FLOOR};
