@@ -286,11 +286,11 @@ impl CacheView<'_> {
         self.cache[(self.base + k) as usize]
     }
 
-    /// The path's vertices: those before the first empty slot.
+    /// The path's vertices: those before the first empty slot (their depth alone read).
     #[inline]
     pub fn count(&self) -> u32 {
         let mut count = 0;
-        while count < MAX_LIGHT_VERTICES && self.vertex(count).depth > 0 {
+        while count < MAX_LIGHT_VERTICES && self.cache[(self.base + count) as usize].depth > 0 {
             count += 1;
         }
         count

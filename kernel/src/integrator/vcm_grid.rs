@@ -11,7 +11,7 @@
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
-use super::bdpt::{bidirectional, within, CameraVertex, LightVertex, MAX_LIGHT_VERTICES};
+use super::bdpt::{bidirectional, within, CameraVertex, LightVertex, DISPERSED, MAX_LIGHT_VERTICES};
 use super::bdpt_mis::{self, Merging};
 use crate::bsdf::perturb::Shading;
 use crate::bsdf::{Bsdf, TransportMode};
@@ -132,18 +132,22 @@ impl GridView<'_> {
             let mut j = self.words[b as usize];
             while j != 0 {
                 let slot = j - 1;
-                let v = self.cache[slot as usize];
                 j = self.words[(grid.buckets + slot) as usize];
-                let length = camera.segments + v.segments();
+                // Its position and depth first, the rest of its 208 bytes only within the radius: on a
+                // surface the eight cells' 16r² hold about five times the vertices of the radius's πr²
+                // (and a bucket those of the cells that share its hash).
+                let p = Vec3::from(self.cache[slot as usize].p);
+                let length = camera.segments + (self.cache[slot as usize].depth & !DISPERSED);
                 // The light path's vertices with a non-Dirac lobe up to this one: its slot in the path's
                 // slots, plus one; the merged vertex is both paths' last.
                 let light_smooth = slot % MAX_LIGHT_VERTICES + 1;
-                if (v.position() - sp.p).length_squared() > r_sq
+                if (p - sp.p).length_squared() > r_sq
                     || !within(max_depth, length)
                     || !bidirectional(length, camera.smooth + light_smooth - 1)
                 {
                     continue;
                 }
+                let v = self.cache[slot as usize];
                 let light_shading = v.shading();
                 let towards_light = light_shading.frame().to_world(light_shading.wo);
                 let cos_g = sp.ng.dot(towards_light).abs();
