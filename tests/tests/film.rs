@@ -90,6 +90,21 @@ fn one_sample_reaches_each_pixel_with_the_filters_weight() {
     }
 }
 
+/// An empty scene's buffers, a 16×12 image with a 9×7 crop window at (3, 2), under `filter`.
+fn crop_window_buffers(filter: &str) -> caustic::prepare::buffers::SceneBuffers {
+    let scene = load_xml(
+        &format!(
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
+             <integer name=\"width\" value=\"16\"/><integer name=\"height\" value=\"12\"/>\
+             <integer name=\"crop_offset_x\" value=\"3\"/><integer name=\"crop_offset_y\" value=\"2\"/>\
+             <integer name=\"crop_width\" value=\"9\"/><integer name=\"crop_height\" value=\"7\"/>\
+             <rfilter type=\"{filter}\"/></film></sensor></scene>"
+        ),
+        &format!("crop-window-{filter}"),
+    );
+    caustic::prepare::buffers::build(&scene).expect("builds")
+}
+
 /// `film::pixel_weight` (light tracing's weight for a pixel, which the bidirectional camera halves
 /// splat with) is the product of its two axes' filters over the product of their masses
 /// (`film::axis_pixel_weight`, how `splat_camera_estimate` evaluates a neighbourhood): the same to the bit,
@@ -97,17 +112,7 @@ fn one_sample_reaches_each_pixel_with_the_filters_weight() {
 #[test]
 fn a_pixels_weight_is_the_product_of_its_axes() {
     for filter in ["gaussian", "tent", "mitchell", "lanczos"] {
-        let scene = load_xml(
-            &format!(
-                "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
-                 <integer name=\"width\" value=\"16\"/><integer name=\"height\" value=\"12\"/>\
-                 <integer name=\"crop_offset_x\" value=\"3\"/><integer name=\"crop_offset_y\" value=\"2\"/>\
-                 <integer name=\"crop_width\" value=\"9\"/><integer name=\"crop_height\" value=\"7\"/>\
-                 <rfilter type=\"{filter}\"/></film></sensor></scene>"
-            ),
-            "pixel-weight-axes",
-        );
-        let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
+        let buffers = crop_window_buffers(filter);
         let (params, tables) = (buffers.params, &buffers.tables);
         let (mut nonzero, mut checked) = (0, 0);
         for k in 0..400 {
@@ -167,17 +172,7 @@ fn a_footprints_chance_splats_keep_each_pixels_expectation() {
     }
     const TRIALS: u32 = 4096;
     for filter in ["gaussian", "tent", "mitchell", "lanczos"] {
-        let scene = load_xml(
-            &format!(
-                "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
-                 <integer name=\"width\" value=\"16\"/><integer name=\"height\" value=\"12\"/>\
-                 <integer name=\"crop_offset_x\" value=\"3\"/><integer name=\"crop_offset_y\" value=\"2\"/>\
-                 <integer name=\"crop_width\" value=\"9\"/><integer name=\"crop_height\" value=\"7\"/>\
-                 <rfilter type=\"{filter}\"/></film></sensor></scene>"
-            ),
-            "footprint-chance",
-        );
-        let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
+        let buffers = crop_window_buffers(filter);
         let (params, tables) = (buffers.params, &buffers.tables);
         let view = buffers.view();
         let (w, h) = (params.width, params.height);
