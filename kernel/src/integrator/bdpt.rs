@@ -286,6 +286,12 @@ impl CacheView<'_> {
         self.cache[(self.base + k) as usize]
     }
 
+    /// Segments from the emitter to vertex `k` (its depth alone read).
+    #[inline]
+    fn segments(&self, k: u32) -> u32 {
+        self.cache[(self.base + k) as usize].depth & !DISPERSED
+    }
+
     /// The path's vertices: those before the first empty slot (their depth alone read).
     #[inline]
     pub fn count(&self) -> u32 {
@@ -647,9 +653,10 @@ pub fn camera_path(
             result += throughput * grid.merge(&bsdf, &shading, &sp, vertex, max_depth, merging);
             let mut k = 0;
             while k < count {
-                let v = vertices.vertex(k);
-                let length = segments + v.segments() + 1;
+                // Its depth first, its 208 bytes only for a connection made.
+                let length = segments + vertices.segments(k) + 1;
                 if within(max_depth, length) && bidirectional(length, smooth + k + 1) {
+                    let v = vertices.vertex(k);
                     result += throughput * connect(scene, &accel, &bsdf, &shading, &sp, vertex, &v, merging);
                 }
                 k += 1;
