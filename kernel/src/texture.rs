@@ -11,6 +11,8 @@ use crate::layout::{
 };
 use crate::math::vec3;
 use crate::spectrum::{luminance, Rgb};
+use core::num::NonZeroU32;
+use spirv_std::arch::IndexUnchecked;
 
 /// Where a texture is looked up: the surface's uv and, on a triangle, its mesh attributes' place in
 /// `tables` (`NONE` without) and the hit's barycentrics b1, b2 (`SurfacePoint::lookup`).
@@ -110,31 +112,70 @@ fn checkerboard(t: &Texture, uv: Vec2) -> Rgb {
     }
 }
 
-/// Maps an integer texel coordinate into `[0, size)` by the texture's wrap mode.
+/// Maps an integer texel coordinate into `[0, size)` by the texture's wrap mode, in arithmetic that
+/// cannot panic. On the GPU every operation that may panic is a branch of its own, inlined at each
+/// lookup: `i32::rem_euclid` (a zero divisor, `MIN % -1`) and `i32::clamp` (its bounds' order) made
+/// 24% of a textured scene's render entry point (`bsdf_plastic_default`, the envmap's bilinear
+/// lookups) and 42% of `bsdf_thindielectric_glass`'s, whose driver compile took 17 s on an H200
+/// (BENCHMARKS.md, "Where a scene's render entry point goes"). The values are `rem_euclid`'s.
 #[inline]
-fn wrap(i: i32, size: u32, flags: u32) -> u32 {
-    let n = size as i32;
+pub fn wrap(i: i32, size: u32, flags: u32) -> u32 {
+    let n = size.max(1);
     let mode = (flags >> TEXTURE_WRAP_SHIFT) & 3;
     let w = if mode == TEXTURE_WRAP_CLAMP {
-        i.clamp(0, n - 1)
+        i.max(0) as u32
     } else if mode == TEXTURE_WRAP_MIRROR {
-        let period = i.rem_euclid(2 * n);
+        let period = euclid_rem(i, 2 * n);
         if period < n {
             period
         } else {
             2 * n - 1 - period
         }
     } else {
-        i.rem_euclid(n)
+        euclid_rem(i, n)
     };
-    w as u32
+    w.min(n - 1)
 }
 
-/// Linear RGB of texel (x, y), row 0 at the image's top (v = 0).
+/// `i.rem_euclid(n)` for `n >= 1`, as unsigned remainders (`rem`): for negative `i`, `!i` is
+/// `-(i + 1)`, which cannot overflow.
+#[inline]
+fn euclid_rem(i: i32, n: u32) -> u32 {
+    if i >= 0 {
+        rem(i as u32, n)
+    } else {
+        n - 1 - rem(!i as u32, n)
+    }
+}
+
+/// `a % n` for `n >= 1` (`a` itself for `n = 0`) by a divisor known not to be zero: no check, no
+/// panic path (see `wrap`).
+#[inline]
+pub fn rem(a: u32, n: u32) -> u32 {
+    match NonZeroU32::new(n) {
+        Some(d) => a % d,
+        None => a,
+    }
+}
+
+/// Linear RGB of texel (x, y), row 0 at the image's top (v = 0); black for a texel outside the
+/// tables (which the host's layout never makes): one test instead of a bounds check per channel,
+/// each of which the GPU inlines with its panic path.
 #[inline]
 pub fn texel(t: &Texture, tables: &[f32], x: u32, y: u32) -> Rgb {
     let base = (t.offset + 3 * (y * t.width + x)) as usize;
-    Vec3::new(tables[base], tables[base + 1], tables[base + 2])
+    if base + 2 < tables.len() {
+        // SAFETY: `base + 2` is within `tables`, tested above.
+        unsafe {
+            Vec3::new(
+                *tables.index_unchecked(base),
+                *tables.index_unchecked(base + 1),
+                *tables.index_unchecked(base + 2),
+            )
+        }
+    } else {
+        Vec3::ZERO
+    }
 }
 
 fn bitmap_nearest(t: &Texture, tables: &[f32], uv: Vec2) -> Rgb {

@@ -15,7 +15,7 @@ use crate::layout::{Light, SceneView, Texture, LIGHT_ENVMAP, NONE};
 use crate::math::{INV_2PI, INV_4PI, INV_PI, PI};
 use crate::sampling::{linear_pdf, sample_cdf, sample_linear, square_to_uniform_sphere};
 use crate::spectrum::{luminance, Rgb};
-use crate::texture::texel;
+use crate::texture::{rem, texel};
 
 /// Radiance arriving from direction `dir` (the direction a ray escaping the scene travels).
 pub fn eval(light: &Light, scene: &SceneView, dir: Vec3) -> Rgb {
@@ -176,8 +176,8 @@ fn envmap_radiance(t: &Texture, tables: &[f32], uv: Vec2) -> Rgb {
     let py = v * (t.height - 1) as f32;
     let (x0f, y0f) = (px.floor(), py.floor());
     let (fx, fy) = (px - x0f, py - y0f);
-    let xa = ((x0f as i32 + w as i32) as u32) % w;
-    let xb = (xa + 1) % w;
+    let xa = rem((x0f as i32 + w as i32) as u32, w);
+    let xb = rem(xa + 1, w);
     let ya = (y0f as u32).min(t.height - 1);
     let yb = (ya + 1).min(t.height - 1);
     let top = texel(t, tables, xa, ya) * (1.0 - fx) + texel(t, tables, xb, ya) * fx;
