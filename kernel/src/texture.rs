@@ -114,10 +114,11 @@ fn checkerboard(t: &Texture, uv: Vec2) -> Rgb {
 
 /// Maps an integer texel coordinate into `[0, size)` by the texture's wrap mode, in arithmetic that
 /// cannot panic. On the GPU every operation that may panic is a branch of its own, inlined at each
-/// lookup: `i32::rem_euclid` (a zero divisor, `MIN % -1`) and `i32::clamp` (its bounds' order) made
-/// 24% of a textured scene's render entry point (`bsdf_plastic_default`, the envmap's bilinear
-/// lookups) and 42% of `bsdf_thindielectric_glass`'s, whose driver compile took 17 s on an H200
-/// (BENCHMARKS.md, "Where a scene's render entry point goes"). The values are `rem_euclid`'s.
+/// lookup: texture lookups made 26% of `bsdf_plastic_default`'s render entry point (the envmap's
+/// bilinear lookups) and 48% of `bsdf_thindielectric_glass`'s, whose driver compile took 17 s on an
+/// H200, half of it the code of `i32::rem_euclid` (a zero divisor, `MIN % -1`) and `i32::clamp` (its
+/// bounds' order) (BENCHMARKS.md, "Where a scene's render entry point goes"). The values are
+/// `rem_euclid`'s.
 #[inline]
 pub fn wrap(i: i32, size: u32, flags: u32) -> u32 {
     let n = size.max(1);
