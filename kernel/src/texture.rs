@@ -72,11 +72,24 @@ fn mesh_attribute(t: &Texture, tables: &[f32], at: Lookup) -> Rgb {
     value * vec3([t.color0[0], t.color0[1], t.color0[2]])
 }
 
-/// Three floats of `tables` from `i`. (A function, not a closure: naga rejected the SPIR-V of a
-/// closure capturing `tables`, "Type '&[f32]' is invalid".)
+/// Three floats of `tables` from `i`; black where they are not all inside it (which the host's
+/// layout never makes): one range test instead of a bounds check per float, each of which the GPU
+/// inlines with its panic path (`wrap` says what those cost). (A function, not a closure: naga
+/// rejected the SPIR-V of a closure capturing `tables`, "Type '&[f32]' is invalid".)
 #[inline]
 fn rgb_at(tables: &[f32], i: usize) -> Rgb {
-    Vec3::new(tables[i], tables[i + 1], tables[i + 2])
+    if i + 2 < tables.len() {
+        // SAFETY: `i + 2` is within `tables`, tested above.
+        unsafe {
+            Vec3::new(
+                *tables.index_unchecked(i),
+                *tables.index_unchecked(i + 1),
+                *tables.index_unchecked(i + 2),
+            )
+        }
+    } else {
+        Vec3::ZERO
+    }
 }
 
 /// A texture's value at texture coordinates `uv` (a `mesh_attribute` has none: black; the host
@@ -159,24 +172,10 @@ pub fn rem(a: u32, n: u32) -> u32 {
     }
 }
 
-/// Linear RGB of texel (x, y), row 0 at the image's top (v = 0); black for a texel outside the
-/// tables (which the host's layout never makes): one test instead of a bounds check per channel,
-/// each of which the GPU inlines with its panic path.
+/// Linear RGB of texel (x, y), row 0 at the image's top (v = 0) (black outside the tables: `rgb_at`).
 #[inline]
 pub fn texel(t: &Texture, tables: &[f32], x: u32, y: u32) -> Rgb {
-    let base = (t.offset + 3 * (y * t.width + x)) as usize;
-    if base + 2 < tables.len() {
-        // SAFETY: `base + 2` is within `tables`, tested above.
-        unsafe {
-            Vec3::new(
-                *tables.index_unchecked(base),
-                *tables.index_unchecked(base + 1),
-                *tables.index_unchecked(base + 2),
-            )
-        }
-    } else {
-        Vec3::ZERO
-    }
+    rgb_at(tables, (t.offset + 3 * (y * t.width + x)) as usize)
 }
 
 fn bitmap_nearest(t: &Texture, tables: &[f32], uv: Vec2) -> Rgb {
