@@ -11,8 +11,6 @@
 //! Non-finite or out-of-range contributions are never added: they are counted in the pixel's
 //! `invalid` word. After each pass `resolved` folds the words into the pixel's float accumulator and
 //! the words are cleared.
-#[cfg(target_arch = "spirv")]
-use spirv_std::num_traits::Float;
 
 use crate::layout::PixelAccum;
 use crate::math::is_finite3;
@@ -68,6 +66,23 @@ impl AtomicWords for GpuWords<'_> {
                 value,
             )
         }
+    }
+}
+
+/// Words owned by one thread, added without atomics: for tests on the CPU.
+#[cfg(not(target_arch = "spirv"))]
+pub struct OwnWords<'a>(pub &'a mut [u32]);
+
+#[cfg(not(target_arch = "spirv"))]
+impl AtomicWords for OwnWords<'_> {
+    fn fetch_add(&mut self, index: u32, value: u32) -> u32 {
+        let old = self.0[index as usize];
+        self.0[index as usize] = old.wrapping_add(value);
+        old
+    }
+
+    fn exchange(&mut self, index: u32, value: u32) -> u32 {
+        core::mem::replace(&mut self.0[index as usize], value)
     }
 }
 

@@ -158,18 +158,7 @@ fn a_pixels_weight_is_the_product_of_its_axes() {
 #[test]
 fn a_footprints_chance_splats_keep_each_pixels_expectation() {
     use caustic_kernel::integrator::{axis_weights, splat_footprint, FOOTPRINT_FLOOR};
-    use caustic_kernel::splat::{resolved as resolved_words, AtomicWords, SPLAT_STRIDE};
-    struct Words(Vec<u32>);
-    impl AtomicWords for Words {
-        fn fetch_add(&mut self, index: u32, value: u32) -> u32 {
-            let old = self.0[index as usize];
-            self.0[index as usize] = old.wrapping_add(value);
-            old
-        }
-        fn exchange(&mut self, index: u32, value: u32) -> u32 {
-            std::mem::replace(&mut self.0[index as usize], value)
-        }
-    }
+    use caustic_kernel::splat::{resolved as resolved_words, OwnWords, SPLAT_STRIDE};
     const TRIALS: u32 = 4096;
     for filter in ["gaussian", "tent", "mitchell", "lanczos"] {
         let buffers = crop_window_buffers(filter);
@@ -192,13 +181,22 @@ fn a_footprints_chance_splats_keep_each_pixels_expectation() {
             let along_y = axis_weights(&view, &params, pos.y, first.1, rows, false);
             let mut sums = vec![0.0f64; (w * h) as usize];
             for t in 0..TRIALS {
-                let mut words = Words(vec![0; (w * h * SPLAT_STRIDE) as usize]);
+                let mut words = vec![0u32; (w * h * SPLAT_STRIDE) as usize];
                 let u = (t as f32 + 0.5) / TRIALS as f32;
-                splat_footprint(&mut words, w, first, along_x, along_y, (columns, rows), Vec3::ONE, u);
+                splat_footprint(
+                    &mut OwnWords(&mut words),
+                    w,
+                    first,
+                    &along_x,
+                    &along_y,
+                    (columns, rows),
+                    Vec3::ONE,
+                    u,
+                );
                 for (pixel, sum) in sums.iter_mut().enumerate() {
                     let base = pixel * SPLAT_STRIDE as usize;
                     let mut cell = [0u32; SPLAT_STRIDE as usize];
-                    cell.copy_from_slice(&words.0[base..base + SPLAT_STRIDE as usize]);
+                    cell.copy_from_slice(&words[base..base + SPLAT_STRIDE as usize]);
                     let a = resolved_words(PixelAccum::default(), cell, 1, 1.0);
                     *sum += a.sum[0] as f64;
                     splats += (cell[..6].iter().any(|&x| x != 0)) as u64;

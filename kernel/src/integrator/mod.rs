@@ -275,7 +275,7 @@ fn splat_camera_estimate<W: AtomicWords>(
     let (x0, y0) = (px as i32 - r, py as i32 - r);
     let columns = axis_weights(scene, params, pos.x, x0, span, true);
     let rows = axis_weights(scene, params, pos.y, y0, span, false);
-    splat_footprint(words, params.width, (x0, y0), columns, rows, (span, span), l, u);
+    splat_footprint(words, params.width, (x0, y0), &columns, &rows, (span, span), l, u);
 }
 
 /// The share of the footprint's largest filter weight below which a pixel's splat is decided by
@@ -287,47 +287,46 @@ pub const FOOTPRINT_FLOOR: f32 = 1.0 / 16.0;
 /// Splats `value` times the filter's weight into each pixel of a footprint: the `count`×`count` (at
 /// most `SPAN`) pixels from (`x0`, `y0`) in the window, the filter and its mass along each axis from
 /// `axis_weights` (zero outside the window), the weight `fx·fy / (mx·my)` (`film::pixel_weight`).
-/// A pixel whose weight is below `FOOTPRINT_FLOOR` of the footprint's largest gets the floor's
-/// weight (its sign kept) with probability weight / floor, so its expectation is unchanged: the
-/// atomics go where the filter's mass is (most of the footprint of a gaussian is its tail), each
-/// pixel deciding by a hash of the rounding number `u` and its index.
+/// A pixel whose weight is below `FOOTPRINT_FLOOR` of the footprint's largest (the product of the
+/// axes' peaks) gets the floor's weight (its sign kept) with probability weight / floor, so its
+/// expectation is unchanged: the atomics go where the filter's mass is (most of the footprint of a
+/// gaussian is its tail), each pixel deciding by a hash of the rounding number `u` and its index.
+/// One call of `splat::splat` in the loop, so the GPU inlines its atomics once.
 #[inline]
 #[allow(clippy::too_many_arguments)]
 pub fn splat_footprint<W: AtomicWords>(
     words: &mut W,
     width: u32,
     (x0, y0): (i32, i32),
-    (fx, mx): ([f32; SPAN], [f32; SPAN]),
-    (fy, my): ([f32; SPAN], [f32; SPAN]),
+    x: &AxisWeights,
+    y: &AxisWeights,
     count: (u32, u32),
     value: Rgb,
     u: f32,
 ) {
     let (columns, rows) = count;
-    let (mut ax, mut by) = (0.0f32, 0.0f32);
-    let mut k = 0;
-    while k < SPAN as u32 {
-        if k < columns && mx[k as usize] > 0.0 {
-            ax = ax.max(fx[k as usize].abs() / mx[k as usize]);
-        }
-        if k < rows && my[k as usize] > 0.0 {
-            by = by.max(fy[k as usize].abs() / my[k as usize]);
-        }
-        k += 1;
-    }
-    let floor = FOOTPRINT_FLOOR * ax * by;
+    let floor = FOOTPRINT_FLOOR * x.peak * y.peak;
     let mut j = 0;
     while j < rows {
         let mut i = 0;
-        while fy[j as usize] != 0.0 && i < columns {
-            let mass = mx[i as usize] * my[j as usize];
-            if fx[i as usize] != 0.0 && mass > 0.0 {
-                let w = fx[i as usize] * fy[j as usize] / mass;
+        while y.filter[j as usize] != 0.0 && i < columns {
+            let mass = x.mass[i as usize] * y.mass[j as usize];
+            if x.filter[i as usize] != 0.0 && mass > 0.0 {
+                let w = x.filter[i as usize] * y.filter[j as usize] / mass;
                 let pixel = (y0 + j as i32) as u32 * width + (x0 + i as i32) as u32;
-                if w.abs() >= floor {
-                    crate::splat::splat(words, pixel, value * w, u);
+                let kept = if w.abs() >= floor {
+                    w
                 } else if u32_to_unit_f32(hash2(u.to_bits(), pixel)) * floor < w.abs() {
-                    crate::splat::splat(words, pixel, value * if w < 0.0 { -floor } else { floor }, u);
+                    if w < 0.0 {
+                        -floor
+                    } else {
+                        floor
+                    }
+                } else {
+                    0.0
+                };
+                if kept != 0.0 {
+                    crate::splat::splat(words, pixel, value * kept, u);
                 }
             }
             i += 1;
@@ -340,6 +339,14 @@ pub fn splat_footprint<W: AtomicWords>(
 /// `floor(pos ± filter radius)` with the radius at most `MAX_REACH + 0.5`.
 pub const SPAN: usize = (2 * MAX_REACH + 2) as usize;
 
+/// A footprint's filter along one axis (`axis_weights`): each pixel's filter and mass, and the
+/// largest |filter| / mass among them, so `splat_footprint` needs no pass of its own for the floor.
+pub struct AxisWeights {
+    pub filter: [f32; SPAN],
+    pub mass: [f32; SPAN],
+    pub peak: f32,
+}
+
 /// The filter at `pos` and its mass in the rendered window along one axis (`film::axis_pixel_weight`)
 /// for the `count` (at most `SPAN`) pixels from `first`, counted from the window's start (`x_axis`:
 /// columns, else rows); zero for those outside the window.
@@ -351,22 +358,24 @@ pub fn axis_weights(
     first: i32,
     count: u32,
     x_axis: bool,
-) -> ([f32; SPAN], [f32; SPAN]) {
+) -> AxisWeights {
     let (crop, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
-    let mut f = [0.0f32; SPAN];
-    let mut m = [0.0f32; SPAN];
+    let mut weights = AxisWeights { filter: [0.0f32; SPAN], mass: [0.0f32; SPAN], peak: 0.0 };
     let mut i = 0;
     while i < count && i < SPAN as u32 {
         let q = first + i as i32;
         if q >= 0 && q < size as i32 {
             let c = (crop + q as u32) as f32 + 0.5;
             let (a, b) = film::axis_pixel_weight(scene.tables, params, pos, c, x_axis);
-            f[i as usize] = a;
-            m[i as usize] = b;
+            weights.filter[i as usize] = a;
+            weights.mass[i as usize] = b;
+            if b > 0.0 {
+                weights.peak = weights.peak.max(a.abs() / b);
+            }
         }
         i += 1;
     }
-    (f, m)
+    weights
 }
 
 /// IBPT's camera half: `params.sample_count` camera paths of `pixel`, weighted against light tracing,

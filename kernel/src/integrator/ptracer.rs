@@ -192,7 +192,7 @@ pub(super) fn splat_to_camera<W: AtomicWords>(
         let along_x = axis_weights(scene, params, pos.x, first.0, columns, true);
         let along_y = axis_weights(scene, params, pos.y, first.1, rows, false);
         let value = value * (importance * weight);
-        splat_footprint(words, params.width, first, along_x, along_y, (columns, rows), value, u);
+        splat_footprint(words, params.width, first, &along_x, &along_y, (columns, rows), value, u);
         return;
     }
     let mut y = y0;
