@@ -468,6 +468,12 @@ pub struct FrameParams {
     /// Vertex merging's radius in this pass (`INTEGRATOR_VCM`; 0 otherwise), in scene units.
     pub merge_radius: f32,
 
+    /// BDPT's and VCM's connections (`bdpt_mis::Connections`): 0 joins each camera vertex to every
+    /// vertex of its light path; `c` > 0 to one of them drawn uniformly, the connection strategies
+    /// counting `c` against the other strategies' 1 in the weights.
+    pub connection_share: f32,
+    pub _pad: [u32; 3],
+
     pub camera: crate::camera::Camera,
 }
 

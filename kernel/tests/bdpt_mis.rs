@@ -5,7 +5,7 @@
 //! walking the path with `bdpt_mis`'s recursion from the camera side and from the light side. Dirac
 //! vertices anywhere between camera and emitter.
 use caustic_kernel::glam::Vec3;
-use caustic_kernel::integrator::bdpt_mis::{self, Merging, SubpathMis};
+use caustic_kernel::integrator::bdpt_mis::{self, Connections, Merging, SubpathMis};
 use caustic_kernel::rng::Sampler;
 use std::f32::consts::PI;
 
@@ -25,8 +25,12 @@ struct TestPath {
     broken: Option<bool>,
     /// Vertex merging (`Merging::OFF`: BDPT).
     merging: Merging,
+    /// How a camera vertex joins light vertices (`Connections::EVERY`, or one drawn).
+    connections: Connections,
     /// For the negative control: merges are weighted as connections are, without `vm`.
     merges_unweighted: bool,
+    /// For the negative control: light tracing's weight without the connections' `c²`.
+    tracing_unscaled: bool,
 }
 
 fn random_unit(s: &mut Sampler) -> Vec3 {
@@ -66,7 +70,9 @@ fn random_path(k: usize, seed: u32, deltas: u32, point_light: bool) -> TestPath 
         importance: 1.0 / (1.5 * cos_c * cos_c * cos_c * d2),
         broken: None,
         merging: Merging::OFF,
+        connections: Connections::EVERY,
         merges_unweighted: false,
+        tracing_unscaled: false,
     }
 }
 
@@ -117,7 +123,7 @@ impl TestPath {
     fn camera_states(&self) -> Vec<SubpathMis> {
         let k = self.k();
         let mut states = vec![SubpathMis::ZERO; k + 1];
-        let mut m = SubpathMis::camera_first_vertex(self.importance * self.cos(1, 0));
+        let mut m = SubpathMis::camera_first_vertex(self.importance * self.cos(1, 0), self.connections);
         states[1] = m;
         for j in 1..k {
             let rev = if self.broken == Some(true) { 1.0 } else { self.pdf(j, j - 1) };
@@ -135,7 +141,13 @@ impl TestPath {
         let inv_hit_sq = if self.emitter_area.is_some() { 1.0 / self.hit_density().powi(2) } else { 0.0 };
         // As `trace_light_path`: no next-event estimation from a Dirac first vertex.
         let inv_nee_sq = if self.delta[k - 1] { 0.0 } else { 1.0 / self.nee_ratio().powi(2) };
-        let mut m = SubpathMis::light_first_vertex(inv_nee_sq, inv_hit_sq, self.cos(k - 1, k), self.merging);
+        let mut m = SubpathMis::light_first_vertex(
+            inv_nee_sq,
+            inv_hit_sq,
+            self.cos(k - 1, k),
+            self.merging,
+            self.connections,
+        );
         states[k - 1] = m;
         for j in (2..k).rev() {
             let rev = if self.broken == Some(false) { 1.0 } else { self.pdf(j, j + 1) };
@@ -159,7 +171,7 @@ impl TestPath {
                 bdpt_mis::to_area(self.light_pdf(), self.dist_sq(k - 1, k), self.cos(k, k - 1))
             };
             let emission = self.hit_density() * self.cos(k, k - 1);
-            w.push(("hit".into(), bdpt_mis::hit_weight(camera[k], direct_area, emission)));
+            w.push(("hit".into(), bdpt_mis::hit_weight(camera[k], direct_area, emission, self.connections)));
         }
         if !self.delta[k - 1] {
             let r_hit = if self.emitter_area.is_some() { self.pdf(k - 1, k) / self.light_pdf() } else { 0.0 };
@@ -171,6 +183,7 @@ impl TestPath {
                 self.cos(k - 1, k),
                 rev,
                 self.merging,
+                self.connections,
             );
             w.push(("nee".into(), nee));
         }
@@ -194,7 +207,9 @@ impl TestPath {
         }
         if !self.delta[1] {
             let a = self.importance * self.cos(1, 0);
-            let others = light[1].others(a, self.pdf(1, 2), self.merging);
+            // Not a connection: the others' terms times c² (`bdpt_mis`).
+            let c_sq = if self.tracing_unscaled { 1.0 } else { self.connections.sq };
+            let others = c_sq * light[1].others(a, self.pdf(1, 2), self.merging);
             w.push(("light tracing".into(), bdpt_mis::weight(others, 0.0)));
         }
         // Under VCM, the camera path merged at x_t with a light vertex there (t ≥ 1, the light path
@@ -222,7 +237,7 @@ fn strategy_weights_sum_to_one_on_random_paths() {
     // BDPT, then VCM with merges a hundredth of, as likely as, and a hundred times as likely as a
     // connection at a typical vertex (`eta`: π r² L).
     for (radius, light_paths) in [(0.0, 1.0), (0.01, 30.0), (0.1, 30.0), (1.0, 30.0)] {
-        let merging = Merging::new(radius, light_paths);
+        let merging = Merging::new(radius, light_paths, Connections::EVERY);
         let mut checked = 0;
         for k in 2..=9 {
             // No Dirac vertex; every other interior vertex; random subsets (x1 and x(k-1) included).
@@ -270,12 +285,59 @@ fn a_wrong_recursion_breaks_the_sum() {
     }
     // Merges weighted without the recursion's `vm` term (as if merging were one more connection).
     let mut path = random_path(5, 3, 0, false);
-    path.merging = Merging::new(0.1, 30.0);
+    path.merging = Merging::new(0.1, 30.0, Connections::EVERY);
     assert!((sum(&path) - 1.0).abs() < 1e-4);
     path.merges_unweighted = true;
     let s = sum(&path);
     println!("merges weighted without vm: sum {s}");
     assert!((s - 1.0).abs() > 1e-3, "merges weighted without their term went unnoticed");
+    // One light vertex drawn (c = 0.3), light tracing weighted as if every vertex were joined.
+    let mut path = random_path(5, 3, 0, false);
+    path.connections = Connections::new(0.3);
+    assert!((sum(&path) - 1.0).abs() < 1e-4);
+    path.tracing_unscaled = true;
+    let s = sum(&path);
+    println!("light tracing without c²: sum {s}");
+    assert!((s - 1.0).abs() > 1e-3, "light tracing's weight without the connections' share went unnoticed");
+}
+
+/// A camera vertex joining one light vertex drawn at random (`Connections`, share `c`) is MIS with
+/// counts: each connection strategy counts `c`, every other one 1 (a merge `eta`). So on every random
+/// path each strategy's weight is its weight when every vertex is joined, times its count squared,
+/// renormalised: `w_i(c) = n_i² w_i(1) / Σ_j n_j² w_j(1)` (which also makes them sum to one).
+#[test]
+fn one_drawn_light_vertex_weighs_connections_by_their_share() {
+    let mut checked = 0;
+    for c in [0.5f32, 0.1] {
+        for (radius, light_paths) in [(0.0, 1.0), (0.1, 30.0)] {
+            for k in 2..=7 {
+                for deltas in [0, 0b1010_1010 & ((1 << k) - 2), 0b10 & ((1 << k) - 2)] {
+                    for point_light in [false, true] {
+                        for seed in 0..40 {
+                            let mut path = random_path(k, seed, deltas, point_light);
+                            path.merging = Merging::new(radius, light_paths, Connections::EVERY);
+                            let every = path.weights();
+                            path.connections = Connections::new(c);
+                            path.merging = Merging::new(radius, light_paths, path.connections);
+                            let drawn = path.weights();
+                            let n_sq = |name: &str| if name.starts_with("connect") { c * c } else { 1.0 };
+                            let total: f32 = every.iter().map(|(name, w)| n_sq(name) * w).sum();
+                            for ((name, w1), (other, wc)) in every.iter().zip(&drawn) {
+                                assert_eq!(name, other);
+                                let expected = n_sq(name) * w1 / total;
+                                assert!(
+                                    (wc - expected).abs() < 1e-4,
+                                    "c={c} r={radius} k={k} deltas={deltas:b} seed={seed} {name}: {wc} against {expected}"
+                                );
+                            }
+                            checked += every.len();
+                        }
+                    }
+                }
+            }
+        }
+    }
+    println!("{checked} strategies' weights checked");
 }
 
 /// What one light path takes in the light vertex cache (`bdpt::LightVertex`, `MAX_LIGHT_VERTICES`
@@ -306,11 +368,14 @@ fn the_emitter_point_and_the_camera_hit_sum_to_one() {
         let x = 10f32.powf(6.0 * u.x - 3.0);
         let e = 10f32.powf(6.0 * u.y - 3.0);
         let cos = v.x.max(1e-4);
-        let hit = bdpt_mis::hit_weight(SubpathMis::camera_first_vertex(x * cos), e * cos, 0.0);
-        let splat = mis::emitter_connection_weight(x, 1.0 / (e * e));
-        assert!((hit + splat - 1.0).abs() < 1e-5, "x {x} E {e} cos {cos}: {hit} + {splat}");
-        shared += (hit < 0.99) as u32;
+        // Neither is a connection: joining one light vertex drawn at random changes neither weight.
+        for c in [Connections::EVERY, Connections::new(0.2)] {
+            let hit = bdpt_mis::seen_weight(SubpathMis::camera_first_vertex(x * cos, c), e * cos, c);
+            let splat = mis::emitter_connection_weight(x, 1.0 / (e * e));
+            assert!((hit + splat - 1.0).abs() < 1e-5, "x {x} E {e} cos {cos}: {hit} + {splat}");
+            shared += (hit < 0.99) as u32;
+        }
     }
     // Where the point is as likely by light tracing as by the camera ray, the hit's weight is not 1.
-    assert!(shared > 1000, "{shared}");
+    assert!(shared > 2000, "{shared}");
 }

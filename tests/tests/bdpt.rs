@@ -27,6 +27,27 @@ fn bdpt_and_path_agree_on_every_emitter_kind() {
     }
 }
 
+/// Each camera vertex joining one vertex of its light path drawn uniformly (`connection_share`), the
+/// connections counted 0.4 in the weights (`bdpt_mis::Connections`): the same image as `path`, under
+/// an area light and a spot (a Dirac position), and through glass at any depth.
+#[test]
+fn bdpt_joining_one_drawn_light_vertex_agrees_with_path() {
+    let drawn = |xml: String| {
+        xml.replace(r#"type="bdpt">"#, r#"type="bdpt"><float name="connection_share" value="0.4"/>"#)
+    };
+    for (i, (name, emitter)) in [EMITTERS[0], EMITTERS[3]].into_iter().enumerate() {
+        let what = format!("{name}, one drawn");
+        agrees_with_path(
+            &what,
+            |k| drawn(corner(k, emitter, "5", ROUGH_PLASTIC)),
+            256,
+            1024,
+            70 + 2 * i as u32,
+        );
+    }
+    agrees_with_path("glass, one drawn", |k| drawn(corner(k, EMITTERS[1].1, "-1", GLASS)), 256, 2048, 80);
+}
+
 /// The check above can fail: a 10% brighter light in the bidirectional image is detected.
 #[test]
 fn bdpt_agreement_detects_a_brighter_light() {

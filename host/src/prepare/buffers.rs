@@ -209,6 +209,10 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         }
         _ => 0.0,
     };
+    let connection_share = match kind {
+        IntegratorKind::Bdpt | IntegratorKind::Vcm => connection_share(scene)?,
+        _ => 0.0,
+    };
     let params = FrameParams {
         width: crop.width,
         height: crop.height,
@@ -235,6 +239,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         square_scale_log2: square_scale_log2(&lights, &textures, &tables),
         film_reach: film_reach(s, integrator_kind),
         merge_radius,
+        connection_share,
         camera,
         ..Default::default()
     };
@@ -277,6 +282,18 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
 /// radiance meter (a single ray, which no light path can reach by a connection).
 /// What IBPT and BDPT refuse besides what light tracing does: `directionalarea` emitters, which
 /// only light paths reach (their weights would count strategies that cannot happen).
+/// The scene's `connection_share` (`scene::Integrator::connection_share`), or `CAUSTIC_CONNECTION_SHARE`
+/// where it is set (for measuring one scene at several shares).
+fn connection_share(scene: &Scene) -> Result<f32> {
+    let Ok(text) = std::env::var("CAUSTIC_CONNECTION_SHARE") else {
+        return Ok(scene.integrator.connection_share);
+    };
+    match text.trim().parse::<f32>() {
+        Ok(c) if (0.0..=1.0).contains(&c) => Ok(c),
+        _ => bail!("CAUSTIC_CONNECTION_SHARE: expected a number from 0 to 1, got {text:?}"),
+    }
+}
+
 fn check_bidirectional(scene: &Scene, name: &str) -> Result<()> {
     check_light_tracing(scene, name)?;
     if let Some(s) = scene.shapes.iter().find(|s| s.emission.is_some() && s.emission_directional) {

@@ -184,6 +184,10 @@ pub struct Integrator {
     pub hide_emitters: bool,
     /// Vertex merging's radius and its shrinking (`vcm`; read, unused, by the others).
     pub merging: MergeSettings,
+    /// `bdpt`'s and `vcm`'s `connection_share`: 0 (the default) joins each camera vertex to every
+    /// vertex of its light path; `c` in (0, 1] to one of them drawn uniformly, counted `c` in the
+    /// MIS weights (`FrameParams::connection_share`).
+    pub connection_share: f32,
     /// Run `ibpt`'s, `bdpt`'s or `vcm`'s own kernel even in a scene where no light path can start
     /// (every emitter at infinity), where by default `path`'s kernel renders their estimator
     /// (`prepare::buffers::kernel_kind`); `--own-kernel`.
@@ -198,6 +202,7 @@ impl Default for Integrator {
             rr_depth: 5,
             hide_emitters: false,
             merging: MergeSettings::default(),
+            connection_share: 0.0,
             own_kernel: false,
         }
     }

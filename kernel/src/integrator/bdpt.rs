@@ -33,7 +33,7 @@
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
-use super::bdpt_mis::{self, Merging, SubpathMis};
+use super::bdpt_mis::{self, Connections, Merging, SubpathMis};
 use super::nee::{
     environment, first_hit_past_emitters, next_event, LightTracingMis, PreviousVertex, StrategyCounts,
 };
@@ -69,6 +69,9 @@ pub const MAX_LIGHT_VERTICES: u32 = 8;
 /// longer are weighted over all strategies where their non-Dirac vertices fit the cache.
 pub const MAX_LIGHT_SEGMENTS: u32 = 32;
 const SHADOW_EPSILON: f32 = 1.0e-4;
+/// The dimension (plus the camera path's depth) from which a camera vertex draws the light vertex it
+/// joins (`Connections`), beside the bounce's own (`DIMS_PER_BOUNCE`, all taken).
+const DIM_CONNECT: u32 = 1 << 25;
 const ONE_EACH: StrategyCounts = StrategyCounts::ONE_EACH;
 
 /// A vertex of the light path with a non-Dirac lobe, as the light vertex cache holds it: where it is,
@@ -362,6 +365,7 @@ fn light_path_vertices<W: AtomicWords>(
     let accel = Accel::of(scene);
     let camera = params.camera;
     let merging = Merging::of(params);
+    let connections = Connections::of(params);
     let wavelength = PassWavelength::of(scene, params);
     let mut dispersed = false;
     // The emitter sample's dimensions as `ptracer` draws them.
@@ -434,7 +438,7 @@ fn light_path_vertices<W: AtomicWords>(
         let cos_in = sp.ng.dot(ray.dir).abs();
         mis = if depth == 1 {
             let inv_nee_sq = if smooth { inv_nee_ratio_sq(scene, &es, sp.p) } else { 0.0 };
-            SubpathMis::light_first_vertex(inv_nee_sq, inv_hit_sq, cos_in, merging)
+            SubpathMis::light_first_vertex(inv_nee_sq, inv_hit_sq, cos_in, merging, connections)
         } else {
             mis.arrive((sp.p - previous).length_squared(), cos_in)
         };
@@ -456,7 +460,7 @@ fn light_path_vertices<W: AtomicWords>(
                 let origin = offset_origin(&sp, ng, c.dir);
                 // The camera path's density of leaving here back along the light path.
                 let rev = bsdf.pdf(to_camera, wo, TransportMode::Radiance);
-                let weighting = ConnectionMis::bdpt(mis, sp.ng.dot(c.dir).abs(), rev, merging);
+                let weighting = ConnectionMis::bdpt(mis, sp.ng.dot(c.dir).abs(), rev, merging, connections);
                 splat_to_camera(
                     scene,
                     params,
@@ -522,6 +526,8 @@ pub fn camera_path(
     let accel = Accel::of(scene);
     let max_depth = params.max_depth;
     let merging = Merging::of(params);
+    let connections = Connections::of(params);
+    let draws_one = params.connection_share > 0.0;
     let wavelength = PassWavelength::of(scene, params);
     let mut dispersed = false;
     let lens = params.camera.lens_point_of(camera_ray.origin);
@@ -567,7 +573,7 @@ pub fn camera_path(
                 Some(c) => c.importance * pixel_density * film_scale(params) * cos_in,
                 None => 0.0,
             };
-            SubpathMis::camera_first_vertex(a)
+            SubpathMis::camera_first_vertex(a, connections)
         } else {
             mis.arrive(dist_sq, cos_in)
         };
@@ -583,20 +589,21 @@ pub fn camera_path(
                 } else {
                     0.0
                 };
-                bdpt_mis::hit_weight(arrived, point, 0.0)
+                bdpt_mis::seen_weight(arrived, point, connections)
             } else if prev.delta {
                 // Through Dirac lobes alone: the recursion's terms decide.
                 if !bidirectional(segments, smooth) {
                     1.0
                 } else {
-                    bdpt_mis::hit_weight(arrived, 0.0, emission::hit_density(scene, prim.light) * cos_in)
+                    let emission = emission::hit_density(scene, prim.light) * cos_in;
+                    bdpt_mis::hit_weight(arrived, 0.0, emission, connections)
                 }
             } else {
                 let direct = light::pdf(&emitter, &prim, prev.p, sp.p, sp.ng);
                 if bidirectional(segments, smooth) {
                     let direct_area = bdpt_mis::to_area(direct, dist_sq, cos_in);
                     let emission = emission::hit_density(scene, prim.light) * cos_in;
-                    bdpt_mis::hit_weight(arrived, direct_area, emission)
+                    bdpt_mis::hit_weight(arrived, direct_area, emission, connections)
                 } else {
                     power_heuristic(prev.pdf, direct)
                 }
@@ -640,6 +647,16 @@ pub fn camera_path(
         );
         mis = arrived;
 
+        // The light vertex this vertex joins where it joins one (`Connections`): a dimension of its
+        // own, so that joining every vertex draws what it drew before.
+        let u_connect = if draws_one {
+            sampler.set_dimension(DIM_CONNECT + depth);
+            let u = sampler.next_1d();
+            sampler.set_dimension(DIM_FIRST_BOUNCE + depth * DIMS_PER_BOUNCE);
+            u
+        } else {
+            0.0
+        };
         let u_select = sampler.next_1d();
         let u_light = sampler.next_2d();
         if bsdf.flags().has_smooth() {
@@ -651,13 +668,20 @@ pub fn camera_path(
             result += throughput * nee * wavelength.factor(dispersed);
             let vertex = CameraVertex { mis, segments, smooth, dispersed, wavelength };
             result += throughput * grid.merge(&bsdf, &shading, &sp, vertex, max_depth, merging);
-            let mut k = 0;
-            while k < count {
+            // Every vertex of the light path, or one drawn uniformly and counted `count` times.
+            let (mut k, end, scale) = if draws_one {
+                let k = ((u_connect * count as f32) as u32).min(count.max(1) - 1);
+                (k, (k + 1).min(count), count as f32)
+            } else {
+                (0, count, 1.0)
+            };
+            while k < end {
                 // Its depth first, its 208 bytes only for a connection made.
                 let length = segments + vertices.segments(k) + 1;
                 if within(max_depth, length) && bidirectional(length, smooth + k + 1) {
                     let v = vertices.vertex(k);
-                    result += throughput * connect(scene, &accel, &bsdf, &shading, &sp, vertex, &v, merging);
+                    let joined = connect(scene, &accel, &bsdf, &shading, &sp, vertex, &v, merging);
+                    result += throughput * joined * scale;
                 }
                 k += 1;
             }

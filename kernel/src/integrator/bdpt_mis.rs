@@ -19,6 +19,14 @@
 //! vertex merges with per camera sample. BDPT is the case `eta = 0` (`Merging::OFF`): no merge, and
 //! `vm` unused.
 //!
+//! A camera vertex may join one vertex of its light path drawn at random instead of every one
+//! (`Connections`): the connection strategies (a camera vertex joined to a light vertex past the
+//! emitter) then count `c` against the other strategies' 1 (hitting the emitter, next-event
+//! estimation, light tracing's connection to the camera). The state is kept in connections' units:
+//! the terms that stand for the other strategies are divided by `c²` where they enter (at each
+//! sub-path's first vertex), merges count `eta / c`, and a weight whose own strategy is not a
+//! connection multiplies the others' terms by `c²`. `c = 1` is the recursion above.
+//!
 //! Densities are in solid angle at the vertex they leave; the cosines that turn them into area
 //! densities are taken with the geometric normal, on both sides alike.
 //!
@@ -29,25 +37,57 @@
 use crate::layout::{FrameParams, INTEGRATOR_VCM};
 use crate::math::is_finite;
 
-/// Vertex merging's weight factor, squared, and its inverse (both 0 without merging).
+/// How a camera vertex joins its light path's vertices: every one (`EVERY`), or one drawn uniformly
+/// with the connection strategies counting `c` in the weights (`sq` = c², `inv_sq` = 1/c²).
+#[derive(Clone, Copy)]
+pub struct Connections {
+    pub sq: f32,
+    pub inv_sq: f32,
+}
+
+impl Connections {
+    pub const EVERY: Connections = Connections { sq: 1.0, inv_sq: 1.0 };
+
+    /// The connections of `FrameParams::connection_share` `share` (0, or not a positive finite
+    /// number: `EVERY`).
+    #[inline]
+    pub fn new(share: f32) -> Self {
+        let sq = share * share;
+        if !(sq > 0.0) || !is_finite(1.0 / sq) || !is_finite(sq) {
+            return Connections::EVERY;
+        }
+        Connections { sq, inv_sq: 1.0 / sq }
+    }
+
+    /// A pass's connections.
+    #[inline]
+    pub fn of(params: &FrameParams) -> Self {
+        Connections::new(params.connection_share)
+    }
+}
+
+/// Vertex merging's weight factor in connections' units (`eta / c`), squared, and its inverse, and
+/// the merge estimator's `1 / eta` (all 0 without merging).
 #[derive(Clone, Copy)]
 pub struct Merging {
     pub eta_sq: f32,
     pub inv_eta_sq: f32,
+    pub inv_eta: f32,
 }
 
 impl Merging {
-    pub const OFF: Merging = Merging { eta_sq: 0.0, inv_eta_sq: 0.0 };
+    pub const OFF: Merging = Merging { eta_sq: 0.0, inv_eta_sq: 0.0, inv_eta: 0.0 };
 
-    /// Merging within `radius` among the vertices of `light_paths` light paths per camera sample.
+    /// Merging within `radius` among the vertices of `light_paths` light paths per camera sample,
+    /// beside `connections`.
     #[inline]
-    pub fn new(radius: f32, light_paths: f32) -> Self {
+    pub fn new(radius: f32, light_paths: f32, connections: Connections) -> Self {
         let eta = core::f32::consts::PI * radius * radius * light_paths;
-        if !(eta > 0.0) || !is_finite(eta) {
+        let eta_sq = eta * eta * connections.inv_sq;
+        if !(eta > 0.0) || !is_finite(eta_sq) || !(eta_sq > 0.0) {
             return Merging::OFF;
         }
-        let eta_sq = eta * eta;
-        Merging { eta_sq, inv_eta_sq: 1.0 / eta_sq }
+        Merging { eta_sq, inv_eta_sq: 1.0 / eta_sq, inv_eta: 1.0 / eta }
     }
 
     /// A pass's merging: under `INTEGRATOR_VCM`, each camera sample merges with the vertices of the
@@ -57,7 +97,7 @@ impl Merging {
         if params.integrator != INTEGRATOR_VCM {
             return Merging::OFF;
         }
-        Merging::new(params.merge_radius, (params.width * params.height) as f32)
+        Merging::new(params.merge_radius, (params.width * params.height) as f32, Connections::of(params))
     }
 }
 
@@ -75,8 +115,8 @@ impl SubpathMis {
     /// The camera path's first vertex: light tracing reaches it by connecting it to the camera (`a`
     /// as above; 0 where it cannot: outside the film, an orthographic camera).
     #[inline]
-    pub fn camera_first_vertex(a: f32) -> Self {
-        SubpathMis { vcm: if a > 0.0 { 1.0 / (a * a) } else { 0.0 }, vc: 0.0, vm: 0.0 }
+    pub fn camera_first_vertex(a: f32, c: Connections) -> Self {
+        SubpathMis { vcm: if a > 0.0 { c.inv_sq / (a * a) } else { 0.0 }, vc: 0.0, vm: 0.0 }
     }
 
     /// The light path's first vertex, met at `|cos|` `cos_in`: next-event estimation from it could have
@@ -84,13 +124,19 @@ impl SubpathMis {
     /// 0 for an emitter it cannot sample), and a camera path leaving it could have hit that point
     /// (`inv_hit_sq`: `1/E²` of `emission::hit_density`, 0 for point, spot and projector lights).
     #[inline]
-    pub fn light_first_vertex(inv_nee_sq: f32, inv_hit_sq: f32, cos_in: f32, m: Merging) -> Self {
+    pub fn light_first_vertex(
+        inv_nee_sq: f32,
+        inv_hit_sq: f32,
+        cos_in: f32,
+        m: Merging,
+        c: Connections,
+    ) -> Self {
         let c2 = cos_in * cos_in;
         if !(c2 > 0.0) {
             return SubpathMis::ZERO;
         }
-        let vc = inv_hit_sq / c2;
-        SubpathMis { vcm: inv_nee_sq / c2, vc, vm: vc * m.inv_eta_sq }
+        let vc = c.inv_sq * inv_hit_sq / c2;
+        SubpathMis { vcm: c.inv_sq * inv_nee_sq / c2, vc, vm: vc * m.inv_eta_sq }
     }
 
     /// Arriving at the next vertex along a segment of squared length `dist_sq`, which meets the
@@ -171,8 +217,16 @@ pub fn to_area(pdf_w: f32, dist_sq: f32, cos_at: f32) -> f32 {
 /// starting there and leaving towards the previous vertex (`hit_density · |cos|`; 0 for emitters
 /// that start no light path); `camera` the camera path's state at the hit.
 #[inline]
-pub fn hit_weight(camera: SubpathMis, direct_area: f32, emission: f32) -> f32 {
-    weight(0.0, direct_area * direct_area * camera.vcm + emission * emission * camera.vc)
+pub fn hit_weight(camera: SubpathMis, direct_area: f32, emission: f32, c: Connections) -> f32 {
+    weight(0.0, direct_area * direct_area * camera.vcm + c.sq * emission * emission * camera.vc)
+}
+
+/// The camera sees an emitter at its first vertex (state `camera`): the other strategy is the light
+/// path's emitter point connected to the camera, `point` light tracing's density of that point
+/// (`hit_density · |cos|`; 0 where light paths do not connect it).
+#[inline]
+pub fn seen_weight(camera: SubpathMis, point: f32, c: Connections) -> f32 {
+    weight(0.0, c.sq * point * point * camera.vcm)
 }
 
 /// Next-event estimation from a camera vertex: `r_hit` BSDF sampling's density over the light
@@ -180,8 +234,17 @@ pub fn hit_weight(camera: SubpathMis, direct_area: f32, emission: f32) -> f32 {
 /// cosine at the vertex towards the light, `rev` light tracing's density of leaving the vertex back
 /// along the camera path.
 #[inline]
-pub fn nee_weight(camera: SubpathMis, r_hit: f32, nee_ratio: f32, cos: f32, rev: f32, m: Merging) -> f32 {
-    weight(r_hit * r_hit, camera.others(nee_ratio * cos, rev, m))
+#[allow(clippy::too_many_arguments)]
+pub fn nee_weight(
+    camera: SubpathMis,
+    r_hit: f32,
+    nee_ratio: f32,
+    cos: f32,
+    rev: f32,
+    m: Merging,
+    c: Connections,
+) -> f32 {
+    weight(r_hit * r_hit, c.sq * camera.others(nee_ratio * cos, rev, m))
 }
 
 /// A camera vertex (state `camera`) merged with a light vertex (state `light`) within the radius:

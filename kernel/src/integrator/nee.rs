@@ -130,8 +130,8 @@ pub fn next_event(
         let r_hit = if ls.delta { 0.0 } else { ep.pdf / ls.pdf };
         let reverse = bsdf.pdf(wi, wo, TransportMode::Importance);
         let cos = ng.dot(ls.wi).abs();
-        let m = bdpt_mis::Merging::of(params);
-        bdpt_mis::nee_weight(lt.state, r_hit, emission::nee_ratio(scene, &ls), cos, reverse, m)
+        let (m, c) = (bdpt_mis::Merging::of(params), bdpt_mis::Connections::of(params));
+        bdpt_mis::nee_weight(lt.state, r_hit, emission::nee_ratio(scene, &ls), cos, reverse, m, c)
     } else if lt.scale > 0.0 {
         // IBPT: against BSDF sampling and against the light path that connects this point to the camera.
         let r_hit = if ls.delta { 0.0 } else { ep.pdf / ls.pdf };

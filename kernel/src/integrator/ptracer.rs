@@ -72,6 +72,8 @@ pub(super) struct ConnectionMis {
     vc: f32,
     cos: f32,
     eta_sq: f32,
+    /// The connections' count, squared (`bdpt_mis::Connections`).
+    connections_sq: f32,
 }
 
 const MIS_NONE: u32 = 0;
@@ -84,6 +86,7 @@ const NO_MIS: ConnectionMis = ConnectionMis {
     vc: 0.0,
     cos: 0.0,
     eta_sq: 0.0,
+    connections_sq: 0.0,
 };
 const MIS_EMITTER: u32 = 1;
 const MIS_FIRST_VERTEX: u32 = 2;
@@ -94,7 +97,13 @@ impl ConnectionMis {
     /// A light vertex of BDPT with state `state`, `cos` towards the camera, `rev` the camera path's
     /// density of leaving it back along the light path.
     #[inline]
-    pub(super) fn bdpt(state: SubpathMis, cos: f32, rev: f32, m: bdpt_mis::Merging) -> Self {
+    pub(super) fn bdpt(
+        state: SubpathMis,
+        cos: f32,
+        rev: f32,
+        m: bdpt_mis::Merging,
+        c: bdpt_mis::Connections,
+    ) -> Self {
         ConnectionMis {
             kind: MIS_BDPT,
             rho: rev,
@@ -102,6 +111,7 @@ impl ConnectionMis {
             vc: state.vc,
             cos,
             eta_sq: m.eta_sq,
+            connections_sq: c.sq,
             ..NO_MIS
         }
     }
@@ -126,8 +136,9 @@ impl ConnectionMis {
             MIS_LATER_VERTEX => mis::connection_weight(importance, self.rho, self.d),
             MIS_BDPT => {
                 let state = SubpathMis { vcm: self.d, vc: self.vc, vm: 0.0 };
-                let m = bdpt_mis::Merging { eta_sq: self.eta_sq, inv_eta_sq: 0.0 };
-                bdpt_mis::weight(state.others(importance * self.cos, self.rho, m), 0.0)
+                // Light tracing is not a connection: the others' terms times c² (`bdpt_mis`).
+                let m = bdpt_mis::Merging { eta_sq: self.eta_sq, inv_eta_sq: 0.0, inv_eta: 0.0 };
+                bdpt_mis::weight(self.connections_sq * state.others(importance * self.cos, self.rho, m), 0.0)
             }
             _ => 1.0,
         }

@@ -162,6 +162,6 @@ impl GridView<'_> {
                 sum += ep.f * v.throughput() * factor * (weight / cos_g);
             }
         }
-        sum * merging.inv_eta_sq.sqrt()
+        sum * merging.inv_eta
     }
 }

@@ -43,12 +43,17 @@ impl Loader {
                 };
                 let merging =
                     if kind == IntegratorKind::Vcm { merge_settings(props)? } else { Default::default() };
+                let connection_share = match kind {
+                    IntegratorKind::Bdpt | IntegratorKind::Vcm => connection_share(props)?,
+                    _ => 0.0,
+                };
                 Integrator {
                     kind,
                     max_depth,
                     rr_depth,
                     hide_emitters: props.boolean("hide_emitters", false)?,
                     merging,
+                    connection_share,
                     ..Default::default()
                 }
             }
@@ -168,6 +173,15 @@ fn depths(props: &Props, default_depth: i64) -> Result<(i32, u32)> {
         bail!("{}: rr_depth must be in [1, 1000000], got {rr_depth}", props.loc);
     }
     Ok((max_depth as i32, rr_depth as u32))
+}
+
+/// `bdpt`'s and `vcm`'s `connection_share` (`scene::Integrator::connection_share`), checked.
+fn connection_share(props: &Props) -> Result<f32> {
+    let c = props.float("connection_share", 0.0)?;
+    if !(0.0..=1.0).contains(&c) {
+        bail!("{}: connection_share must be from 0 to 1, got {c}", props.loc);
+    }
+    Ok(c)
 }
 
 /// `vcm`'s merging radius (`radius`, absolute; or `radius_factor` of the scene's bounding sphere's
