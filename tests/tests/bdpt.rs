@@ -27,25 +27,37 @@ fn bdpt_and_path_agree_on_every_emitter_kind() {
     }
 }
 
-/// Each camera vertex joining one vertex of its light path drawn uniformly (`connection_share`), the
-/// connections counted 0.4 in the weights (`bdpt_mis::Connections`): the same image as `path`, under
-/// an area light and a spot (a Dirac position), and through glass at any depth.
+/// Shares other than the default (0.5, which the tests above render): each camera vertex joining
+/// every vertex of its light path (0) under an area light and through glass at any depth, and one
+/// drawn uniformly, the connections counted 0.4 in the weights (`bdpt_mis::Connections`), under a
+/// spot (a Dirac position): the same image as `path`.
 #[test]
-fn bdpt_joining_one_drawn_light_vertex_agrees_with_path() {
-    let drawn = |xml: String| {
-        xml.replace(r#"type="bdpt">"#, r#"type="bdpt"><float name="connection_share" value="0.4"/>"#)
+fn bdpt_at_other_connection_shares_agrees_with_path() {
+    let share = |c: &'static str| {
+        move |xml: String| {
+            xml.replace(
+                r#"type="bdpt">"#,
+                &format!(r#"type="bdpt"><float name="connection_share" value="{c}"/>"#),
+            )
+        }
     };
-    for (i, (name, emitter)) in [EMITTERS[0], EMITTERS[3]].into_iter().enumerate() {
-        let what = format!("{name}, one drawn");
-        agrees_with_path(
-            &what,
-            |k| drawn(corner(k, emitter, "5", ROUGH_PLASTIC)),
-            256,
-            1024,
-            70 + 2 * i as u32,
-        );
-    }
-    agrees_with_path("glass, one drawn", |k| drawn(corner(k, EMITTERS[1].1, "-1", GLASS)), 256, 2048, 80);
+    let (every, drawn) = (share("0"), share("0.4"));
+    let (area, spot) = (EMITTERS[0], EMITTERS[3]);
+    agrees_with_path(
+        &format!("{}, every vertex", area.0),
+        |k| every(corner(k, area.1, "5", ROUGH_PLASTIC)),
+        256,
+        1024,
+        70,
+    );
+    agrees_with_path(
+        &format!("{}, one drawn", spot.0),
+        |k| drawn(corner(k, spot.1, "5", ROUGH_PLASTIC)),
+        256,
+        1024,
+        72,
+    );
+    agrees_with_path("glass, every vertex", |k| every(corner(k, EMITTERS[1].1, "-1", GLASS)), 256, 2048, 80);
 }
 
 /// The check above can fail: a 10% brighter light in the bidirectional image is detected.

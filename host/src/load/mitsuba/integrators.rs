@@ -4,7 +4,7 @@
 //! the variance), and Mitsuba's `aov` and `depth` (`crate::scene::aov`: outputs rendered beside the image).
 use super::loader::Loader;
 use super::props::Props;
-use crate::scene::{Integrator, IntegratorKind};
+use crate::scene::{Integrator, IntegratorKind, DEFAULT_CONNECTION_SHARE};
 use anyhow::{bail, Result};
 
 impl Loader {
@@ -45,7 +45,7 @@ impl Loader {
                     if kind == IntegratorKind::Vcm { merge_settings(props)? } else { Default::default() };
                 let connection_share = match kind {
                     IntegratorKind::Bdpt | IntegratorKind::Vcm => connection_share(props)?,
-                    _ => 0.0,
+                    _ => DEFAULT_CONNECTION_SHARE,
                 };
                 Integrator {
                     kind,
@@ -177,7 +177,7 @@ fn depths(props: &Props, default_depth: i64) -> Result<(i32, u32)> {
 
 /// `bdpt`'s and `vcm`'s `connection_share` (`scene::Integrator::connection_share`), checked.
 fn connection_share(props: &Props) -> Result<f32> {
-    let c = props.float("connection_share", 0.0)?;
+    let c = props.float("connection_share", DEFAULT_CONNECTION_SHARE)?;
     if !(0.0..=1.0).contains(&c) {
         bail!("{}: connection_share must be from 0 to 1, got {c}", props.loc);
     }
