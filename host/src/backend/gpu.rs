@@ -132,20 +132,15 @@ pub fn adapter_types() -> Vec<(String, wgpu::DeviceType)> {
 impl GpuBackend {
     /// A device, pipelines and buffers on adapter `index` of `adapters()`.
     pub fn on_adapter(buffers: &SceneBuffers, index: usize) -> Result<Self> {
+        let clock = Instant::now();
         let adapter =
             adapters().into_iter().nth(index).ok_or_else(|| anyhow!("no Vulkan adapter {index}"))?;
         let info = adapter.get_info();
+        if trial_log() {
+            eprintln!("build: Vulkan adapters in {:.2} s", clock.elapsed().as_secs_f64());
+        }
         // Before any GPU call that could panic on a buffer this device cannot hold.
         super::limits::check(buffers, &adapter.limits(), &info.name)?;
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("caustic"),
-            required_features: wgpu::Features::empty(),
-            required_limits: adapter.limits(),
-            ..Default::default()
-        }))
-        .context("cannot open the GPU device")?;
-
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let words = kernel_words()?;
         let integrator = buffers.params.integrator;
         let software = info.device_type == wgpu::DeviceType::Cpu;
@@ -170,9 +165,37 @@ impl GpuBackend {
             .filter(|_| variant::unrequested() && candidates.len() > 1)
             .and_then(|key| decisions.load_partial(key, candidates.len()));
         let trial = resumed.unwrap_or_else(|| Trial::new(candidates.len()));
+        // The entry points this integrator runs: the modules keep those alone.
+        let cached = traces_cached(integrator);
+        let batched = super::accumulation::batch_means(&buffers.params);
+        let entries: Vec<&str> = [
+            (traces_camera_paths(integrator), camera_entry(integrator)),
+            (traces_light_paths(integrator), LIGHT_ENTRY),
+            (cached, CACHE_LIGHT_ENTRY),
+            (merges(integrator), GRID_LINK_ENTRY),
+            (batched, RESOLVE_ENTRY),
+        ]
+        .into_iter()
+        .filter_map(|(runs, entry)| runs.then_some(entry))
+        .collect();
         // The light and resolve entry points take the first loop's module, in the kernel's own
-        // workgroup size.
-        let loops = LoopModules::of(&words, buffers.features, &candidates);
+        // workgroup size. Pruned while the driver opens the device.
+        let (opened, loops) = std::thread::scope(|threads| {
+            let pruning = threads.spawn(|| LoopModules::of(&words, buffers.features, &candidates, &entries));
+            let clock = Instant::now();
+            let opened = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+                label: Some("caustic"),
+                required_features: wgpu::Features::empty(),
+                required_limits: adapter.limits(),
+                ..Default::default()
+            }));
+            if trial_log() {
+                eprintln!("build: device opened in {:.2} s", clock.elapsed().as_secs_f64());
+            }
+            (opened, pruning.join().expect("pruning the kernel panicked"))
+        });
+        let (device, queue) = opened.context("cannot open the GPU device")?;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         // One explicit layout for both entry points (each uses a subset of the bindings).
         let entry = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
             binding,
@@ -215,7 +238,6 @@ impl GpuBackend {
         let writes_cache = access(false, false);
         let links_grid = access(true, false);
         let reads_cache = access(true, true);
-        let cached = traces_cached(integrator);
         let camera_layout = if cached { &reads_cache } else { &writes_cache };
         let factory = PipelineFactory {
             device: device.clone(),
@@ -242,7 +264,6 @@ impl GpuBackend {
         let grid_pipeline = merges(integrator)
             .then(|| factory.build_in(&links_grid.1, first_loop, DEFAULT_WORKGROUP, GRID_LINK_ENTRY));
         // (Also the splatting film's gather.)
-        let batched = super::accumulation::batch_means(&buffers.params);
         let resolve_pipeline =
             batched.then(|| factory.build_in(&writes_cache.1, first_loop, DEFAULT_WORKGROUP, RESOLVE_ENTRY));
         if let Some(e) = pollster::block_on(scope.pop()) {
@@ -726,8 +747,8 @@ impl PipelineFactory {
 pub(crate) struct LoopModules(Vec<(PathLoop, Vec<u32>, bool)>);
 
 impl LoopModules {
-    /// Each candidate loop's module, pruned on a thread of its own.
-    pub(crate) fn of(words: &[u32], features: u32, candidates: &[Variant]) -> Self {
+    /// Each candidate loop's module with entry points `entries`, pruned on a thread of its own.
+    pub(crate) fn of(words: &[u32], features: u32, candidates: &[Variant], entries: &[&str]) -> Self {
         let prune = super::prune::wanted();
         let mut wanted: Vec<PathLoop> = Vec::new();
         for c in candidates {
@@ -741,7 +762,7 @@ impl LoopModules {
                 .map(|&l| {
                     threads.spawn(move || {
                         let clock = Instant::now();
-                        let module = scene_module(words, prune, features, l);
+                        let module = scene_module(words, prune, features, l, entries);
                         if trial_log() {
                             let seconds = clock.elapsed().as_secs_f64();
                             eprintln!(
@@ -783,12 +804,18 @@ pub(crate) fn kernel_words() -> Result<Vec<u32>> {
 }
 
 /// The module a scene's pipelines are built from, for path loop `choice`: pruned to the scene's
-/// feature mask where `prune` wants and can, else the kernel itself; and whether its
+/// feature mask and to `entries` where `prune` wants and can, else the kernel itself; and whether its
 /// specialization constants are still open (then the pipeline sets them).
-fn scene_module(words: &[u32], prune: bool, features: u32, choice: PathLoop) -> (Vec<u32>, bool) {
+fn scene_module(
+    words: &[u32],
+    prune: bool,
+    features: u32,
+    choice: PathLoop,
+    entries: &[&str],
+) -> (Vec<u32>, bool) {
     let specialisable = declares_spec_constant(words, 0);
     if specialisable && prune {
-        if let Some(pruned) = super::prune::pruned(words, features, choice.spec_value()) {
+        if let Some(pruned) = super::prune::pruned_to(words, features, choice.spec_value(), entries) {
             let open = declares_spec_constant(&pruned, 0);
             return (pruned, open);
         }
@@ -833,6 +860,6 @@ pub(crate) const BINDINGS: [u32; 12] = [
 /// `CAUSTIC_TRIAL_LOG` set: the trial's passes on standard error (each dispatch's candidate, samples
 /// per pixel and time), to see what a choice was made from, and the time each module and pipeline
 /// took to build.
-fn trial_log() -> bool {
+pub(crate) fn trial_log() -> bool {
     std::env::var_os("CAUSTIC_TRIAL_LOG").is_some()
 }

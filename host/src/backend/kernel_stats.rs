@@ -294,7 +294,9 @@ pub fn scene(features: u32, integrator: u32, with_statistics: bool) -> Result<Ve
     }
     // Every loop's module first: pruning is what takes long, and a later failure should not waste it.
     let variants: Vec<Variant> = wanted.iter().map(|w| w.1).collect();
-    let modules = LoopModules::of(&words, features, &variants);
+    let mut entries: Vec<&str> = wanted.iter().map(|w| w.0).collect();
+    entries.dedup();
+    let modules = LoopModules::of(&words, features, &variants, &entries);
     // One device for every pipeline; without an adapter that reports statistics, why not (the
     // modules alone, for `--write-spirv`), unless they were asked for.
     let vulkan = match Vulkan::new() {
@@ -340,5 +342,59 @@ mod tests {
             crate::backend::spirv::instructions(&module).filter(|i| i.1 == OP_ENTRY_POINT).count();
         assert_eq!(entry_points, 1);
         assert!(through_naga(&words, "entry::nowhere", [0, 1]).is_err());
+    }
+
+    /// A module pruned to the entry points a path-traced scene runs (`prune::pruned_to`) gives the
+    /// driver the same words for them as the module with all six, the others gone: here the Cornell
+    /// box's mask under the regenerating loop, and the light entry point of a light-tracing scene.
+    #[test]
+    fn entry_points_left_out_change_nothing_the_driver_gets_for_the_others() {
+        use crate::backend::prune::{pruned, pruned_to};
+        let words = kernel_words().unwrap();
+        let scene = crate::load::load_scene(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/cornell-box.xml"),
+            &[],
+        )
+        .unwrap();
+        let mask = crate::prepare::buffers::build(&scene).unwrap().features;
+        let all = pruned(&words, mask, 1).unwrap();
+        for kept in [&["entry::render", "entry::resolve"][..], &["entry::light"]] {
+            let some = pruned_to(&words, mask, 1, kept).unwrap();
+            let names: Vec<String> = crate::backend::spirv::instructions(&some)
+                .filter(|i| i.1 == 15)
+                .map(|(at, _, len)| {
+                    let bytes: Vec<u8> =
+                        some[at + 3..at + len].iter().flat_map(|w| w.to_le_bytes()).collect();
+                    String::from_utf8_lossy(&bytes).split('\0').next().unwrap().to_string()
+                })
+                .collect();
+            assert_eq!(names, kept, "the entry points kept");
+            assert!(some.len() < all.len(), "{} words against {}", some.len(), all.len());
+            for entry in kept {
+                let (a, b) = (
+                    through_naga(&all, entry, [mask, 1]).unwrap(),
+                    through_naga(&some, entry, [mask, 1]).unwrap(),
+                );
+                // The same code, instruction by instruction. Naga numbers the types in the order it
+                // meets them, so ids and the type section's order may differ; and where any entry
+                // point of a module uses a storage buffer atomically, naga makes every access to it
+                // atomic (light tracing's splats make the render entry point's plain loads and
+                // stores of the splat buffer relaxed atomics in the whole module; alone they stay the
+                // plain accesses the kernel wrote).
+                let body = |m: &[u32]| -> Vec<(u32, usize)> {
+                    let all: Vec<(usize, u32, usize)> = crate::backend::spirv::instructions(m).collect();
+                    let first = all.iter().position(|i| i.1 == 54).unwrap();
+                    let plain = |(op, len)| match op {
+                        227 => (61, 4), // OpAtomicLoad: OpLoad
+                        228 => (62, 3), // OpAtomicStore: OpStore
+                        _ => (op, len),
+                    };
+                    all[first..].iter().map(|i| plain((i.1, i.2))).collect()
+                };
+                assert!(body(&a) == body(&b), "{entry}: {} words against {}", b.len(), a.len());
+            }
+            // Negative control: an entry point left out is not there to build.
+            assert!(through_naga(&some, "entry::cache_camera", [mask, 1]).is_err());
+        }
     }
 }

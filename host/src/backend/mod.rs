@@ -178,7 +178,11 @@ pub fn create_starting(
     if choice != BackendChoice::Auto || std::env::var_os("CAUSTIC_CPU_START").is_some_and(|v| v == "0") {
         return create_on(choice, gpus, buffers);
     }
+    let clock = std::time::Instant::now();
     let adapters = gpu::adapter_types();
+    if gpu::trial_log() {
+        eprintln!("build: Vulkan adapters listed in {:.2} s", clock.elapsed().as_secs_f64());
+    }
     let Ok(indices) = resolve_gpus(gpus, &adapters, true) else {
         return create_on(choice, gpus, buffers);
     };

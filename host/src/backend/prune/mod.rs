@@ -34,7 +34,7 @@
 //! within -2% to +9% of `spirv-opt`'s.
 use super::spirv::{instructions, DECORATION_SPEC_ID, MAGIC, OP_DECORATE};
 use analysis::{Inst, Module, Scalar, Value};
-use opcodes::{self as op, debug};
+use opcodes::{self as op, body_result, debug};
 use rewrite::NewGlobals;
 use std::collections::{HashMap, HashSet};
 
@@ -51,11 +51,50 @@ pub fn wanted() -> bool {
 /// `words` with spec constant 0 frozen at `mask` and 1 at `path_loop` (`PathLoop::spec_value`), and
 /// the blocks they disable removed; `None` where the module is not one this can prune.
 pub fn pruned(words: &[u32], mask: u32, path_loop: u32) -> Option<Vec<u32>> {
-    prune(words, &[(0, mask), (1, path_loop)])
+    prune(words, &[(0, mask), (1, path_loop)], None)
 }
 
-/// `words` with spec constants frozen (`(spec id, value)`) and the blocks that cannot run removed.
-fn prune(words: &[u32], frozen: &[(u32, u32)]) -> Option<Vec<u32>> {
+/// `pruned`, keeping only the entry points named in `entries` (those a scene's integrator runs): the
+/// others' functions are neither analysed nor written. The kernel's entry points are each one
+/// inlined function, and a path-traced scene runs two of six (`render`, `resolve`), about a third
+/// of the module's words, so its pruning and naga's reading of the result take that much less.
+pub fn pruned_to(words: &[u32], mask: u32, path_loop: u32, entries: &[&str]) -> Option<Vec<u32>> {
+    prune(words, &[(0, mask), (1, path_loop)], Some(entries))
+}
+
+/// An `OpEntryPoint`'s function id and name (`w`: its words).
+fn entry_point(w: &[u32]) -> Option<(u32, String)> {
+    let function = *w.get(2)?;
+    let bytes: Vec<u8> = w.get(3..)?.iter().flat_map(|x| x.to_le_bytes()).take_while(|&b| b != 0).collect();
+    Some((function, String::from_utf8(bytes).ok()?))
+}
+
+/// The functions of entry points not in `keep`: what `prune` leaves out (none where `keep` is
+/// `None`, and none that a kept entry point or any call names).
+fn left_out(m: &Module, first_function: usize, keep: Option<&[&str]>) -> Option<HashSet<u32>> {
+    let Some(keep) = keep else { return Some(HashSet::new()) };
+    let mut out = HashSet::new();
+    let mut kept = HashSet::new();
+    for i in &m.insts[..first_function] {
+        if i.op == op::ENTRY_POINT {
+            let (function, name) = entry_point(&m.words[i.at..i.at + i.len])?;
+            if keep.contains(&name.as_str()) {
+                kept.insert(function)
+            } else {
+                out.insert(function)
+            };
+        }
+    }
+    for i in m.insts[first_function..].iter().filter(|i| i.op == op::FUNCTION_CALL) {
+        kept.insert(*m.words.get(i.at + 3)?);
+    }
+    out.retain(|f| !kept.contains(f));
+    Some(out)
+}
+
+/// `words` with spec constants frozen (`(spec id, value)`) and the blocks that cannot run removed;
+/// only the entry points in `keep`, where it is given.
+fn prune(words: &[u32], frozen: &[(u32, u32)], keep: Option<&[&str]>) -> Option<Vec<u32>> {
     if words.len() < 5 || words[0] != MAGIC {
         return None;
     }
@@ -128,7 +167,9 @@ fn prune(words: &[u32], frozen: &[(u32, u32)]) -> Option<Vec<u32>> {
         }
     }
 
-    // Functions: each one's blocks, analysed, then written.
+    // Functions: each one's blocks, analysed, then written; those of entry points left out, gone
+    // with every id they define.
+    let left_out = left_out(&m, first_function, keep)?;
     let mut bodies: Vec<u32> = Vec::new();
     let mut removed = vec![false; bound];
     let mut globals = NewGlobals { words: Vec::new(), next_id: bound as u32, made: HashMap::new() };
@@ -138,6 +179,22 @@ fn prune(words: &[u32], frozen: &[(u32, u32)]) -> Option<Vec<u32>> {
             return None;
         }
         let end = at + m.insts[at..].iter().position(|i| i.op == op::FUNCTION_END)?;
+        let function = *words.get(m.insts[at].at + 2)?;
+        if left_out.contains(&function) {
+            for i in &m.insts[at..end] {
+                let result = match i.op {
+                    op::LABEL => words.get(i.at + 1),
+                    op::FUNCTION | op::FUNCTION_PARAMETER => words.get(i.at + 2),
+                    o if body_result(o) => words.get(i.at + 2),
+                    _ => None,
+                };
+                if let Some(slot) = result.and_then(|&r| removed.get_mut(r as usize)) {
+                    *slot = true;
+                }
+            }
+            at = end + 1;
+            continue;
+        }
         let mut blocks = m.blocks(at + 1, end)?;
         let fates = m.analyse(&mut blocks)?;
         m.write(at, end, &blocks, &fates, &mut removed, &mut globals, &mut bodies)?;
@@ -154,7 +211,13 @@ fn prune(words: &[u32], frozen: &[(u32, u32)]) -> Option<Vec<u32>> {
             && w.get(1).is_some_and(|&t| removed.get(t as usize) == Some(&true));
         let frees_spec =
             i.op == OP_DECORATE && w.len() == 4 && w[2] == DECORATION_SPEC_ID && frozen_ids.contains(&w[1]);
-        if debug(i.op) || targets_removed || frees_spec {
+        let of_left_out = match i.op {
+            op::ENTRY_POINT => w.get(2),
+            op::EXECUTION_MODE | op::EXECUTION_MODE_ID => w.get(1),
+            _ => None,
+        }
+        .is_some_and(|f| left_out.contains(f));
+        if debug(i.op) || targets_removed || frees_spec || of_left_out {
             continue;
         }
         let start = out.len();
