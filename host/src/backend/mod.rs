@@ -168,14 +168,22 @@ fn empty(buffers: &crate::prepare::buffers::SceneBuffers) -> Accumulation {
 /// first image at the CPU's pace rather than after the build (tens of seconds on an H200: README,
 /// "What a first render costs"); the stand-in stops once a GPU is ready. The image is the same
 /// estimator (samples are a function of their index, whichever device draws them) but not the same
-/// bits from run to run; `--backend gpu` renders on the GPUs alone. Measurements (`bench`,
-/// `convergence`) use `create_on`.
+/// bits from run to run; `--backend gpu` renders on the GPUs alone. Only a render of `spp` samples
+/// per pixel small enough for the stand-in to matter gets one (`stand_in::worth_it`); larger ones
+/// start on the GPUs alone. Measurements (`bench`, `convergence`) use `create_on`.
 pub fn create_starting(
     choice: BackendChoice,
     gpus: &GpuSelection,
     buffers: &crate::prepare::buffers::SceneBuffers,
+    spp: u32,
 ) -> Result<Box<dyn Backend + Send>> {
-    if choice != BackendChoice::Auto || std::env::var_os("CAUSTIC_CPU_START").is_some_and(|v| v == "0") {
+    let samples = buffers.params.width as u64 * buffers.params.height as u64 * spp as u64;
+    let wanted = match std::env::var("CAUSTIC_CPU_START").as_deref() {
+        Ok("0") => false,
+        Ok("1") => true,
+        _ => stand_in::worth_it(samples),
+    };
+    if choice != BackendChoice::Auto || !wanted {
         return create_on(choice, gpus, buffers);
     }
     let clock = std::time::Instant::now();

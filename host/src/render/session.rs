@@ -94,7 +94,7 @@ pub fn render_to_file(job: &RenderJob) -> Result<RenderReport> {
     }
     let (buffers, spp) = prepare_scene(job)?;
     check_outputs(job)?;
-    let mut backend = backend::create_starting(job.backend, &job.gpus, &buffers)
+    let mut backend = backend::create_starting(job.backend, &job.gpus, &buffers, spp)
         .with_context(|| format!("{}: its sensor's film", job.scene.display()))?;
     let seed = job.seed;
     // Hashing every scene buffer is only worth it when there is a checkpoint to match.
