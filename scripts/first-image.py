@@ -7,7 +7,8 @@ For each scene: caustic `render SCENE --spp N -o out.exr` with the default backe
 machine with a GPU, a CPU stand-in renders while the GPU's pipelines are built; `backend::create_starting`)
 and, with --gpu-only, with `--backend gpu` too (the GPU alone, waiting for its build); Mitsuba 3
 (`--variant`, `cuda_ad_rgb` by default) in a fresh Python process that loads the scene, renders N spp
-and writes the EXR. "Cold" removes `~/.cache/caustic/variants` (pipeline trial decisions; `pruned`, where an older build kept pruned kernels),
+and writes the EXR. "Cold" removes `~/.cache/caustic/modules` (pruned kernel modules; `pruned`, where an
+older build kept them), `~/.cache/caustic/variants` (pipeline trial decisions),
 `~/.cache/nvidia` and `~/.nv` (the NVIDIA driver's shader cache) before caustic's run and `~/.drjit`
 (Dr.Jit's kernel cache) before Mitsuba's; "warm" runs the same command again at once.
 
@@ -27,9 +28,15 @@ import sys
 import tempfile
 import time
 
-# caustic's run-time caches only (`backend::prune`, `backend::variant`): its build caches live beside
-# them in ~/.cache/caustic and are kept.
-CAUSTIC_CACHES = ["~/.cache/caustic/pruned", "~/.cache/caustic/variants", "~/.cache/nvidia", "~/.nv"]
+# caustic's run-time caches only (`backend::module_cache`, `backend::variant`): its build caches
+# live beside them in ~/.cache/caustic and are kept.
+CAUSTIC_CACHES = [
+    "~/.cache/caustic/pruned",
+    "~/.cache/caustic/modules",
+    "~/.cache/caustic/variants",
+    "~/.cache/nvidia",
+    "~/.nv",
+]
 MITSUBA_CACHES = ["~/.drjit"]
 
 MITSUBA_RENDER = """

@@ -6,6 +6,7 @@
 //! is bounds-checked Rust.
 use super::accumulation::{Accumulation, Folding};
 use super::device::Backend;
+use super::module_cache::ModuleCache;
 use super::path_loop::PathLoop;
 use super::spirv::{declares_spec_constant, set_workgroup_size, KERNEL_SPV};
 use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
@@ -750,6 +751,7 @@ impl LoopModules {
     /// Each candidate loop's module with entry points `entries`, pruned on a thread of its own.
     pub(crate) fn of(words: &[u32], features: u32, candidates: &[Variant], entries: &[&str]) -> Self {
         let prune = super::prune::wanted();
+        let digest = prune.then(|| ModuleCache::digest(words));
         let mut wanted: Vec<PathLoop> = Vec::new();
         for c in candidates {
             if !wanted.contains(&c.path_loop) {
@@ -762,7 +764,7 @@ impl LoopModules {
                 .map(|&l| {
                     threads.spawn(move || {
                         let clock = Instant::now();
-                        let module = scene_module(words, prune, features, l, entries);
+                        let module = scene_module(words, digest, features, l, entries);
                         if trial_log() {
                             let seconds = clock.elapsed().as_secs_f64();
                             eprintln!(
@@ -804,18 +806,26 @@ pub(crate) fn kernel_words() -> Result<Vec<u32>> {
 }
 
 /// The module a scene's pipelines are built from, for path loop `choice`: pruned to the scene's
-/// feature mask and to `entries` where `prune` wants and can, else the kernel itself; and whether its
+/// feature mask and to `entries` where pruning is wanted (`digest`: the kernel's, for the modules
+/// kept between renders, `ModuleCache`) and can, else the kernel itself; and whether its
 /// specialization constants are still open (then the pipeline sets them).
 fn scene_module(
     words: &[u32],
-    prune: bool,
+    digest: Option<u64>,
     features: u32,
     choice: PathLoop,
     entries: &[&str],
 ) -> (Vec<u32>, bool) {
     let specialisable = declares_spec_constant(words, 0);
-    if specialisable && prune {
+    if let (true, Some(digest)) = (specialisable, digest) {
+        let (cache, key) =
+            (ModuleCache::in_cache(), ModuleCache::key(digest, features, choice.spec_value(), entries));
+        if let Some(kept) = cache.load(key) {
+            let open = declares_spec_constant(&kept, 0);
+            return (kept, open);
+        }
         if let Some(pruned) = super::prune::pruned_to(words, features, choice.spec_value(), entries) {
+            cache.store(key, &pruned);
             let open = declares_spec_constant(&pruned, 0);
             return (pruned, open);
         }

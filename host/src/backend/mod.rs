@@ -11,6 +11,7 @@ pub mod gpu;
 pub mod kernel_stats;
 pub mod limits;
 pub mod memory;
+pub mod module_cache;
 pub mod path_loop;
 pub mod pool;
 pub mod prune;

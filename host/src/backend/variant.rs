@@ -95,6 +95,14 @@ pub fn candidates(path_tracer: bool, software: bool) -> Result<Vec<Variant>> {
         .collect())
 }
 
+/// The user's cache directory: `$XDG_CACHE_HOME` where absolute, else `~/.cache`.
+pub(crate) fn cache_base() -> Option<PathBuf> {
+    std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .filter(|p| p.is_absolute())
+        .or_else(|| std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".cache")))
+}
+
 /// Trial outcomes kept between renders: one small file per setup key (`$XDG_CACHE_HOME/caustic/variants`,
 /// else `~/.cache/caustic/variants`), naming the loop and the size. A missing or unreadable one only
 /// means the trial runs again.
@@ -104,11 +112,7 @@ pub struct Decisions {
 
 impl Decisions {
     pub fn in_cache() -> Self {
-        let base = std::env::var_os("XDG_CACHE_HOME")
-            .map(PathBuf::from)
-            .filter(|p| p.is_absolute())
-            .or_else(|| std::env::var_os("HOME").map(|home| PathBuf::from(home).join(".cache")));
-        Decisions { dir: base.map(|b| b.join("caustic").join("variants")) }
+        Decisions { dir: cache_base().map(|b| b.join("caustic").join("variants")) }
     }
 
     /// The key of a setup: the kernel, the scene (`scene_fingerprint`), the adapter and the
