@@ -193,8 +193,9 @@ impl GpuBackend {
             if trial_log() {
                 eprintln!("build: device opened in {:.2} s", clock.elapsed().as_secs_f64());
             }
-            (opened, pruning.join().expect("pruning the kernel panicked"))
+            (opened, pruning.join())
         });
+        let loops = loops.map_err(|_| anyhow!("pruning the kernel for {} failed (a panic)", info.name))?;
         let (device, queue) = opened.context("cannot open the GPU device")?;
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         // One explicit layout for both entry points (each uses a subset of the bindings).

@@ -45,12 +45,12 @@ impl ModuleCache {
     /// Module `key`, if a whole one is kept.
     pub fn load(&self, key: u64) -> Option<Vec<u32>> {
         let bytes = std::fs::read(self.path(key)?).ok()?;
-        let words: Vec<u32> = bytemuck::pod_collect_to_vec(bytes.get(..bytes.len() / 4 * 4)?);
+        if bytes.len() % 4 != 0 {
+            return None;
+        }
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
         let (module, sum) = words.split_at(words.len().checked_sub(2)?);
-        let whole = module.len() > 5
-            && module[0] == super::spirv::MAGIC
-            && bytes.len() % 4 == 0
-            && sum == checksum(module);
+        let whole = module.len() > 5 && module[0] == super::spirv::MAGIC && sum == checksum(module);
         whole.then(|| module.to_vec())
     }
 
