@@ -112,6 +112,12 @@ enum Command {
         /// Refuse a scene that would not render as written (as `render --strict`).
         #[arg(long)]
         strict: bool,
+        /// Measure this integrator instead of the scene's (as `render --integrator`).
+        #[arg(long, value_enum)]
+        integrator: Option<IntegratorChoice>,
+        /// The film (as `render --film`).
+        #[arg(long, value_enum, default_value = "splat")]
+        film: FilmMode,
     },
     /// Print what the GPU driver compiled a scene's kernel to (its own statistics: on NVIDIA,
     /// registers per thread and spilled bytes), for each pipeline `render` would build.
@@ -257,11 +263,18 @@ fn main() {
         Command::Compare { image, reference, image_spp, reference_spp, error_image } => {
             cmd_compare(&image, &reference, image_spp, reference_spp, error_image.as_deref())
         }
-        Command::Bench { scene, define, backend, spp, gpus, scaling, strict } => {
+        Command::Bench { scene, define, backend, spp, gpus, scaling, strict, integrator, film } => {
+            let asked = BenchScene {
+                path: &scene,
+                defines: &define,
+                options: LoadOptions { strict },
+                integrator,
+                film,
+            };
             if scaling {
-                cmd_bench_scaling(&scene, &define, &gpus, spp, LoadOptions { strict })
+                cmd_bench_scaling(&asked, &gpus, spp)
             } else {
-                cmd_bench(&scene, &define, &backend, &gpus, spp, LoadOptions { strict })
+                cmd_bench(&asked, &backend, &gpus, spp)
             }
         }
         Command::KernelStats { scene, define, write_spirv } => {
@@ -494,27 +507,35 @@ fn integrator_name(kind: &caustic::scene::IntegratorKind) -> &'static str {
     }
 }
 
-/// What both benchmarks start from: a sample count of at least one and the scene's buffers.
-fn bench_buffers(
-    scene_path: &Path,
-    defines: &[(String, String)],
-    spp: u32,
+/// The scene a benchmark measures, as its command line names it.
+struct BenchScene<'a> {
+    path: &'a Path,
+    defines: &'a [(String, String)],
     options: LoadOptions,
-) -> Result<buffers::SceneBuffers> {
+    /// `--integrator`: in place of the scene's.
+    integrator: Option<IntegratorChoice>,
+    film: FilmMode,
+}
+
+/// What both benchmarks start from: a sample count of at least one and the scene's buffers.
+fn bench_buffers(asked: &BenchScene, spp: u32) -> Result<buffers::SceneBuffers> {
     if spp == 0 {
         anyhow::bail!("--spp must be at least 1");
     }
     let start = Instant::now();
-    let scene = caustic::load::load_scene_with(scene_path, defines, options)?;
+    let scene = caustic::load::load_scene_with(asked.path, asked.defines, asked.options)?;
     let loaded = start.elapsed().as_secs_f64();
-    let buffers = buffers::build(&scene)?;
+    let instances = scene.instancing.instances.len();
+    let kind =
+        asked.integrator.map_or(scene.integrator.kind, |c| scene.integrator.clone().overridden(c).kind);
+    let buffers = session::build_scene(scene, asked.path, asked.integrator, asked.film, false)?;
     // What a large scene costs before its first sample (the large-scene table in BENCHMARKS.md).
     let scene_bytes = caustic::backend::memory::scene_bytes(&buffers);
     // With instances: the primitives stored (each group's once, and the instances themselves) and
     // the ones the instances place.
     let placed = match buffers.placed_prims {
         0 => String::new(),
-        n => format!(" stored, {n} placed by {} instances", scene.instancing.instances.len()),
+        n => format!(" stored, {n} placed by {instances} instances"),
     };
     say!(
         "scene: {} primitives{placed} | load {loaded:.2} s | buffers and BVH {:.2} s | {:.1} MiB of scene buffers",
@@ -522,6 +543,7 @@ fn bench_buffers(
         start.elapsed().as_secs_f64() - loaded,
         scene_bytes as f64 / (1u64 << 20) as f64
     );
+    say!("integrator {}, film {:?}", integrator_name(&kind), asked.film);
     Ok(buffers)
 }
 
@@ -530,7 +552,14 @@ fn cmd_kernel_stats(
     defines: &[(String, String)],
     write_spirv: Option<&Path>,
 ) -> Result<()> {
-    let buffers = bench_buffers(scene_path, defines, 1, LoadOptions::default())?;
+    let asked = BenchScene {
+        path: scene_path,
+        defines,
+        options: LoadOptions::default(),
+        integrator: None,
+        film: FilmMode::default(),
+    };
+    let buffers = bench_buffers(&asked, 1)?;
     say!("kernel paths {} (feature mask)", buffers.features);
     let reports =
         backend::kernel_stats::scene(buffers.features, buffers.params.integrator, write_spirv.is_none())?;
@@ -572,15 +601,8 @@ fn cmd_kernel_stats(
 /// How long `bench` warms up at most, waiting for the backend to settle.
 const WARM_UP_LIMIT: Duration = Duration::from_secs(20);
 
-fn cmd_bench(
-    scene_path: &Path,
-    defines: &[(String, String)],
-    choices: &[BackendChoice],
-    gpus: &GpuSelection,
-    spp: u32,
-    options: LoadOptions,
-) -> Result<()> {
-    let buffers = bench_buffers(scene_path, defines, spp, options)?;
+fn cmd_bench(asked: &BenchScene, choices: &[BackendChoice], gpus: &GpuSelection, spp: u32) -> Result<()> {
+    let buffers = bench_buffers(asked, spp)?;
     // What the GPU kernel is specialised to (kernel/src/features.rs); scripts/specialization.sh reads it.
     say!("kernel paths {} (feature mask)", buffers.features);
     say!("| backend | resolution | spp | seconds | Msamples/s |");
@@ -631,14 +653,9 @@ fn cmd_bench(
 
 /// Multi-GPU scaling: the same render on the first 1, 2, 4, … of the selected GPUs (and all of
 /// them), each after an untimed warm-up on its own devices.
-fn cmd_bench_scaling(
-    scene_path: &Path,
-    defines: &[(String, String)],
-    gpus: &GpuSelection,
-    spp: u32,
-    options: LoadOptions,
-) -> Result<()> {
-    let buffers = bench_buffers(scene_path, defines, spp, options)?;
+fn cmd_bench_scaling(asked: &BenchScene, gpus: &GpuSelection, spp: u32) -> Result<()> {
+    let buffers = bench_buffers(asked, spp)?;
+    let scene_path = asked.path;
     let all = backend::resolve_gpus(gpus, &backend::gpu::adapter_types(), false)?;
     let mut counts: Vec<usize> = (0..).map(|k| 1usize << k).take_while(|&c| c < all.len()).collect();
     counts.push(all.len());

@@ -462,6 +462,23 @@ fn bench_refuses_zero_spp() {
     assert!(err.contains("--spp") && !String::from_utf8_lossy(&out.stdout).contains("NaN"), "{err}");
 }
 
+/// `bench --integrator` measures that integrator instead of the scene's own, and says which.
+#[test]
+fn bench_measures_the_integrator_asked_for() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let bench = |extra: &[&str]| {
+        let out =
+            caustic(&[&["bench", scene, "-D", "res=8", "--backend", "cpu", "--spp", "1"], extra].concat());
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(stdout.lines().any(|l| l.starts_with("| cpu")), "no timed row: {stdout}");
+        stdout
+    };
+    assert!(bench(&[]).contains("integrator path, film Splat"), "the scene's own");
+    assert!(bench(&["--integrator", "bdpt"]).contains("integrator bdpt, film Splat"));
+    assert!(bench(&["--integrator", "ibpt", "--film", "fis"]).contains("integrator ibpt, film Fis"));
+}
+
 /// Without a usable XDG_RUNTIME_DIR (unset, empty or relative: no display session) the Vulkan
 /// loader's window-system code printed "XDG_RUNTIME_DIR is invalid or not set" on every GPU render;
 /// caustic gives it a private directory of its own instead. Whether or not a Vulkan adapter exists,
