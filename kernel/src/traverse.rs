@@ -15,6 +15,8 @@ impl Accel<'_> {
         if features::has(self.features, features::INSTANCING) {
             return crate::instancing::trace(self, ray, any_hit, skip);
         }
+        // (The GPU never walks a wide BVH: the host sets `wide` for the CPU alone.)
+        #[cfg(not(target_arch = "spirv"))]
         if self.wide {
             return crate::wide_bvh::trace(self, ray, any_hit, skip);
         }

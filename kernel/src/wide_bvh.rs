@@ -1,10 +1,11 @@
 //! Traversal of a 4-wide BVH, laid out in the node buffer's own records (`BvhNode`), for the CPU.
 //!
-//! A *group* is four consecutive `BvhNode`s, group `g` at `4g .. 4g + 4`, group 0 the root's. Each
-//! record describes one child by its box: a leaf (`prim_count > 0`: primitives `first .. first +
-//! prim_count`), an inner child (`prim_count == 0`: its own children are group `first`), or an empty
-//! slot (`prim_count == 0`, `first == NONE`). The host collapses its BVH2 into this layout
-//! (the host's `wide_bvh` module) for the CPU backend, which sets `SceneView::wide_bvh`.
+//! A *group* is four consecutive `BvhNode` records, group `g` at `4g .. 4g + 4`, group 0 the root's,
+//! read as one `Group`: four children's bounds in rows of four lanes, then each child's `first` and
+//! `prim_count`. A child is a leaf (`prim_count > 0`: primitives `first .. first + prim_count`), an
+//! inner child (`prim_count == 0`: its own children are group `first`), or an empty slot
+//! (`prim_count == 0`, `first == NONE`). The host collapses its BVH2 into groups (the host's
+//! `wide_bvh` module) for the CPU backend, which sets `SceneView::wide_bvh`.
 //!
 //! Why on the CPU: the scalar BVH2 walk was 71% of glass's time on one core (`perf` at 793e298,
 //! `Accel::trace` and the triangle test). A group tests four boxes as the lanes of `Vec4`s (one SSE
@@ -19,12 +20,15 @@
 //! primitives at one distance, or at distances within the triangle test's rounding (coplanar
 //! surfaces), either may be reported; and a ray parallel to an axis in the plane of a box's face
 //! enters the box, where BVH2 enters it only through its upper face.
-use crate::bvh::{intersect_leaf, Accel};
-use crate::camera::Ray;
-use crate::glam::{Vec2, Vec3, Vec4};
-use crate::layout::{BvhNode, NONE};
-use crate::shape::{self, Hit};
-use spirv_std::arch::IndexUnchecked;
+use crate::glam::Vec4;
+#[cfg(not(target_arch = "spirv"))]
+use crate::{
+    bvh::{intersect_leaf, Accel},
+    camera::Ray,
+    glam::{Vec2, Vec3},
+    layout::NONE,
+    shape::{self, Hit},
+};
 
 /// Groups a wide BVH may nest (the root's group counts one): its stack then never overflows, since
 /// a group pushes at most four children and pops one. The host keeps BVH2 for deeper trees.
@@ -33,6 +37,7 @@ pub const WIDE_DEPTH: usize = 24;
 pub const WIDE_STACK: usize = 3 * WIDE_DEPTH + 1;
 
 /// The conservative factor of `bvh::intersect_aabb`, against rounding in the slab distances.
+#[cfg(not(target_arch = "spirv"))]
 const SLACK: f32 = 1.000_000_4;
 
 /// `a` where `a < b`, else `b`: a NaN in either yields `b`. On x86-64 that is SSE's `minps`, which
@@ -57,43 +62,53 @@ pub fn greater_or(a: Vec4, b: Vec4) -> Vec4 {
     return Vec4::select(a.cmpgt(b), a, b);
 }
 
-#[inline]
-fn lanes(a: &BvhNode, b: &BvhNode, c: &BvhNode, d: &BvhNode, axis: usize, max: bool) -> Vec4 {
-    if max {
-        Vec4::new(a.max[axis], b.max[axis], c.max[axis], d.max[axis])
-    } else {
-        Vec4::new(a.min[axis], b.min[axis], c.min[axis], d.min[axis])
-    }
+/// A group as the walk reads it, in the four `BvhNode` records it occupies (128 bytes): its children's
+/// bounds by axis, each a row of four lanes (`min` x, y, z, then `max` x, y, z), then their `first`s
+/// and `prim_count`s. The host writes groups so (`prepare::wide_bvh::by_lane`): a row is one SSE
+/// load where the records' layout took four scalar loads and three shuffles a row.
+#[repr(C)]
+#[derive(Clone, Copy, Default)]
+#[cfg_attr(not(target_arch = "spirv"), derive(bytemuck::Pod, bytemuck::Zeroable, Debug))]
+pub struct Group {
+    pub bounds: [[f32; 4]; 6],
+    pub first: [u32; 4],
+    pub prim_count: [u32; 4],
 }
 
-/// `Accel::trace` over a wide BVH (same arguments; the hits as the module says).
+/// A child waiting on the walk's stack: where its box is entered, and its `first` and `prim_count`.
+#[cfg(not(target_arch = "spirv"))]
+#[derive(Clone, Copy)]
+struct Pending {
+    t: f32,
+    first: u32,
+    prim_count: u32,
+}
+
+/// `Accel::trace` over a wide BVH (same arguments; the hits as the module says). The CPU's alone:
+/// the GPU never sets `Accel::wide`, and the walk reads the node buffer as `Group`s.
+#[cfg(not(target_arch = "spirv"))]
 pub(crate) fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Option<Hit> {
+    use core::mem::MaybeUninit;
+    let groups: &[Group] = bytemuck::cast_slice(accel.nodes);
     // `+ 0.0` turns -0.0 into 0.0: a zero component's inverse is +∞ (see the slabs below).
     let inv_dir = Vec3::ONE / (ray.dir + Vec3::ZERO);
     let shear = shape::triangle::RayShear::of(ray);
     let (ox, oy, oz) = (Vec4::splat(ray.origin.x), Vec4::splat(ray.origin.y), Vec4::splat(ray.origin.z));
     let (ix, iy, iz) = (Vec4::splat(inv_dir.x), Vec4::splat(inv_dir.y), Vec4::splat(inv_dir.z));
     let t_min = Vec4::splat(ray.t_min);
-    let mut slots = [0u32; WIDE_STACK];
-    let mut entry = [0f32; WIDE_STACK];
+    // Left uninitialised: only entries below `top` are read, each written first (zeroing the stack
+    // was a `memset` call per ray, 1-2% of a render on one core).
+    let mut stack = [const { MaybeUninit::<Pending>::uninit() }; WIDE_STACK];
     let mut top = 0usize;
     let mut best = Hit { t: ray.t_max, prim: NONE, uv: Vec2::ZERO, instance: NONE };
     let mut group = 0u32;
     loop {
-        // The group's four boxes at once.
-        let base = 4 * group as usize;
-        // SAFETY: every group a slot names lies inside `nodes` (the host's `wide_bvh` builds them so).
-        let (a, b, c, d) = unsafe {
-            (
-                accel.nodes.index_unchecked(base),
-                accel.nodes.index_unchecked(base + 1),
-                accel.nodes.index_unchecked(base + 2),
-                accel.nodes.index_unchecked(base + 3),
-            )
-        };
-        let (x0, x1) = ((lanes(a, b, c, d, 0, false) - ox) * ix, (lanes(a, b, c, d, 0, true) - ox) * ix);
-        let (y0, y1) = ((lanes(a, b, c, d, 1, false) - oy) * iy, (lanes(a, b, c, d, 1, true) - oy) * iy);
-        let (z0, z1) = ((lanes(a, b, c, d, 2, false) - oz) * iz, (lanes(a, b, c, d, 2, true) - oz) * iz);
+        // SAFETY: every group a child names lies inside the buffer (the host's `wide_bvh` builds them so).
+        let g = unsafe { groups.get_unchecked(group as usize) };
+        let row = |i: usize| Vec4::from_array(g.bounds[i]);
+        let (x0, x1) = ((row(0) - ox) * ix, (row(3) - ox) * ix);
+        let (y0, y1) = ((row(1) - oy) * iy, (row(4) - oy) * iy);
+        let (z0, z1) = ((row(2) - oz) * iz, (row(5) - oz) * iz);
         // Each axis's slab, from its nearer to its farther plane, joined into the ray's interval. A
         // ray parallel to an axis (inverse +∞) whose origin lies in a face's plane makes that face's
         // distance 0 · ∞ = NaN; the order of the operands drops it, so that axis constrains nothing
@@ -108,32 +123,23 @@ pub(crate) fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Optio
         let (near, far) = (near.to_array(), (far * SLACK).to_array());
         // Push the children hit, then order the pushed ones so that the nearest is on top.
         let pushed_from = top;
-        let mut lane = 0usize;
-        while lane < 4 {
-            // SAFETY: `lane < 4`, and `base + lane` is in the group read above.
-            let (t, t_far, slot) = unsafe {
-                (
-                    *near.index_unchecked(lane),
-                    *far.index_unchecked(lane),
-                    accel.nodes.index_unchecked(base + lane),
-                )
-            };
-            if slot.first != NONE && t <= t_far {
-                // SAFETY: at most `WIDE_STACK` entries (`WIDE_DEPTH`, checked by the host).
+        for lane in 0..4 {
+            let t = near[lane];
+            if g.first[lane] != NONE && t <= far[lane] {
+                let child = Pending { t, first: g.first[lane], prim_count: g.prim_count[lane] };
+                // SAFETY: at most `WIDE_STACK` entries (`WIDE_DEPTH`, checked by the host); entries
+                // from `pushed_from` to `top` were written by this group.
                 unsafe {
                     let mut i = top;
                     // Insertion: farther children sink below nearer ones.
-                    while i > pushed_from && *entry.index_unchecked(i - 1) < t {
-                        *entry.index_unchecked_mut(i) = *entry.index_unchecked(i - 1);
-                        *slots.index_unchecked_mut(i) = *slots.index_unchecked(i - 1);
+                    while i > pushed_from && stack.get_unchecked(i - 1).assume_init_ref().t < t {
+                        *stack.get_unchecked_mut(i) = *stack.get_unchecked(i - 1);
                         i -= 1;
                     }
-                    *entry.index_unchecked_mut(i) = t;
-                    *slots.index_unchecked_mut(i) = (base + lane) as u32;
+                    stack.get_unchecked_mut(i).write(child);
                 }
                 top += 1;
             }
-            lane += 1;
         }
         // Pop until an inner child: leaves are intersected on the way.
         loop {
@@ -141,19 +147,25 @@ pub(crate) fn trace(accel: &Accel, ray: &Ray, any_hit: bool, skip: u32) -> Optio
                 return if best.prim == NONE { None } else { Some(best) };
             }
             top -= 1;
-            // SAFETY: `top` was pushed.
-            let (t, slot) = unsafe { (*entry.index_unchecked(top), *slots.index_unchecked(top)) };
-            if t > best.t * SLACK {
+            // SAFETY: entry `top` was pushed.
+            let child = unsafe { stack.get_unchecked(top).assume_init() };
+            if child.t > best.t * SLACK {
                 continue;
             }
-            // SAFETY: pushed slots lie inside `nodes`.
-            let node = unsafe { *accel.nodes.index_unchecked(slot as usize) };
-            if node.prim_count == 0 {
-                group = node.first;
+            if child.prim_count == 0 {
+                group = child.first;
                 break;
             }
-            if intersect_leaf(accel.prims, node.first, node.prim_count, ray, &shear, skip, any_hit, &mut best)
-            {
+            if intersect_leaf(
+                accel.prims,
+                child.first,
+                child.prim_count,
+                ray,
+                &shear,
+                skip,
+                any_hit,
+                &mut best,
+            ) {
                 return Some(best);
             }
         }

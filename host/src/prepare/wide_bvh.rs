@@ -3,7 +3,7 @@
 //! (pbrt-v3's and Embree's collapse of a binary tree), and the leaves stay as they were, so the
 //! primitive buffer serves both.
 use caustic_kernel::layout::{BvhNode, NONE};
-use caustic_kernel::wide_bvh::WIDE_DEPTH;
+use caustic_kernel::wide_bvh::{Group, WIDE_DEPTH};
 
 /// Half the surface area of a node's box (enough to compare).
 fn half_area(n: &BvhNode) -> f32 {
@@ -27,11 +27,36 @@ fn children(nodes: &[BvhNode], n: usize) -> ([usize; 4], usize) {
     (open, len)
 }
 
-/// The wide BVH of `nodes` (a BVH2 of the layout `bvh::build_bvh` makes), or `None` when it
+/// The wide BVH of `nodes` (a BVH2 of the layout `bvh::build_bvh` makes) as the kernel's walk reads it
+/// (`collapse`, then `by_lane`), or `None` where `collapse` gives none.
+pub fn widen(nodes: &[BvhNode]) -> Option<Vec<BvhNode>> {
+    let mut groups = collapse(nodes)?;
+    by_lane(&mut groups);
+    Some(groups)
+}
+
+/// Rewrites each group of four child records in place as the `Group` they occupy: the same children,
+/// their bounds in rows of four lanes.
+pub fn by_lane(groups: &mut [BvhNode]) {
+    for records in groups.chunks_exact_mut(4) {
+        let mut g = Group::default();
+        for (lane, c) in records.iter().enumerate() {
+            for axis in 0..3 {
+                g.bounds[axis][lane] = c.min[axis];
+                g.bounds[3 + axis][lane] = c.max[axis];
+            }
+            g.first[lane] = c.first;
+            g.prim_count[lane] = c.prim_count;
+        }
+        bytemuck::cast_slice_mut::<BvhNode, Group>(records)[0] = g;
+    }
+}
+
+/// The wide BVH of `nodes` in child records (four a group), or `None` when it
 /// would nest deeper than the traversal's stack allows (`WIDE_DEPTH`: a child left unopened goes
 /// down one BVH2 level per group, so a lopsided BVH2 within its own stack may not fit) or `nodes` is
 /// empty.
-pub fn widen(nodes: &[BvhNode]) -> Option<Vec<BvhNode>> {
+pub fn collapse(nodes: &[BvhNode]) -> Option<Vec<BvhNode>> {
     let empty = BvhNode { first: NONE, ..Default::default() };
     let root = nodes.first()?;
     let mut out = vec![empty; 4];
@@ -134,7 +159,7 @@ mod tests {
     #[test]
     fn a_complete_tree_becomes_groups_of_four_over_the_same_leaves() {
         let nodes = complete(6); // 64 leaves: 1 + 4 + 16 groups
-        let wide = widen(&nodes).expect("shallow enough");
+        let wide = collapse(&nodes).expect("shallow enough");
         assert_eq!(wide.len(), 4 * 21);
         let (binary, four) = leaves(&nodes, &wide);
         assert_eq!(binary.len(), 64);
@@ -145,7 +170,7 @@ mod tests {
     #[test]
     fn a_leaf_root_and_an_odd_tree_leave_empty_slots() {
         let one = [node([0.0; 3], [1.0; 3], 3, 0)];
-        let wide = widen(&one).unwrap();
+        let wide = collapse(&one).unwrap();
         assert_eq!(wide[0].prim_count, 3);
         assert!(wide[1..4].iter().all(|n| n.first == NONE && n.prim_count == 0));
         // A root with a leaf and an inner node of two leaves: three children, one empty slot.
@@ -156,7 +181,7 @@ mod tests {
             node([1.0; 3], [2.0; 3], 1, 1),
             node([2.0; 3], [3.0; 3], 1, 2),
         ];
-        let wide = widen(&nodes).unwrap();
+        let wide = collapse(&nodes).unwrap();
         assert_eq!(wide.len(), 4);
         let (binary, four) = leaves(&nodes, &wide);
         assert_eq!(binary, four);
@@ -183,9 +208,26 @@ mod tests {
     #[test]
     fn a_chain_too_deep_for_the_stack_stays_binary() {
         // A group opens three of the chain's inner nodes.
-        let fits = widen(&chain(3 * WIDE_DEPTH)).expect("WIDE_DEPTH groups fit");
+        let fits = collapse(&chain(3 * WIDE_DEPTH)).expect("WIDE_DEPTH groups fit");
         assert_eq!(fits.len(), 4 * WIDE_DEPTH);
-        assert!(widen(&chain(3 * WIDE_DEPTH + 1)).is_none());
-        assert!(widen(&[]).is_none());
+        assert!(collapse(&chain(3 * WIDE_DEPTH + 1)).is_none());
+        assert!(collapse(&[]).is_none());
+    }
+
+    #[test]
+    fn by_lane_puts_each_child_in_its_lane() {
+        let wide = collapse(&complete(2)).unwrap(); // one group of four leaves
+        let mut lanes = wide.clone();
+        by_lane(&mut lanes);
+        let g: &Group = &bytemuck::cast_slice::<BvhNode, Group>(&lanes)[0];
+        for (lane, c) in wide.iter().enumerate() {
+            let (min, max) = ([0, 1, 2].map(|a| g.bounds[a][lane]), [3, 4, 5].map(|a| g.bounds[a][lane]));
+            assert_eq!((min, max, g.first[lane], g.prim_count[lane]), (c.min, c.max, c.first, c.prim_count));
+        }
+        let widened = widen(&complete(2)).unwrap();
+        assert_eq!(
+            bytemuck::cast_slice::<BvhNode, u32>(&widened),
+            bytemuck::cast_slice::<BvhNode, u32>(&lanes)
+        );
     }
 }
