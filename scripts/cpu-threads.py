@@ -37,6 +37,8 @@ def bench(binary, path, defines, spp, threads, integrator=None):
         if m:
             # From the seconds (three decimals), not the printed rate (two: 0.12 could be 0.115).
             w, h, n, seconds = int(m.group(1)), int(m.group(2)), int(m.group(3)), float(m.group(4))
+            if seconds == 0:
+                raise RuntimeError(f"the timed render took under a millisecond; raise --spp: {' '.join(cmd)}")
             return w * h * n / seconds / 1e6
     raise RuntimeError(f"no timed line in the output of {' '.join(cmd)}:\n{out}")
 
@@ -64,7 +66,8 @@ def main():
         counts = [1 << k for k in range(cores.bit_length()) if 1 << k < cores] + [cores]
     names = args.scenes.split(",")
     shared = [n for n in names if not n.endswith(".xml")]
-    paths = {n: os.path.join(args.shared, "scenes/mitsuba", r) for n, r in scene_list(args.shared, shared)}
+    # (Only where a shared scene is named: `scene_list` of no names lists them all, and needs --shared.)
+    paths = {n: os.path.join(args.shared, "scenes/mitsuba", r) for n, r in scene_list(args.shared, shared)} if shared else {}
     paths.update({n: n for n in names if n.endswith(".xml")})
     print(f"cores: {cores}; {args.rounds} rounds; {args.spp} spp per render")
     for name in names:

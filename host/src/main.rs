@@ -454,8 +454,7 @@ fn cmd_convergence(
         if integrator.is_empty() { vec![None] } else { integrator.iter().copied().map(Some).collect() };
     let mut curves = Vec::new();
     for integrator in choices {
-        let kind =
-            integrator.map_or(loaded.integrator.kind, |c| loaded.integrator.clone().overridden(c).kind);
+        let kind = loaded.integrator.kind_under(integrator);
         let name = integrator_name(&kind);
         let spp = spp.unwrap_or(loaded.sensor.spp);
         let buffers = session::build_scene(loaded.clone(), scene_path, integrator, *film, *own_kernel)?;
@@ -526,8 +525,7 @@ fn bench_buffers(asked: &BenchScene, spp: u32) -> Result<buffers::SceneBuffers> 
     let scene = caustic::load::load_scene_with(asked.path, asked.defines, asked.options)?;
     let loaded = start.elapsed().as_secs_f64();
     let instances = scene.instancing.instances.len();
-    let kind =
-        asked.integrator.map_or(scene.integrator.kind, |c| scene.integrator.clone().overridden(c).kind);
+    let kind = scene.integrator.kind_under(asked.integrator);
     let buffers = session::build_scene(scene, asked.path, asked.integrator, asked.film, false)?;
     // What a large scene costs before its first sample (the large-scene table in BENCHMARKS.md).
     let scene_bytes = caustic::backend::memory::scene_bytes(&buffers);

@@ -265,6 +265,11 @@ impl Integrator {
             },
         }
     }
+
+    /// The kind a render with `--integrator choice` (none: the scene's own) runs.
+    pub fn kind_under(&self, choice: Option<IntegratorChoice>) -> IntegratorKind {
+        choice.map_or(self.kind, |c| self.clone().overridden(c).kind)
+    }
 }
 
 /// Which estimator renders the image.
