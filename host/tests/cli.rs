@@ -922,3 +922,43 @@ fn a_signal_ends_a_batch() {
     assert!(!dir.join("second.exr").exists(), "the next image was started");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `CAUSTIC_STEP_TIMES=1` times each step of a GPU pass: a `bdpt` render names its light paths, its
+/// camera paths and the splat words' resolve, each with one dispatch a pass; without it, no line.
+#[test]
+fn step_times_name_each_step_of_a_gpu_pass() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/cornell-box.xml");
+    let dir = std::env::temp_dir().join(format!("caustic-steps-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out_path = dir.join("steps.exr");
+    let run = |timed: &str| {
+        Command::new(env!("CARGO_BIN_EXE_caustic"))
+            .args(["render", scene, "-D", "res=16", "--integrator", "bdpt", "--backend", "gpu", "--spp", "3"])
+            .args(["-o", out_path.to_str().unwrap()])
+            .env("XDG_RUNTIME_DIR", "/tmp")
+            .env("CAUSTIC_STEP_TIMES", timed)
+            .output()
+            .expect("runs")
+    };
+    let out = run("1");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    if stderr.contains("this adapter has no timestamp queries") {
+        assert!(!stderr.contains("steps:"), "{stderr}");
+    } else {
+        for step in ["light paths (cache)", "camera paths", "resolve"] {
+            let line =
+                stderr.lines().find(|l| l.starts_with(&format!("steps: {step} "))).unwrap_or_else(|| {
+                    panic!("no line for {step}: {stderr}");
+                });
+            assert!(line.contains(" 3 dispatches"), "{line}");
+            let ms: f64 =
+                line["steps: ".len() + step.len()..].split_whitespace().next().unwrap().parse().unwrap();
+            assert!(ms > 0.0 && ms.is_finite(), "{line}");
+        }
+    }
+    let out = run("0");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && !stderr.contains("steps:"), "{stderr}");
+    std::fs::remove_dir_all(dir).unwrap();
+}

@@ -9,6 +9,7 @@ use super::device::Backend;
 use super::module_cache::ModuleCache;
 use super::path_loop::PathLoop;
 use super::spirv::{declares_spec_constant, set_workgroup_size, KERNEL_SPV};
+use super::step_times::{self, StepTimes};
 use super::variant::{self, Decisions, Trial, Variant, DEFAULT_WORKGROUP};
 use crate::prepare::buffers::SceneBuffers;
 use anyhow::{anyhow, bail, Context, Result};
@@ -26,7 +27,7 @@ const LIGHT_ENTRY: &str = "entry::light";
 const RESOLVE_ENTRY: &str = "entry::resolve";
 /// BDPT's and VCM's passes over the light vertex cache: light paths into it, VCM's grid over it,
 /// camera paths from it (`caustic_kernel::integrator::bdpt`).
-const CACHE_LIGHT_ENTRY: &str = "entry::cache_light";
+pub(crate) const CACHE_LIGHT_ENTRY: &str = "entry::cache_light";
 const GRID_LINK_ENTRY: &str = "entry::grid_link";
 const CACHE_CAMERA_ENTRY: &str = "entry::cache_camera";
 
@@ -86,6 +87,8 @@ pub struct GpuBackend {
     max_dispatch_samples: u32,
     width: u32,
     height: u32,
+    /// `CAUSTIC_STEP_TIMES`: each step's GPU time (`step_times`), printed when the backend ends.
+    step_times: Option<StepTimes>,
 }
 
 /// Samples per pixel in one dispatch on a software adapter. llvmpipe (lavapipe) ends all of an
@@ -181,12 +184,17 @@ impl GpuBackend {
         .collect();
         // The light and resolve entry points take the first loop's module, in the kernel's own
         // workgroup size. Pruned while the driver opens the device.
+        let timed = step_times::wanted() && adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let (opened, loops) = std::thread::scope(|threads| {
             let pruning = threads.spawn(|| LoopModules::of(&words, buffers.features, &candidates, &entries));
             let clock = Instant::now();
             let opened = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
                 label: Some("caustic"),
-                required_features: wgpu::Features::empty(),
+                required_features: if timed {
+                    wgpu::Features::TIMESTAMP_QUERY
+                } else {
+                    wgpu::Features::empty()
+                },
                 required_limits: adapter.limits(),
                 ..Default::default()
             }));
@@ -352,6 +360,7 @@ impl GpuBackend {
         let bind_groups =
             [bind_group_of(&writes_cache.0), bind_group_of(&links_grid.0), bind_group_of(&camera_layout.0)];
         let adapter_name = format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend);
+        let step_times = step_times::wanted().then(|| StepTimes::on(&device, &queue, &adapter)).flatten();
         Ok(GpuBackend {
             device,
             queue,
@@ -384,6 +393,7 @@ impl GpuBackend {
             },
             width: buffers.params.width,
             height: buffers.params.height,
+            step_times,
         })
     }
 
@@ -602,27 +612,39 @@ impl GpuBackend {
             if let Some((_, grid)) = &self.grid {
                 encoder.clear_buffer(grid, 0, None);
             }
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("render"),
-                timestamp_writes: None,
-            });
             // Each dispatch sees the previous one's writes (wgpu orders dispatches that share a
             // buffer). Camera paths, light paths, then (splatting) the words folded into the
             // accumulator; BDPT and VCM (`caustic_cpu::cached_pass`): the light paths into the cache,
             // VCM's grid over it, the camera paths from it, then the words.
-            let camera = self.camera_pipelines.get(choice).map(|(v, p)| (p, v.workgroup, 2));
-            let resolve = step(self.resolve_pipeline.as_ref(), 0);
+            let camera = self.camera_pipelines.get(choice).map(|(v, p)| ("camera paths", p, v.workgroup, 2));
+            let resolve = step("resolve", self.resolve_pipeline.as_ref(), 0);
             let steps = if self.cache_light_pipeline.is_some() {
                 vec![
-                    step(self.cache_light_pipeline.as_ref(), 0),
-                    step(self.grid.as_ref().map(|g| &g.0), 1),
+                    step("light paths (cache)", self.cache_light_pipeline.as_ref(), 0),
+                    step("grid", self.grid.as_ref().map(|g| &g.0), 1),
                     camera,
                     resolve,
                 ]
             } else {
-                vec![camera, step(self.light_pipeline.as_ref(), 0), resolve]
+                vec![camera, step("light paths", self.light_pipeline.as_ref(), 0), resolve]
             };
-            for (pipeline, [w, h], group) in steps.into_iter().flatten() {
+            // One compute pass for all steps; timed, one each (`step_times`).
+            let mut pass = None;
+            for (name, pipeline, [w, h], group) in steps.into_iter().flatten() {
+                if pass.is_none() || self.step_times.is_some() {
+                    drop(pass.take());
+                    let timestamp_writes = self.step_times.as_mut().and_then(|t| t.around(name));
+                    // (`forget_lifetime`: the passes of a loop would each borrow the encoder.)
+                    pass = Some(
+                        encoder
+                            .begin_compute_pass(&wgpu::ComputePassDescriptor {
+                                label: Some(name),
+                                timestamp_writes,
+                            })
+                            .forget_lifetime(),
+                    );
+                }
+                let pass = pass.as_mut().expect("a compute pass");
                 pass.set_bind_group(0, &self.bind_groups[group], &[]);
                 pass.set_pipeline(pipeline);
                 pass.dispatch_workgroups(self.width.div_ceil(w), self.height.div_ceil(h), 1);
@@ -632,11 +654,18 @@ impl GpuBackend {
             // `FOLD_SAMPLES`, a few samples against thousands, which leaves the sums' precision.)
             fold |= self.folding.passed(p.sample_count);
         }
+        if let Some(times) = &self.step_times {
+            times.resolve(&mut encoder);
+        }
         self.queue.submit([encoder.finish()]);
         if fold {
-            self.fold()
+            self.fold()?;
         } else {
-            self.wait()
+            self.wait()?;
+        }
+        match &mut self.step_times {
+            Some(times) => times.collect(&self.device),
+            None => Ok(()),
         }
     }
 
@@ -664,6 +693,9 @@ impl Drop for GpuBackend {
     fn drop(&mut self) {
         if let Some(building) = self.building.take() {
             let _ = building.join();
+        }
+        if let Some(times) = &self.step_times {
+            eprintln!("{}", times.report());
         }
     }
 }
@@ -839,13 +871,14 @@ fn scene_module(
     (words.to_vec(), specialisable)
 }
 
-/// One dispatch of `dispatch`'s list, if its pipeline exists: the pipeline, its workgroup and its bind
-/// group's index.
-fn step(
-    pipeline: Option<&wgpu::ComputePipeline>,
+/// One dispatch of `dispatch`'s list, if its pipeline exists: its step's name, the pipeline, its
+/// workgroup and its bind group's index.
+fn step<'a>(
+    name: &'static str,
+    pipeline: Option<&'a wgpu::ComputePipeline>,
     group: usize,
-) -> Option<(&wgpu::ComputePipeline, [u32; 2], usize)> {
-    pipeline.map(|p| (p, DEFAULT_WORKGROUP, group))
+) -> Option<(&'static str, &'a wgpu::ComputePipeline, [u32; 2], usize)> {
+    pipeline.map(|p| (name, p, DEFAULT_WORKGROUP, group))
 }
 
 /// The camera, light and resolve entry points' names, for `kernel_stats` (its camera entry point by

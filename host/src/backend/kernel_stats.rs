@@ -278,11 +278,12 @@ pub struct PipelineReport {
 /// The driver's statistics for every pipeline `backend::gpu` builds for a scene with feature mask
 /// `features` and integrator `integrator` on a hardware adapter: from the same module (pruned where
 /// the backend prunes, `CAUSTIC_KERNEL_SPV` honoured), the camera entry point once per candidate
-/// `Variant` (`CAUSTIC_PATH_LOOP` and `CAUSTIC_WORKGROUP` honoured), the light entry point once.
+/// `Variant` (`CAUSTIC_PATH_LOOP` and `CAUSTIC_WORKGROUP` honoured), the light entry point (BDPT's and
+/// VCM's: the light vertex cache's) once.
 /// Without `with_statistics`, a missing adapter is no error: the reports then hold the modules alone.
 pub fn scene(features: u32, integrator: u32, with_statistics: bool) -> Result<Vec<PipelineReport>> {
-    use super::gpu::{camera_entry, kernel_words, LoopModules, ENTRY_POINTS};
-    use caustic_kernel::integrator::{traces_camera_paths, traces_light_paths};
+    use super::gpu::{camera_entry, kernel_words, LoopModules, CACHE_LIGHT_ENTRY, ENTRY_POINTS};
+    use caustic_kernel::integrator::{traces_cached, traces_camera_paths, traces_light_paths};
     let words = kernel_words()?;
     let candidates = variant::candidates(integrator == INTEGRATOR_PATH, false)?;
     let mut wanted: Vec<(&'static str, Variant)> = Vec::new();
@@ -291,6 +292,9 @@ pub fn scene(features: u32, integrator: u32, with_statistics: bool) -> Result<Ve
     }
     if traces_light_paths(integrator) {
         wanted.push((ENTRY_POINTS[1], Variant { workgroup: DEFAULT_WORKGROUP, ..candidates[0] }));
+    }
+    if traces_cached(integrator) {
+        wanted.push((CACHE_LIGHT_ENTRY, Variant { workgroup: DEFAULT_WORKGROUP, ..candidates[0] }));
     }
     // Every loop's module first: pruning is what takes long, and a later failure should not waste it.
     let variants: Vec<Variant> = wanted.iter().map(|w| w.1).collect();

@@ -19,6 +19,7 @@ pub mod runtime_dir;
 pub mod schedule;
 pub mod spirv;
 pub mod stand_in;
+pub mod step_times;
 pub mod variant;
 
 use accumulation::Accumulation;
