@@ -86,11 +86,11 @@ impl AtomicWords for OwnWords<'_> {
     }
 }
 
-/// Adds one channel's value (finite, `|value| < SPLAT_MAX`) at word `base` (low) and `base + 1`
-/// (high): the magnitude is rounded to fixed point, a negative value added as its 64-bit two's
-/// complement (the high word wraps on purpose; the sum is read back as signed).
+/// One channel's value (finite, `|value| < SPLAT_MAX`) as the words to add to its sum, (low, high): the
+/// magnitude rounded to fixed point, a negative value as its 64-bit two's complement (the high word
+/// wraps on purpose; the sum is read back as signed).
 #[inline]
-fn add_fixed<W: AtomicWords>(words: &mut W, base: u32, value: f32, u: f32) {
+fn fixed_words(value: f32, u: f32) -> (u32, u32) {
     let scaled = value.abs() * SCALE;
     // Both quantities are non-negative (and the first below 2³¹), so truncation is their floor: a cast
     // instead of `floor`, which on baseline x86-64 is a call into libm (`floorf`: 6.6% of a `bdpt`
@@ -103,17 +103,19 @@ fn add_fixed<W: AtomicWords>(words: &mut W, base: u32, value: f32, u: f32) {
     } else {
         low = rest as u32;
     }
-    let mut high = high_f as u32;
+    let high = high_f as u32;
     if value < 0.0 {
-        (low, high) = negated(low, high);
+        negated(low, high)
+    } else {
+        (low, high)
     }
-    if low != 0 {
-        let old = words.fetch_add(base, low);
-        // The low word wrapped: carry one into the high word.
-        if old > u32::MAX - low {
-            high = high.wrapping_add(1);
-        }
-    }
+}
+
+/// Adds one channel's high word at `base + 1`, with the carry out of the add of `low` to its low word
+/// (whose value before that add was `old`).
+#[inline]
+fn add_high<W: AtomicWords>(words: &mut W, base: u32, (low, high): (u32, u32), old: u32) {
+    let high = if old > u32::MAX - low { high.wrapping_add(1) } else { high };
     if high != 0 {
         words.fetch_add(base + 1, high);
     }
@@ -135,9 +137,16 @@ pub fn splat<W: AtomicWords>(words: &mut W, pixel: u32, value: Rgb, u: f32) {
         words.fetch_add(base + SPLAT_INVALID, 1);
         return;
     }
-    add_fixed(words, base, value.x, u);
-    add_fixed(words, base + 2, value.y, u);
-    add_fixed(words, base + 4, value.z, u);
+    let (r, g, b) = (fixed_words(value.x, u), fixed_words(value.y, u), fixed_words(value.z, u));
+    // The three low words first, then the carries that their old values give: the GPU waits for
+    // the three atomics' results together, where adding each channel's words in turn waited for
+    // one atomic's round trip before the next channel's could start. (Adding a zero changes no sum.)
+    let old_r = words.fetch_add(base, r.0);
+    let old_g = words.fetch_add(base + 2, g.0);
+    let old_b = words.fetch_add(base + 4, b.0);
+    add_high(words, base, r, old_r);
+    add_high(words, base + 2, g, old_g);
+    add_high(words, base + 4, b, old_b);
 }
 
 /// Counts an invalid (non-finite) estimate at `pixel` without adding anything.
