@@ -6,7 +6,7 @@ use caustic_kernel::integrator::{
     trace_cached_light_path, trace_light_paths, traces_light_paths, vcm_grid, SceneView,
 };
 use caustic_kernel::layout::{square_scale, FrameParams, PixelAccum};
-use caustic_kernel::splat::{AtomicWords, SPLAT_STRIDE};
+use caustic_kernel::splat::AtomicWords;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
 
@@ -138,13 +138,24 @@ impl AtomicWords for CpuWords<'_> {
     fn exchange(&mut self, index: u32, value: u32) -> u32 {
         self.0[index as usize].swap(value, Ordering::Relaxed)
     }
+
+    #[inline]
+    fn load(&self, index: u32) -> u32 {
+        self.0[index as usize].load(Ordering::Relaxed)
+    }
+
+    #[inline]
+    fn store(&mut self, index: u32, value: u32) {
+        self.0[index as usize].store(value, Ordering::Relaxed)
+    }
 }
 
 /// Traces `params.sample_count` light paths per pixel (IBPT: and camera paths), exactly as the GPU's
-/// dispatches do, and returns the splat words (`caustic_kernel::splat` layout) for the host to resolve.
+/// dispatches do, and returns the splat words (`caustic_kernel::splat` layout, then IBPT's camera
+/// cells: `film_splat::camera_cells`) for the host to resolve.
 pub fn light_pass(scene: &SceneView, params: &FrameParams) -> Vec<u32> {
     let pixels = params.width * params.height;
-    let words: Vec<AtomicU32> = (0..pixels * SPLAT_STRIDE).map(|_| AtomicU32::new(0)).collect();
+    let words: Vec<AtomicU32> = (0..pixels * words_per_pixel(params)).map(|_| AtomicU32::new(0)).collect();
     let camera_half = splats_camera_paths(scene, params);
     let light_half = traces_light_paths(params.integrator);
     (0..pixels).into_par_iter().for_each(|pixel| {
@@ -180,7 +191,7 @@ impl CacheScratch {
 /// path; returns the splat words for the host to resolve.
 pub fn cached_pass(scene: &SceneView, params: &FrameParams, scratch: &mut CacheScratch) -> Vec<u32> {
     let pixels = params.width * params.height;
-    let words: Vec<AtomicU32> = (0..pixels * SPLAT_STRIDE).map(|_| AtomicU32::new(0)).collect();
+    let words: Vec<AtomicU32> = (0..pixels * words_per_pixel(params)).map(|_| AtomicU32::new(0)).collect();
     let grid = vcm_grid::Grid::of(params);
     scratch.cache.resize(vcm_grid::slots(params) as usize, LightVertex::EMPTY);
     scratch.cache.par_chunks_mut(MAX_LIGHT_VERTICES as usize).enumerate().for_each(|(pixel, own)| {

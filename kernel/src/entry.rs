@@ -1,7 +1,7 @@
 //! GPU compute entry points (SPIR-V only). They do nothing but fetch the buffers and call the same
 //! functions the CPU runner calls. Binding numbers and the workgroup size are the literals rust-gpu's
 //! attributes need; their names live in `layout` (`binding::*`, `TILE`), which the host uses.
-use crate::film_splat::{gather, resolved as film_resolved, WordCells};
+use crate::film_splat::{gather, resolved as film_resolved, resolved_splats, WordCells};
 use crate::integrator::bdpt::{CacheSlots, LightVertex, MAX_LIGHT_VERTICES};
 use crate::integrator::{
     accumulated, render_pixel, splat_cached_camera_path, splat_camera_paths, splats_camera_paths,
@@ -11,7 +11,7 @@ use crate::layout::{
     splats, square_scale, BvhNode, FrameParams, Light, Material, PixelAccum, Primitive, Texture,
     TriangleAttributes,
 };
-use crate::splat::{resolved, GpuWords, SPLAT_STRIDE};
+use crate::splat::GpuWords;
 use spirv_std::glam::UVec3;
 use spirv_std::spirv;
 
@@ -219,13 +219,6 @@ pub fn resolve(
         return;
     }
     let pixel = (id.y * params.width + id.x) as usize;
-    let base = pixel * SPLAT_STRIDE as usize;
-    let mut words = [0u32; SPLAT_STRIDE as usize];
-    let mut i = 0;
-    while i < SPLAT_STRIDE as usize {
-        words[i] = splat[base + i];
-        splat[base + i] = 0;
-        i += 1;
-    }
-    accum[pixel] = resolved(accum[pixel], words, params.sample_count, square_scale(params));
+    let q = square_scale(params);
+    accum[pixel] = resolved_splats(accum[pixel], &mut GpuWords(splat), params, id.x, id.y, q);
 }

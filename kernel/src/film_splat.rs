@@ -21,7 +21,7 @@ use crate::film::{filter_weight, FilmSample};
 use crate::layout::{FrameParams, PixelAccum};
 use crate::math::is_finite3;
 use crate::spectrum::Rgb;
-use crate::splat::SPLAT_STRIDE;
+use crate::splat::{AtomicWords, SPLAT_STRIDE};
 
 /// The widest neighbourhood the film splats into: r = 4 (81 cells, 1.3 KB a pixel) covers Mitsuba's
 /// filters up to a gaussian of stddev 1 (radius 4); a wider filter falls back to filter importance
@@ -57,11 +57,12 @@ fn invalid_slot(params: &FrameParams) -> u32 {
 }
 
 /// `u32` words per pixel of the `SPLAT` buffer for these parameters: light tracing's fixed-point
-/// sums, the splatting film's cells, or none.
+/// sums (and the camera cells of the integrators that splat camera paths too), the splatting film's
+/// cells, or none.
 pub fn words_per_pixel(params: &FrameParams) -> u32 {
     let kind = params.integrator;
     if crate::layout::splats(kind) {
-        SPLAT_STRIDE
+        SPLAT_STRIDE + camera_cells(params)
     } else if params.film_reach > 0 {
         invalid_slot(params) + 1
     } else {
@@ -237,4 +238,107 @@ pub fn resolved(a: PixelAccum, g: &Gathered, q: f32) -> PixelAccum {
         sum_sq: [a.sum_sq[0] + sq.x, a.sum_sq[1] + sq.y, a.sum_sq[2] + sq.z],
         invalid: a.invalid + g.invalid,
     }
+}
+
+/// Words per pixel of the camera cells: IBPT's, BDPT's and VCM's camera samples add their estimates
+/// to the (2r+1)² pixels around their own (one under filter importance sampling, `film_reach` 0),
+/// each times that pixel's share of the filter (`film::pixel_weight`, as light tracing's splats
+/// carry), in cells their own pixel owns: R, G, B a cell, past the light words (`camera_word`). So no
+/// camera sample needs an atomic add: its pixel's invocation alone writes them, and `resolve` adds the
+/// cells that its neighbours hold for a pixel to that pixel's light sums (`gather_camera`). Through
+/// the light words' atomics instead, the camera splats of a `bdpt` pass of the Cornell box cost 0.72
+/// ms a sample on an H200, a quarter of its camera pass (BENCHMARKS.md, "Where a bidirectional
+/// sample's time goes").
+#[inline]
+pub fn camera_cells(params: &FrameParams) -> u32 {
+    let kind = params.integrator;
+    if crate::layout::splats(kind) && kind != crate::layout::INTEGRATOR_PTRACER {
+        3 * cells(params)
+    } else {
+        0
+    }
+}
+
+/// Word of camera cell slot `slot` of `pixel`: slot after slot past the light words, each slot's words
+/// pixel after pixel, so that a workgroup's invocations touch consecutive words.
+#[inline]
+fn camera_word(params: &FrameParams, pixel: u32, slot: u32) -> u32 {
+    let pixels = params.width * params.height;
+    pixels * SPLAT_STRIDE + slot * pixels + pixel
+}
+
+/// Writes (`first`: the pass's first sample of `pixel`) or adds `value` to camera cell `cell` of
+/// `pixel` (0 for the pixel itself under filter importance sampling; `(j·(2r+1) + i)` for the pixel
+/// at (i − r, j − r) from it under the splatting film).
+#[inline]
+pub fn add_camera_cell<W: AtomicWords>(
+    words: &mut W,
+    params: &FrameParams,
+    pixel: u32,
+    cell: u32,
+    value: Rgb,
+    first: bool,
+) {
+    let base = 3 * cell;
+    let v = [value.x, value.y, value.z];
+    let mut c = 0;
+    while c < 3 {
+        let at = camera_word(params, pixel, base + c);
+        let sum = if first { v[c as usize] } else { f32::from_bits(words.load(at)) + v[c as usize] };
+        words.store(at, sum.to_bits());
+        c += 1;
+    }
+}
+
+/// What pixel (`px`, `py`)'s neighbourhood's camera samples (and its own) left it in this pass: the
+/// camera cells its neighbours hold for it, summed in one fixed order.
+pub fn gather_camera<W: AtomicWords>(words: &W, params: &FrameParams, px: u32, py: u32) -> Rgb {
+    let r = params.film_reach as i32;
+    let side = 2 * r + 1;
+    let mut sum = Rgb::ZERO;
+    let mut j = -r;
+    while j <= r {
+        let y = py as i32 - j;
+        if y >= 0 && y < params.height as i32 {
+            let mut i = -r;
+            while i <= r {
+                let x = px as i32 - i;
+                if x >= 0 && x < params.width as i32 {
+                    let owner = y as u32 * params.width + x as u32;
+                    let base = 3 * ((j + r) * side + (i + r)) as u32;
+                    sum += Rgb::new(
+                        f32::from_bits(words.load(camera_word(params, owner, base))),
+                        f32::from_bits(words.load(camera_word(params, owner, base + 1))),
+                        f32::from_bits(words.load(camera_word(params, owner, base + 2))),
+                    );
+                }
+                i += 1;
+            }
+        }
+        j += 1;
+    }
+    sum
+}
+
+/// Pixel (`px`, `py`)'s accumulator with one splatting pass added (`splat::resolved_with`): its light
+/// words, read and cleared for the next pass, and its camera cells gathered.
+#[inline]
+pub fn resolved_splats<W: AtomicWords>(
+    a: PixelAccum,
+    words: &mut W,
+    params: &FrameParams,
+    px: u32,
+    py: u32,
+    q: f32,
+) -> PixelAccum {
+    let extra = if camera_cells(params) > 0 { gather_camera(words, params, px, py) } else { Rgb::ZERO };
+    let base = (py * params.width + px) * SPLAT_STRIDE;
+    let mut w = [0u32; SPLAT_STRIDE as usize];
+    let mut i = 0;
+    while i < SPLAT_STRIDE {
+        w[i as usize] = words.load(base + i);
+        words.store(base + i, 0);
+        i += 1;
+    }
+    crate::splat::resolved_with(a, w, extra, params.sample_count, q)
 }

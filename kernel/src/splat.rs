@@ -26,12 +26,18 @@ const TWO_32: f32 = 4_294_967_296.0;
 /// The largest magnitude one splat may add (2³⁹: the top of the signed range).
 pub const SPLAT_MAX: f32 = 1_099_511_627_776.0 / 2.0;
 
-/// A buffer of `u32` words with an atomic add and exchange, implemented by each backend.
+/// A buffer of `u32` words with an atomic add and exchange, implemented by each backend, and plain
+/// reads and writes of words that one invocation alone touches in a dispatch (the camera cells of
+/// `film_splat`, which their owner writes and `resolve` reads after it).
 pub trait AtomicWords {
     /// Adds `value` to word `index` and returns the word's previous value.
     fn fetch_add(&mut self, index: u32, value: u32) -> u32;
     /// Writes `value` to word `index` and returns the word's previous value.
     fn exchange(&mut self, index: u32, value: u32) -> u32;
+    /// Word `index`, read by the one invocation that writes it in this dispatch (or after it).
+    fn load(&self, index: u32) -> u32;
+    /// Writes word `index`, which no other invocation touches in this dispatch.
+    fn store(&mut self, index: u32, value: u32);
 }
 
 /// The GPU's storage buffer of splat words.
@@ -67,6 +73,16 @@ impl AtomicWords for GpuWords<'_> {
             )
         }
     }
+
+    #[inline]
+    fn load(&self, index: u32) -> u32 {
+        self.0[index as usize]
+    }
+
+    #[inline]
+    fn store(&mut self, index: u32, value: u32) {
+        self.0[index as usize] = value;
+    }
 }
 
 /// Words owned by one thread, added without atomics: for tests on the CPU.
@@ -83,6 +99,14 @@ impl AtomicWords for OwnWords<'_> {
 
     fn exchange(&mut self, index: u32, value: u32) -> u32 {
         core::mem::replace(&mut self.0[index as usize], value)
+    }
+
+    fn load(&self, index: u32) -> u32 {
+        self.0[index as usize]
+    }
+
+    fn store(&mut self, index: u32, value: u32) {
+        self.0[index as usize] = value;
     }
 }
 
@@ -172,8 +196,25 @@ fn fixed_to_f32(low: u32, high: u32) -> f32 {
 /// backends resolve with this, the GPU in its `resolve` entry point without reading the words back.
 #[inline]
 pub fn resolved(a: PixelAccum, w: [u32; SPLAT_STRIDE as usize], sample_count: u32, q: f32) -> PixelAccum {
+    resolved_with(a, w, Rgb::ZERO, sample_count, q)
+}
+
+/// `resolved`, with `extra` (the pass's camera cells gathered for this pixel: `film_splat`) added to
+/// the pass's sum.
+#[inline]
+pub fn resolved_with(
+    a: PixelAccum,
+    w: [u32; SPLAT_STRIDE as usize],
+    extra: Rgb,
+    sample_count: u32,
+    q: f32,
+) -> PixelAccum {
     let k = sample_count as f32;
-    let s = [fixed_to_f32(w[0], w[1]), fixed_to_f32(w[2], w[3]), fixed_to_f32(w[4], w[5])];
+    let s = [
+        fixed_to_f32(w[0], w[1]) + extra.x,
+        fixed_to_f32(w[2], w[3]) + extra.y,
+        fixed_to_f32(w[4], w[5]) + extra.z,
+    ];
     let sq = [s[0] * q, s[1] * q, s[2] * q];
     PixelAccum {
         sum: [a.sum[0] + s[0], a.sum[1] + s[1], a.sum[2] + s[2]],

@@ -92,13 +92,13 @@ impl Backend for CpuBackend {
                     ..*params
                 };
                 let words = caustic_cpu::cached_pass(&view, &one, &mut self.cache);
-                fold_splats(&mut self.device, &words, &one);
+                fold_splats(&mut self.device, words, &one);
             }
         } else if params.film_reach != 0 && !caustic_kernel::integrator::splats(params.integrator) {
             caustic_cpu::film_pass(&view, params, &mut self.device, self.regenerate, &mut self.cells);
         } else if caustic_kernel::integrator::splats(params.integrator) {
             let words = caustic_cpu::light_pass(&view, params);
-            fold_splats(&mut self.device, &words, params);
+            fold_splats(&mut self.device, words, params);
         } else {
             caustic_cpu::render_pass(&view, params, &mut self.device, self.regenerate);
         }
@@ -120,13 +120,16 @@ impl Backend for CpuBackend {
     }
 }
 
-/// Folds a splatting pass's words (`caustic_kernel::splat` layout, `SPLAT_STRIDE` a pixel) into the
-/// accumulator, as the GPU's `entry::resolve` does: `params.sample_count` samples a pixel.
-fn fold_splats(device: &mut [PixelAccum], words: &[u32], params: &FrameParams) {
-    use caustic_kernel::splat::{resolved, SPLAT_STRIDE};
+/// Folds a splatting pass's words (`caustic_kernel::splat` layout, `SPLAT_STRIDE` a pixel, then the
+/// camera cells: `film_splat::camera_cells`) into the accumulator, as the GPU's `entry::resolve` does:
+/// `params.sample_count` samples a pixel.
+fn fold_splats(device: &mut [PixelAccum], mut words: Vec<u32>, params: &FrameParams) {
+    use caustic_kernel::film_splat::resolved_splats;
+    use caustic_kernel::splat::OwnWords;
     let q = caustic_kernel::layout::square_scale(params);
-    let (pixels, _) = words.as_chunks::<{ SPLAT_STRIDE as usize }>();
-    for (px, w) in device.iter_mut().zip(pixels) {
-        *px = resolved(*px, *w, params.sample_count, q);
+    let mut words = OwnWords(&mut words);
+    for (pixel, a) in device.iter_mut().enumerate() {
+        let (x, y) = (pixel as u32 % params.width, pixel as u32 / params.width);
+        *a = resolved_splats(*a, &mut words, params, x, y, q);
     }
 }

@@ -210,8 +210,6 @@ fn add_sample(sums: &mut PixelSums, scene: &SceneView, params: &FrameParams, l: 
 /// Light paths draw their random numbers from a stream of their own, so that under IBPT the camera
 /// path and the light path of one pixel sample are independent.
 const LIGHT_PATH_STREAM: u32 = 0x9e37_79b9;
-/// The dimension that rounds a camera path's splat (past any bounce's).
-const DIM_SPLAT_ROUNDING: u32 = u32::MAX - 1;
 
 /// A splatted camera sample of `pixel` (IBPT's camera half, BDPT, VCM): its sampler, film sample and
 /// ray, and the density with which camera samples land where the ray crosses the film, as the MIS
@@ -237,32 +235,33 @@ fn film_position(params: &FrameParams, film_sample: &film::FilmSample) -> Vec2 {
     Vec2::new(film_sample.pos.x * params.full_width as f32, film_sample.pos.y * params.full_height as f32)
 }
 
-/// Splats a camera path's estimate `l` (weighted against light tracing) where light tracing's splats
-/// go, so that camera and light paths resolve together: under filter importance sampling into the
-/// pixel's own sums; with the splatting film (`film_reach` > 0) into every pixel of the rendered
-/// window that the filter reaches from the sample's place, times the filter's weight there
-/// (`film::pixel_weight`, which a light-tracing connection at that point would carry too), each
-/// pixel's sums divided by its samples as before. Or counts it as invalid.
+/// Adds a camera path's estimate `l` (weighted against light tracing) where light tracing's splats
+/// go, so that camera and light paths resolve together, through the camera cells `pixel` owns
+/// (`film_splat::camera_cells`): under filter importance sampling to the pixel itself; with the
+/// splatting film (`film_reach` > 0) to every pixel of the rendered window that the filter reaches
+/// from the sample's place, times the filter's weight there (`film::pixel_weight`, which a
+/// light-tracing connection at that point would carry too), each pixel's sums divided by its samples
+/// as before. A non-finite estimate is counted as invalid and adds nothing. `first`: the pass's first
+/// sample of the pixel, which writes the cells over the last pass's.
 #[inline]
-#[allow(clippy::too_many_arguments)]
 fn splat_camera_estimate<W: AtomicWords>(
     scene: &SceneView,
     params: &FrameParams,
     pixel: u32,
     film_sample: &film::FilmSample,
-    sampler: &mut Sampler,
     l: Rgb,
+    first: bool,
     words: &mut W,
 ) {
-    sampler.set_dimension(DIM_SPLAT_ROUNDING);
-    let u = sampler.next_1d();
-    if !is_finite3(l) {
+    let l = if is_finite3(l) {
+        l
+    } else {
         crate::splat::count_invalid(words, pixel);
-        return;
-    }
+        Rgb::ZERO
+    };
     if params.film_reach == 0 {
         let l = if params.filter_signed != 0 { l * film_sample.weight } else { l };
-        crate::splat::splat(words, pixel, l, u);
+        film_splat::add_camera_cell(words, params, pixel, 0, l, first);
         return;
     }
     let pos = film_position(params, film_sample);
@@ -275,7 +274,20 @@ fn splat_camera_estimate<W: AtomicWords>(
     let (x0, y0) = (px as i32 - r, py as i32 - r);
     let columns = axis_weights(scene, params, pos.x, x0, span, true);
     let rows = axis_weights(scene, params, pos.y, y0, span, false);
-    splat_footprint(words, params.width, (x0, y0), &columns, &rows, (span, span), l, u);
+    // Every cell, those of pixels outside the window (weight 0) too, so that none keeps the last
+    // pass's sums.
+    let mut j = 0;
+    while j < span {
+        let mut i = 0;
+        while i < span {
+            let mass = columns.mass[i as usize] * rows.mass[j as usize];
+            let w =
+                if mass > 0.0 { columns.filter[i as usize] * rows.filter[j as usize] / mass } else { 0.0 };
+            film_splat::add_camera_cell(words, params, pixel, j * span + i, l * w, first);
+            i += 1;
+        }
+        j += 1;
+    }
 }
 
 /// The share of the footprint's largest filter weight below which a pixel's splat is decided by
@@ -391,7 +403,7 @@ pub fn splat_camera_paths<W: AtomicWords>(
         let (mut sampler, film_sample, ray, density) =
             splatted_camera_sample(scene, params, pixel, params.sample_base + s);
         let l = path::li(scene, params, ray, &mut sampler, density);
-        splat_camera_estimate(scene, params, pixel, &film_sample, &mut sampler, l, words);
+        splat_camera_estimate(scene, params, pixel, &film_sample, l, s == 0, words);
         s += 1;
     }
 }
@@ -427,7 +439,8 @@ pub fn splat_cached_camera_path<W: AtomicWords>(
     let vertices = bdpt::CacheView { cache, base: pixel * bdpt::MAX_LIGHT_VERTICES };
     let grid = vcm_grid::GridView { cache, words: grid_words, grid: vcm_grid::Grid::of(params) };
     let l = bdpt::camera_path(scene, params, ray, &mut sampler, density, &vertices, &grid);
-    splat_camera_estimate(scene, params, pixel, &film_sample, &mut sampler, l, words);
+    // (One sample a pass: each writes its cells over the last pass's.)
+    splat_camera_estimate(scene, params, pixel, &film_sample, l, true, words);
 }
 
 /// Traces the light paths of `params.sample_count` samples of path index `pixel` (one light path per
