@@ -190,11 +190,13 @@ pub struct Gathered {
     pub invalid: f32,
 }
 
-/// Gathers pixel (`px`, `py`)'s sums from its neighbourhood's cells, in one fixed order.
-pub fn gather<C: CellReader>(cells: &C, params: &FrameParams, px: u32, py: u32) -> Gathered {
+/// Calls `f(owner, cell)` for each pixel `owner` within the film's reach of pixel (`px`, `py`) in the
+/// window, in one fixed order, with the index of the cell (`(j + r) · (2r + 1) + (i + r)` for the
+/// offset (`i`, `j`) from `owner` to this pixel) that `owner` holds for it.
+#[inline]
+fn each_owner<F: FnMut(u32, u32)>(params: &FrameParams, px: u32, py: u32, mut f: F) {
     let r = params.film_reach as i32;
     let side = 2 * r + 1;
-    let mut g = Gathered { sum: Rgb::ZERO, weight: 0.0, invalid: 0.0 };
     // Offset (i, j) from the owning pixel to this one.
     let mut j = -r;
     while j <= r {
@@ -204,20 +206,27 @@ pub fn gather<C: CellReader>(cells: &C, params: &FrameParams, px: u32, py: u32) 
             while i <= r {
                 let x = px as i32 - i;
                 if x >= 0 && x < params.width as i32 {
-                    let owner = y as u32 * params.width + x as u32;
-                    let base = 4 * ((j + r) * side + (i + r)) as u32;
-                    g.sum += Rgb::new(
-                        cells.get(params, owner, base),
-                        cells.get(params, owner, base + 1),
-                        cells.get(params, owner, base + 2),
-                    );
-                    g.weight += cells.get(params, owner, base + 3);
+                    f(y as u32 * params.width + x as u32, ((j + r) * side + (i + r)) as u32);
                 }
                 i += 1;
             }
         }
         j += 1;
     }
+}
+
+/// Gathers pixel (`px`, `py`)'s sums from its neighbourhood's cells, in one fixed order.
+pub fn gather<C: CellReader>(cells: &C, params: &FrameParams, px: u32, py: u32) -> Gathered {
+    let mut g = Gathered { sum: Rgb::ZERO, weight: 0.0, invalid: 0.0 };
+    each_owner(params, px, py, |owner, cell| {
+        let base = 4 * cell;
+        g.sum += Rgb::new(
+            cells.get(params, owner, base),
+            cells.get(params, owner, base + 1),
+            cells.get(params, owner, base + 2),
+        );
+        g.weight += cells.get(params, owner, base + 3);
+    });
     g.invalid = cells.get(params, py * params.width + px, invalid_slot(params));
     g
 }
@@ -293,30 +302,15 @@ pub fn add_camera_cell<W: AtomicWords>(
 /// What pixel (`px`, `py`)'s neighbourhood's camera samples (and its own) left it in this pass: the
 /// camera cells its neighbours hold for it, summed in one fixed order.
 pub fn gather_camera<W: AtomicWords>(words: &W, params: &FrameParams, px: u32, py: u32) -> Rgb {
-    let r = params.film_reach as i32;
-    let side = 2 * r + 1;
     let mut sum = Rgb::ZERO;
-    let mut j = -r;
-    while j <= r {
-        let y = py as i32 - j;
-        if y >= 0 && y < params.height as i32 {
-            let mut i = -r;
-            while i <= r {
-                let x = px as i32 - i;
-                if x >= 0 && x < params.width as i32 {
-                    let owner = y as u32 * params.width + x as u32;
-                    let base = 3 * ((j + r) * side + (i + r)) as u32;
-                    sum += Rgb::new(
-                        f32::from_bits(words.load(camera_word(params, owner, base))),
-                        f32::from_bits(words.load(camera_word(params, owner, base + 1))),
-                        f32::from_bits(words.load(camera_word(params, owner, base + 2))),
-                    );
-                }
-                i += 1;
-            }
-        }
-        j += 1;
-    }
+    each_owner(params, px, py, |owner, cell| {
+        let base = 3 * cell;
+        sum += Rgb::new(
+            f32::from_bits(words.load(camera_word(params, owner, base))),
+            f32::from_bits(words.load(camera_word(params, owner, base + 1))),
+            f32::from_bits(words.load(camera_word(params, owner, base + 2))),
+        );
+    });
     sum
 }
 

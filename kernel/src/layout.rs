@@ -472,7 +472,17 @@ pub struct FrameParams {
     /// vertex of its light path; `c` > 0 to one of them drawn uniformly, the connection strategies
     /// counting `c` against the other strategies' 1 in the weights.
     pub connection_share: f32,
-    pub _pad: [u32; 3],
+    /// The share of light paths connected to the camera (light tracing: `ptracer`, `ibpt`, `bdpt`,
+    /// `vcm`), decided for each 8×8 tile of path indices and sample (`ptracer::connects_to_camera`);
+    /// their splats count `1 / share` (`ptracer::film_scale`) and the weights count light tracing
+    /// `share` times. 0 (or 1 and above): every light path.
+    pub light_tracing_share: f32,
+    /// BDPT's and VCM's share of camera vertices that join their light path
+    /// (`bdpt::connection_rate`), decided for each 8×8 tile of pixels, sample and depth; a joined
+    /// vertex counts `1 / rate` and the weights count connections `rate` times as often. 0 (or 1 and
+    /// above): every camera vertex with a non-Dirac lobe.
+    pub connection_rate: f32,
+    pub _pad: [u32; 1],
 
     pub camera: crate::camera::Camera,
 }

@@ -56,6 +56,47 @@ fn bdpt_at_other_connection_shares_agrees_with_path() {
     agrees_with_path("glass, every vertex", |k| every(corner(k, EMITTERS[1].1, "-1", GLASS)), 256, 2048, 80);
 }
 
+/// Fewer light paths connected to the camera (`light_tracing_share`: their splats count `1 / share`,
+/// light tracing counts `share` in the weights) and fewer camera vertices joining their light path
+/// (`connection_rate`), each decided for a tile of pixels at once: the same image as `path`, under an
+/// area light, a spot, and through glass at any depth with both; `ibpt` and `vcm` likewise.
+#[test]
+fn fewer_light_tracing_splats_and_connections_agree_with_path() {
+    let with = |kind: &'static str, props: &'static str| {
+        move |xml: String| xml.replace(&format!(r#"type="{kind}">"#), &format!(r#"type="{kind}">{props}"#))
+    };
+    let share = r#"<float name="light_tracing_share" value="0.3"/>"#;
+    let rate = r#"<float name="connection_rate" value="0.4"/>"#;
+    let both =
+        r#"<float name="light_tracing_share" value="0.5"/><float name="connection_rate" value="0.5"/>"#;
+    let (area, spot) = (EMITTERS[0], EMITTERS[3]);
+    let cases = [
+        ("bdpt", area, share, 90),
+        ("bdpt", spot, rate, 92),
+        ("vcm", area, both, 94),
+        ("ibpt", area, share, 96),
+    ];
+    for (kind, (name, emitter), props, seed) in cases {
+        let with = with(kind, props);
+        caustic_tests::corner::agrees_with_path(
+            kind,
+            &format!("{name}, {props}"),
+            |k| with(corner(k, emitter, "5", ROUGH_PLASTIC)),
+            256,
+            1024,
+            seed,
+        );
+    }
+    let both_glass = with("bdpt", both);
+    agrees_with_path(
+        "glass, both halves",
+        |k| both_glass(corner(k, EMITTERS[1].1, "-1", GLASS)),
+        256,
+        2048,
+        98,
+    );
+}
+
 /// The check above can fail: a 10% brighter light in the bidirectional image is detected.
 #[test]
 fn bdpt_agreement_detects_a_brighter_light() {

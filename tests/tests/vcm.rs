@@ -139,7 +139,8 @@ fn vcm_stiff_cases_and_extreme_radii_stay_finite() {
 }
 
 /// Refused with the file and line where it can be named: a `directionalarea` emitter, a radius that
-/// is not positive, an `alpha` outside (0, 1], a `connection_share` outside [0, 1].
+/// is not positive, an `alpha` outside (0, 1], a `connection_share` outside [0, 1], a
+/// `light_tracing_share` or `connection_rate` outside (0, 1].
 #[test]
 fn vcm_refuses_what_it_does_not_render() {
     let directional = r#"<shape type="rectangle"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate z="1.9"/></transform>
@@ -152,6 +153,14 @@ fn vcm_refuses_what_it_does_not_render() {
         (
             with_merging(plain.clone(), r#"<float name="connection_share" value="-0.5"/>"#),
             "connection_share must be from 0 to 1",
+        ),
+        (
+            with_merging(plain.clone(), r#"<float name="light_tracing_share" value="0"/>"#),
+            "light_tracing_share must be above 0 and at most 1",
+        ),
+        (
+            with_merging(plain.clone(), r#"<float name="connection_rate" value="1.5"/>"#),
+            "connection_rate must be above 0 and at most 1",
         ),
     ];
     for (i, (xml, expected)) in cases.iter().enumerate() {

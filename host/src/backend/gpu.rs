@@ -184,7 +184,7 @@ impl GpuBackend {
         .collect();
         // The light and resolve entry points take the first loop's module, in the kernel's own
         // workgroup size. Pruned while the driver opens the device.
-        let timed = step_times::wanted() && adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let timed = step_times::wanted_on(&adapter);
         let (opened, loops) = std::thread::scope(|threads| {
             let pruning = threads.spawn(|| LoopModules::of(&words, buffers.features, &candidates, &entries));
             let clock = Instant::now();
@@ -360,7 +360,7 @@ impl GpuBackend {
         let bind_groups =
             [bind_group_of(&writes_cache.0), bind_group_of(&links_grid.0), bind_group_of(&camera_layout.0)];
         let adapter_name = format!("{} ({:?}, {:?})", info.name, info.device_type, info.backend);
-        let step_times = step_times::wanted().then(|| StepTimes::on(&device, &queue, &adapter)).flatten();
+        let step_times = timed.then(|| StepTimes::on(&device, &queue));
         Ok(GpuBackend {
             device,
             queue,
@@ -409,21 +409,7 @@ impl GpuBackend {
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
         encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
         self.queue.submit([encoder.finish()]);
-        let slice = staging.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        self.wait()?;
-        rx.recv()
-            .context("GPU readback was dropped")?
-            .map_err(|e| anyhow!("cannot map a GPU buffer: {e}"))?;
-        let data = {
-            let view = slice.get_mapped_range().map_err(|e| anyhow!("cannot read a GPU buffer: {e:?}"))?;
-            view.to_vec()
-        };
-        staging.unmap();
-        Ok(data)
+        super::readback::map_read(&self.device, staging.slice(..), "a GPU buffer")
     }
 
     fn wait(&self) -> Result<()> {

@@ -15,6 +15,7 @@ pub mod module_cache;
 pub mod path_loop;
 pub mod pool;
 pub mod prune;
+pub mod readback;
 pub mod runtime_dir;
 pub mod schedule;
 pub mod spirv;

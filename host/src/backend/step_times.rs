@@ -7,15 +7,22 @@
 //! Off by default: timed, each step is a compute pass of its own and every submission's
 //! timestamps are read back before the next, which costs a little of the time it measures.
 
-use anyhow::{anyhow, Result};
+use anyhow::Result;
 
 /// Dispatches one submission may time (the backend's submissions hold at most 16 passes of at most
 /// four steps).
 const CAPACITY: u32 = 128;
 
-/// Whether the user asked for step times.
-pub fn wanted() -> bool {
-    std::env::var_os("CAUSTIC_STEP_TIMES").is_some_and(|v| v != "0")
+/// Whether the user asked for step times and `adapter` can give them (said once where it cannot).
+pub fn wanted_on(adapter: &wgpu::Adapter) -> bool {
+    if !std::env::var_os("CAUSTIC_STEP_TIMES").is_some_and(|v| v != "0") {
+        return false;
+    }
+    let has = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+    if !has {
+        eprintln!("note: CAUSTIC_STEP_TIMES: this adapter has no timestamp queries; no step times");
+    }
+    has
 }
 
 /// The timestamps of one submission's dispatches and the totals of every step so far.
@@ -32,12 +39,8 @@ pub struct StepTimes {
 }
 
 impl StepTimes {
-    /// The query set and buffers on `device`, if the adapter has timestamps (else `None`, said once).
-    pub fn on(device: &wgpu::Device, queue: &wgpu::Queue, adapter: &wgpu::Adapter) -> Option<Self> {
-        if !adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY) {
-            eprintln!("note: CAUSTIC_STEP_TIMES: this adapter has no timestamp queries; no step times");
-            return None;
-        }
+    /// The query set and buffers on `device`, opened with `TIMESTAMP_QUERY` (`wanted_on`).
+    pub fn on(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
         let bytes = u64::from(CAPACITY) * 2 * 8;
         let buffer = |label, usage| {
             device.create_buffer(&wgpu::BufferDescriptor {
@@ -47,7 +50,7 @@ impl StepTimes {
                 mapped_at_creation: false,
             })
         };
-        Some(StepTimes {
+        StepTimes {
             queries: device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("step times"),
                 ty: wgpu::QueryType::Timestamp,
@@ -58,7 +61,7 @@ impl StepTimes {
             period: f64::from(queue.get_timestamp_period()),
             pending: Vec::new(),
             totals: Vec::new(),
-        })
+        }
     }
 
     /// The timestamp writes around the next dispatch, step `name`'s (`None` past the capacity).
@@ -90,20 +93,8 @@ impl StepTimes {
             return Ok(());
         }
         let size = self.pending.len() as u64 * 16;
-        let slice = self.staging.slice(..size);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| anyhow!("GPU wait failed: {e}"))?;
-        rx.recv()
-            .map_err(|_| anyhow!("the step times' readback was dropped"))?
-            .map_err(|e| anyhow!("cannot map the step times: {e}"))?;
-        let ticks: Vec<u64> = {
-            let view = slice.get_mapped_range().map_err(|e| anyhow!("cannot read the step times: {e:?}"))?;
-            bytemuck::pod_collect_to_vec(&view)
-        };
-        self.staging.unmap();
+        let bytes = super::readback::map_read(device, self.staging.slice(..size), "the step times")?;
+        let ticks: Vec<u64> = bytemuck::pod_collect_to_vec(&bytes);
         for (name, pair) in self.pending.drain(..).zip(ticks.chunks_exact(2)) {
             let seconds = pair[1].saturating_sub(pair[0]) as f64 * self.period * 1e-9;
             match self.totals.iter_mut().find(|t| t.0 == name) {

@@ -209,9 +209,22 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         }
         _ => 0.0,
     };
-    let connection_share = match kind {
-        IntegratorKind::Bdpt | IntegratorKind::Vcm => connection_share(scene)?,
-        _ => 0.0,
+    let bidirectional = matches!(kind, IntegratorKind::Bdpt | IntegratorKind::Vcm);
+    let connection_share = if bidirectional {
+        share_or_override(scene.integrator.connection_share, "CAUSTIC_CONNECTION_SHARE", true)?
+    } else {
+        0.0
+    };
+    let light_tracing_share = match kind {
+        IntegratorKind::Ibpt | IntegratorKind::Bdpt | IntegratorKind::Vcm => {
+            share_or_override(scene.integrator.light_tracing_share, "CAUSTIC_LIGHT_TRACING_SHARE", false)?
+        }
+        _ => 1.0,
+    };
+    let connection_rate = if bidirectional {
+        share_or_override(scene.integrator.connection_rate, "CAUSTIC_CONNECTION_RATE", false)?
+    } else {
+        1.0
     };
     let params = FrameParams {
         width: crop.width,
@@ -240,6 +253,8 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         film_reach: film_reach(s, integrator_kind),
         merge_radius,
         connection_share,
+        light_tracing_share,
+        connection_rate,
         camera,
         ..Default::default()
     };
@@ -282,15 +297,17 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
 /// radiance meter (a single ray, which no light path can reach by a connection).
 /// What IBPT and BDPT refuse besides what light tracing does: `directionalarea` emitters, which
 /// only light paths reach (their weights would count strategies that cannot happen).
-/// The scene's `connection_share` (`scene::Integrator::connection_share`), or `CAUSTIC_CONNECTION_SHARE`
-/// where it is set (for measuring one scene at several shares).
-fn connection_share(scene: &Scene) -> Result<f32> {
-    let Ok(text) = std::env::var("CAUSTIC_CONNECTION_SHARE") else {
-        return Ok(scene.integrator.connection_share);
+/// The scene's share (`connection_share`, `light_tracing_share`, `connection_rate`), or environment
+/// variable `var`'s where it is set (for measuring one scene at several shares): a number up to 1,
+/// above 0 (or 0 where `zero` allows it).
+fn share_or_override(scene: f32, var: &str, zero: bool) -> Result<f32> {
+    let Ok(text) = std::env::var(var) else {
+        return Ok(scene);
     };
     match text.trim().parse::<f32>() {
-        Ok(c) if (0.0..=1.0).contains(&c) => Ok(c),
-        _ => bail!("CAUSTIC_CONNECTION_SHARE: expected a number from 0 to 1, got {text:?}"),
+        Ok(c) if c <= 1.0 && (c > 0.0 || (zero && c == 0.0)) => Ok(c),
+        _ if zero => bail!("{var}: expected a number from 0 to 1, got {text:?}"),
+        _ => bail!("{var}: expected a number above 0 and at most 1, got {text:?}"),
     }
 }
 

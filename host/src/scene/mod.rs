@@ -188,6 +188,12 @@ pub struct Integrator {
     /// light path; `c` in (0, 1] to one of them drawn uniformly, counted `c` in the MIS weights
     /// (`FrameParams::connection_share`); `DEFAULT_CONNECTION_SHARE` where a scene does not say.
     pub connection_share: f32,
+    /// `ibpt`'s, `bdpt`'s and `vcm`'s `light_tracing_share`, in (0, 1]: the share of light paths
+    /// connected to the camera (`FrameParams::light_tracing_share`); 1 (every one) by default.
+    pub light_tracing_share: f32,
+    /// `bdpt`'s and `vcm`'s `connection_rate`, in (0, 1]: the share of camera vertices that join
+    /// their light path (`FrameParams::connection_rate`); 1 (every one) by default.
+    pub connection_rate: f32,
     /// Run `ibpt`'s, `bdpt`'s or `vcm`'s own kernel even in a scene where no light path can start
     /// (every emitter at infinity), where by default `path`'s kernel renders their estimator
     /// (`prepare::buffers::kernel_kind`); `--own-kernel`.
@@ -209,6 +215,8 @@ impl Default for Integrator {
             hide_emitters: false,
             merging: MergeSettings::default(),
             connection_share: DEFAULT_CONNECTION_SHARE,
+            light_tracing_share: 1.0,
+            connection_rate: 1.0,
             own_kernel: false,
         }
     }

@@ -55,7 +55,7 @@ use crate::layout::{FrameParams, SceneView, NONE};
 use crate::light::{self, emission};
 use crate::mask;
 use crate::math::max_component;
-use crate::rng::Sampler;
+use crate::rng::{hash2, Sampler};
 use crate::sampling::power_heuristic;
 use crate::shape::{offset_origin, SurfacePoint};
 use crate::spectrum::Rgb;
@@ -344,16 +344,18 @@ pub fn within(max_depth: u32, segments: u32) -> bool {
     max_depth == NONE || segments <= max_depth
 }
 
-/// Traces a light path, splats each of its vertices' connections to the camera and keeps the vertices
-/// a camera path can connect to; returns how many it kept.
+/// Traces a light path, splats each of its vertices' connections to the camera where `to_camera`
+/// (`ptracer::connects_to_camera`) and keeps the vertices a camera path can connect to; returns how
+/// many it kept.
 pub fn trace_light_path<W: AtomicWords>(
     scene: &SceneView,
     params: &FrameParams,
     sampler: &mut Sampler,
     words: &mut W,
     vertices: &mut CacheSlots,
+    to_camera: bool,
 ) -> u32 {
-    let count = light_path_vertices(scene, params, sampler, words, vertices);
+    let count = light_path_vertices(scene, params, sampler, words, vertices, to_camera);
     vertices.finish(count);
     count
 }
@@ -364,6 +366,7 @@ fn light_path_vertices<W: AtomicWords>(
     sampler: &mut Sampler,
     words: &mut W,
     vertices: &mut CacheSlots,
+    to_camera: bool,
 ) -> u32 {
     let accel = Accel::of(scene);
     let camera = params.camera;
@@ -382,7 +385,7 @@ fn light_path_vertices<W: AtomicWords>(
     let max_depth = params.max_depth;
     let hit_density = if es.delta_position { 0.0 } else { emission::hit_density(scene, es.light) };
     let inv_hit_sq = if hit_density > 0.0 { 1.0 / (hit_density * hit_density) } else { 0.0 };
-    if sees_emitter_points(params) && !es.delta_position && !es.infinite {
+    if to_camera && sees_emitter_points(params) && !es.delta_position && !es.infinite {
         // The emitter point itself to the camera: against the camera path that sees it (`camera_path`).
         let u_round = sampler.next_1d();
         let u_lens = lens_sample(sampler, DIM_LENS_AT_EMITTER);
@@ -456,7 +459,12 @@ fn light_path_vertices<W: AtomicWords>(
             let flagged = if dispersed { depth | DISPERSED } else { depth };
             vertices.put(count, LightVertex::new(&sp, &shading, material_index, beta, mis, flagged));
             count += 1;
-            if let Some(c) = camera.connect(sp.p, lens_sample(sampler, bounce_dims + DIM_LENS_IN_BOUNCE)) {
+            let c = if to_camera {
+                camera.connect(sp.p, lens_sample(sampler, bounce_dims + DIM_LENS_IN_BOUNCE))
+            } else {
+                None
+            };
+            if let Some(c) = c {
                 let to_camera = frame.to_local(c.dir);
                 let f = bsdf.eval(wo, to_camera, TransportMode::Importance);
                 let corr = shading_normal_correction(wo_world, c.dir, frame.n, ng);
@@ -512,13 +520,29 @@ fn light_path_vertices<W: AtomicWords>(
     count
 }
 
-/// The camera path of one pixel sample with its strategies: emitters hit, next-event estimation,
-/// connections to its light path's `vertices` and, under VCM, merges with the pass's light vertices
-/// (`grid`; under BDPT `Merging::OFF` leaves it unread).
+/// `FrameParams::connection_rate` in (0, 1]: 1 where it is 0, 1 or more, or not a number.
+#[inline]
+pub fn connection_rate(params: &FrameParams) -> f32 {
+    let p = params.connection_rate;
+    if p > 0.0 && p < 1.0 {
+        p
+    } else {
+        1.0
+    }
+}
+
+/// The stream of the camera vertices' draws of whether they join (`connection_rate`), apart from
+/// every path's.
+const RATE_STREAM: u32 = 0x3c6e_f372;
+
+/// The camera path of one pixel sample (of `pixel`) with its strategies: emitters hit, next-event
+/// estimation, connections to its light path's `vertices` and, under VCM, merges with the pass's
+/// light vertices (`grid`; under BDPT `Merging::OFF` leaves it unread).
 #[allow(clippy::too_many_arguments)]
 pub fn camera_path(
     scene: &SceneView,
     params: &FrameParams,
+    pixel: u32,
     camera_ray: Ray,
     sampler: &mut Sampler,
     pixel_density: f32,
@@ -531,6 +555,7 @@ pub fn camera_path(
     let merging = Merging::of(params);
     let connections = Connections::of(params);
     let draws_one = params.connection_share > 0.0;
+    let rate = connection_rate(params);
     let wavelength = PassWavelength::of(scene, params);
     let mut dispersed = false;
     let lens = params.camera.lens_point_of(camera_ray.origin);
@@ -671,12 +696,18 @@ pub fn camera_path(
             result += throughput * nee * wavelength.factor(dispersed);
             let vertex = CameraVertex { mis, segments, smooth, dispersed, wavelength };
             result += throughput * grid.merge(&bsdf, &shading, &sp, vertex, max_depth, merging);
-            // Every vertex of the light path, or one drawn uniformly and counted `count` times.
-            let (mut k, end, scale) = if draws_one {
+            // Every vertex of the light path, or one drawn uniformly and counted `count` times; at this
+            // vertex with probability `rate` (the same for the tile's vertices at this depth), counted
+            // `1 / rate` times.
+            let joins = rate >= 1.0
+                || super::tile_draw(params, pixel, params.sample_base, hash2(RATE_STREAM, depth)) < rate;
+            let (mut k, end, scale) = if !joins {
+                (0, 0, 0.0)
+            } else if draws_one {
                 let k = ((u_connect * count as f32) as u32).min(count.max(1) - 1);
-                (k, (k + 1).min(count), count as f32)
+                (k, (k + 1).min(count), count as f32 / rate)
             } else {
-                (0, count, 1.0)
+                (0, count, 1.0 / rate)
             };
             while k < end {
                 // Its depth first, its 208 bytes only for a connection made.

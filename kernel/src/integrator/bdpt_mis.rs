@@ -59,10 +59,13 @@ impl Connections {
         Connections { sq, inv_sq: 1.0 / sq }
     }
 
-    /// A pass's connections.
+    /// A pass's connections: `connection_share`, and as often as camera vertices join their light
+    /// paths (`bdpt::connection_rate`; every vertex joined counts 1).
     #[inline]
     pub fn of(params: &FrameParams) -> Self {
-        Connections::new(params.connection_share)
+        let rate = super::bdpt::connection_rate(params);
+        let c = params.connection_share;
+        Connections::new(if c > 0.0 { c * rate } else { rate })
     }
 }
 

@@ -20,7 +20,7 @@ use crate::irradiance_meter;
 pub use crate::layout::SceneView;
 use crate::layout::{
     FrameParams, Material, PixelAccum, Primitive, INTEGRATOR_BDPT, INTEGRATOR_IBPT, INTEGRATOR_PTRACER,
-    INTEGRATOR_VCM, MATERIAL_TWO_SIDED,
+    INTEGRATOR_VCM, MATERIAL_TWO_SIDED, TILE,
 };
 use crate::math::is_finite3;
 use crate::rng::{hash2, u32_to_unit_f32, Sampler};
@@ -420,7 +420,8 @@ pub fn trace_cached_light_path<W: AtomicWords>(
     words: &mut W,
 ) {
     let mut sampler = light_path_sampler(params, pixel, params.sample_base);
-    bdpt::trace_light_path(scene, params, &mut sampler, words, slots);
+    let to_camera = ptracer::connects_to_camera(params, pixel, params.sample_base);
+    bdpt::trace_light_path(scene, params, &mut sampler, words, slots, to_camera);
 }
 
 /// BDPT's and VCM's last step of a pass (after the light paths and, for VCM, the grid: `vcm_grid`):
@@ -438,7 +439,7 @@ pub fn splat_cached_camera_path<W: AtomicWords>(
         splatted_camera_sample(scene, params, pixel, params.sample_base);
     let vertices = bdpt::CacheView { cache, base: pixel * bdpt::MAX_LIGHT_VERTICES };
     let grid = vcm_grid::GridView { cache, words: grid_words, grid: vcm_grid::Grid::of(params) };
-    let l = bdpt::camera_path(scene, params, ray, &mut sampler, density, &vertices, &grid);
+    let l = bdpt::camera_path(scene, params, pixel, ray, &mut sampler, density, &vertices, &grid);
     // (One sample a pass: each writes its cells over the last pass's.)
     splat_camera_estimate(scene, params, pixel, &film_sample, l, true, words);
 }
@@ -452,10 +453,24 @@ pub fn trace_light_paths<W: AtomicWords>(scene: &SceneView, params: &FrameParams
     }
     let mut s = 0;
     while s < params.sample_count {
-        let mut sampler = light_path_sampler(params, pixel, params.sample_base + s);
-        ptracer::trace(scene, params, &mut sampler, words);
+        // (A path not connected to the camera adds nothing here: it is not traced.)
+        if ptracer::connects_to_camera(params, pixel, params.sample_base + s) {
+            let mut sampler = light_path_sampler(params, pixel, params.sample_base + s);
+            ptracer::trace(scene, params, &mut sampler, words);
+        }
         s += 1;
     }
+}
+
+/// A number in [0, 1) for the `TILE`² tile of pixel (or path index) `index`, sample `sample` and
+/// `stream`: what a GPU workgroup decides together, so that its invocations skip work together
+/// rather than diverge (`ptracer::connects_to_camera`, `bdpt::connection_rate`). Drawn apart from the
+/// paths' own numbers, so that a path is the same whichever way it goes.
+#[inline]
+pub(crate) fn tile_draw(params: &FrameParams, index: u32, sample: u32, stream: u32) -> f32 {
+    let (x, y) = (index % params.width, index / params.width);
+    let tile = (y / TILE) * params.width.div_ceil(TILE) + x / TILE;
+    u32_to_unit_f32(hash2(hash2(params.seed ^ stream, sample), tile))
 }
 
 /// The sampler of light path `index`'s sample `sample`.

@@ -17,7 +17,7 @@ use super::bdpt_mis::{self, SubpathMis};
 use super::mis;
 use super::nee::first_hit_past_emitters;
 use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE, DIM_WAVELENGTH};
-use super::{axis_weights, disperse, shading_frame, splat_footprint, NO_WAVELENGTH, SPAN};
+use super::{axis_weights, disperse, shading_frame, splat_footprint, tile_draw, NO_WAVELENGTH, SPAN};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
 use crate::camera::{CameraConnection, Ray};
@@ -51,11 +51,38 @@ pub(super) fn shading_normal_correction(wo: Vec3, wi: Vec3, ns: Vec3, ng: Vec3) 
 }
 
 /// Rendered pixels per light path's reach: light paths (one per rendered pixel and sample) land
-/// anywhere on the full film, so a crop window's pixels see `rendered / full` of them.
+/// anywhere on the full film, so a crop window's pixels see `rendered / full` of them, and of those
+/// the share connected to the camera (`light_tracing_share`). Everything that weighs light tracing
+/// against the camera strategies takes its density through this one factor, as through a crop
+/// window's, so the weights stay a partition of unity at any share.
 #[inline]
 pub fn film_scale(params: &FrameParams) -> f32 {
-    (params.full_width * params.full_height) as f32 / (params.width * params.height) as f32
+    (params.full_width * params.full_height) as f32
+        / (params.width * params.height) as f32
+        / light_tracing_share(params)
 }
+
+/// `FrameParams::light_tracing_share` in (0, 1]: 1 where it is 0, 1 or more, or not a number.
+#[inline]
+pub fn light_tracing_share(params: &FrameParams) -> f32 {
+    let q = params.light_tracing_share;
+    if q > 0.0 && q < 1.0 {
+        q
+    } else {
+        1.0
+    }
+}
+
+/// Whether light path `index` (laid out like the pixels) of sample `sample` connects to the camera:
+/// with probability `light_tracing_share` (`super::tile_draw`).
+#[inline]
+pub fn connects_to_camera(params: &FrameParams, index: u32, sample: u32) -> bool {
+    let q = light_tracing_share(params);
+    q >= 1.0 || tile_draw(params, index, sample, SHARE_STREAM) < q
+}
+
+/// The stream of `connects_to_camera`'s draws, apart from every path's.
+const SHARE_STREAM: u32 = 0x5a3c_96e1;
 
 /// How a camera connection is weighted against the camera strategies under IBPT (`mis`): not at all
 /// (plain light tracing), or as the emitter point, the first vertex or a later vertex of a light path.

@@ -43,10 +43,12 @@ impl Loader {
                 };
                 let merging =
                     if kind == IntegratorKind::Vcm { merge_settings(props)? } else { Default::default() };
-                let connection_share = match kind {
-                    IntegratorKind::Bdpt | IntegratorKind::Vcm => connection_share(props)?,
-                    _ => DEFAULT_CONNECTION_SHARE,
-                };
+                let bidirectional = matches!(kind, IntegratorKind::Bdpt | IntegratorKind::Vcm);
+                let connection_share =
+                    if bidirectional { connection_share(props)? } else { DEFAULT_CONNECTION_SHARE };
+                let light_tracing_share =
+                    if kind == IntegratorKind::Ptracer { 1.0 } else { share(props, "light_tracing_share")? };
+                let connection_rate = if bidirectional { share(props, "connection_rate")? } else { 1.0 };
                 Integrator {
                     kind,
                     max_depth,
@@ -54,6 +56,8 @@ impl Loader {
                     hide_emitters: props.boolean("hide_emitters", false)?,
                     merging,
                     connection_share,
+                    light_tracing_share,
+                    connection_rate,
                     ..Default::default()
                 }
             }
@@ -182,6 +186,16 @@ fn connection_share(props: &Props) -> Result<f32> {
         bail!("{}: connection_share must be from 0 to 1, got {c}", props.loc);
     }
     Ok(c)
+}
+
+/// A share in (0, 1], 1 by default: `light_tracing_share` (`ibpt`, `bdpt`, `vcm`) or
+/// `connection_rate` (`bdpt`, `vcm`), checked.
+fn share(props: &Props, name: &str) -> Result<f32> {
+    let q = props.float(name, 1.0)?;
+    if !(q > 0.0 && q <= 1.0) {
+        bail!("{}: {name} must be above 0 and at most 1, got {q}", props.loc);
+    }
+    Ok(q)
 }
 
 /// `vcm`'s merging radius (`radius`, absolute; or `radius_factor` of the scene's bounding sphere's
