@@ -15,7 +15,7 @@ const CAPACITY: u32 = 128;
 
 /// Whether the user asked for step times and `adapter` can give them (said once where it cannot).
 pub fn wanted_on(adapter: &wgpu::Adapter) -> bool {
-    if !std::env::var_os("CAUSTIC_STEP_TIMES").is_some_and(|v| v != "0") {
+    if std::env::var_os("CAUSTIC_STEP_TIMES").is_none_or(|v| v == "0") {
         return false;
     }
     let has = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
