@@ -59,8 +59,7 @@ fn bdpt_at_other_connection_shares_agrees_with_path() {
 /// Fewer light paths connected to the camera (`light_tracing_share`: their splats count `1 / share`,
 /// light tracing counts `share` in the weights) and fewer camera vertices joining their light path
 /// (`connection_rate`), each decided for a tile of pixels at once: the same image as `path`, under an
-/// area light, a spot, and through glass at any depth with both; `ibpt` and `vcm` likewise; and both
-/// at 1 (every splat, every join), which are not the defaults (`ibpt` 0.5, `connection_rate` 0.25).
+/// area light, a spot, and through glass at any depth with both; `ibpt` and `vcm` likewise.
 #[test]
 fn fewer_light_tracing_splats_and_connections_agree_with_path() {
     let with = |kind: &'static str, props: &'static str| {
@@ -70,12 +69,9 @@ fn fewer_light_tracing_splats_and_connections_agree_with_path() {
     let rate = r#"<float name="connection_rate" value="0.4"/>"#;
     let both =
         r#"<float name="light_tracing_share" value="0.5"/><float name="connection_rate" value="0.5"/>"#;
-    let every = r#"<float name="light_tracing_share" value="1"/><float name="connection_rate" value="1"/>"#;
     let (area, spot) = (EMITTERS[0], EMITTERS[3]);
     let cases = [
         ("bdpt", area, share, 90),
-        ("bdpt", area, every, 91),
-        ("ibpt", spot, r#"<float name="light_tracing_share" value="1"/>"#, 93),
         ("bdpt", spot, rate, 92),
         ("vcm", area, both, 94),
         ("ibpt", area, share, 96),

@@ -11,9 +11,7 @@ use super::features::features_of;
 use super::lights::{cdf_of, emitter_lights, square_scale_log2, LightList, LIGHT_TRACING_UNIFORM_SHARE};
 use super::materials::{place_materials, place_textures, place_wavelengths};
 use super::primitives::{prim_origins, primitives};
-use crate::scene::{
-    light_tracing_share_of, Emitter, IntegratorKind, Projection, SamplerKind, Scene, DEFAULT_CONNECTION_RATE,
-};
+use crate::scene::{Emitter, IntegratorKind, Projection, SamplerKind, Scene};
 use anyhow::{bail, Result};
 use caustic_kernel::layout::*;
 use glam::Vec3;
@@ -219,14 +217,12 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     };
     let light_tracing_share = match kind {
         IntegratorKind::Ibpt | IntegratorKind::Bdpt | IntegratorKind::Vcm => {
-            let own = scene.integrator.light_tracing_share.unwrap_or(light_tracing_share_of(kind));
-            share_or_override(own, "CAUSTIC_LIGHT_TRACING_SHARE", false)?
+            share_or_override(scene.integrator.light_tracing_share, "CAUSTIC_LIGHT_TRACING_SHARE", false)?
         }
         _ => 1.0,
     };
     let connection_rate = if bidirectional {
-        let own = scene.integrator.connection_rate.unwrap_or(DEFAULT_CONNECTION_RATE);
-        share_or_override(own, "CAUSTIC_CONNECTION_RATE", false)?
+        share_or_override(scene.integrator.connection_rate, "CAUSTIC_CONNECTION_RATE", false)?
     } else {
         1.0
     };

@@ -189,13 +189,11 @@ pub struct Integrator {
     /// (`FrameParams::connection_share`); `DEFAULT_CONNECTION_SHARE` where a scene does not say.
     pub connection_share: f32,
     /// `ibpt`'s, `bdpt`'s and `vcm`'s `light_tracing_share`, in (0, 1]: the share of light paths
-    /// connected to the camera (`FrameParams::light_tracing_share`); where a scene does not say, the
-    /// integrator's own (`light_tracing_share_of`), since `--integrator` may change it after loading.
-    pub light_tracing_share: Option<f32>,
+    /// connected to the camera (`FrameParams::light_tracing_share`); 1 (every one) by default.
+    pub light_tracing_share: f32,
     /// `bdpt`'s and `vcm`'s `connection_rate`, in (0, 1]: the share of camera vertices that join
-    /// their light path (`FrameParams::connection_rate`); `DEFAULT_CONNECTION_RATE` where a scene
-    /// does not say.
-    pub connection_rate: Option<f32>,
+    /// their light path (`FrameParams::connection_rate`); 1 (every one) by default.
+    pub connection_rate: f32,
     /// Run `ibpt`'s, `bdpt`'s or `vcm`'s own kernel even in a scene where no light path can start
     /// (every emitter at infinity), where by default `path`'s kernel renders their estimator
     /// (`prepare::buffers::kernel_kind`); `--own-kernel`.
@@ -208,26 +206,6 @@ pub struct Integrator {
 /// water 1.0-1.16x, each at the same error to within 2%; 0.25 ran as fast with errors no lower.
 pub const DEFAULT_CONNECTION_SHARE: f32 = 0.5;
 
-/// `bdpt`'s and `vcm`'s `connection_rate` where a scene does not say: a camera vertex joins its
-/// light path at one depth in four, counted four times. Measured on one lent H200 against 1 (every
-/// depth), 0.5 and 0.125 on the Cornell box, three other shared scenes and the seed's three
-/// (BENCHMARKS.md, "Fewer light-tracing splats and fewer connections"): 0.25 reached equal error
-/// sooner on all eight (0.84-0.99× the time in MSE), 0.125 lost on the light guide.
-pub const DEFAULT_CONNECTION_RATE: f32 = 0.25;
-
-/// The `light_tracing_share` of integrator `kind` where a scene does not say: `ibpt` connects half
-/// its light paths to the camera and skips tracing the rest, which reached equal error sooner on all
-/// four scenes measured (0.77-0.87× the time in MSE; same section); `bdpt` and `vcm`, which trace
-/// every light path anyway for their connections and merges, connect every one (half lost on the
-/// Cornell box and two other shared scenes).
-pub fn light_tracing_share_of(kind: IntegratorKind) -> f32 {
-    if kind == IntegratorKind::Ibpt {
-        0.5
-    } else {
-        1.0
-    }
-}
-
 impl Default for Integrator {
     fn default() -> Self {
         Integrator {
@@ -237,8 +215,8 @@ impl Default for Integrator {
             hide_emitters: false,
             merging: MergeSettings::default(),
             connection_share: DEFAULT_CONNECTION_SHARE,
-            light_tracing_share: None,
-            connection_rate: None,
+            light_tracing_share: 1.0,
+            connection_rate: 1.0,
             own_kernel: false,
         }
     }

@@ -47,8 +47,8 @@ impl Loader {
                 let connection_share =
                     if bidirectional { connection_share(props)? } else { DEFAULT_CONNECTION_SHARE };
                 let light_tracing_share =
-                    if kind == IntegratorKind::Ptracer { None } else { share(props, "light_tracing_share")? };
-                let connection_rate = if bidirectional { share(props, "connection_rate")? } else { None };
+                    if kind == IntegratorKind::Ptracer { 1.0 } else { share(props, "light_tracing_share")? };
+                let connection_rate = if bidirectional { share(props, "connection_rate")? } else { 1.0 };
                 Integrator {
                     kind,
                     max_depth,
@@ -188,17 +188,14 @@ fn connection_share(props: &Props) -> Result<f32> {
     Ok(c)
 }
 
-/// A share in (0, 1] where the scene gives one: `light_tracing_share` (`ibpt`, `bdpt`, `vcm`) or
-/// `connection_rate` (`bdpt`, `vcm`), checked; `None` leaves it to the integrator's default.
-fn share(props: &Props, name: &str) -> Result<Option<f32>> {
-    if !props.has(name) {
-        return Ok(None);
-    }
+/// A share in (0, 1], 1 by default: `light_tracing_share` (`ibpt`, `bdpt`, `vcm`) or
+/// `connection_rate` (`bdpt`, `vcm`), checked.
+fn share(props: &Props, name: &str) -> Result<f32> {
     let q = props.float(name, 1.0)?;
     if !(q > 0.0 && q <= 1.0) {
         bail!("{}: {name} must be above 0 and at most 1, got {q}", props.loc);
     }
-    Ok(Some(q))
+    Ok(q)
 }
 
 /// `vcm`'s merging radius (`radius`, absolute; or `radius_factor` of the scene's bounding sphere's
