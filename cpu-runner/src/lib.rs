@@ -150,12 +150,24 @@ impl AtomicWords for CpuWords<'_> {
     }
 }
 
+/// The splat words of a pass (`caustic_kernel::splat` layout, then the camera cells:
+/// `film_splat::camera_cells`), kept between passes as the GPU keeps its `SPLAT` buffer: resolving a
+/// pass clears the light words and the next pass writes every camera cell over, while the camera
+/// estimates' persisting words (`film_splat::camera_mean`) carry on. Zeroed where their size changes.
+fn pass_words<'a>(words: &'a mut Vec<u32>, params: &FrameParams) -> &'a [AtomicU32] {
+    let len = (params.width * params.height * words_per_pixel(params)) as usize;
+    if words.len() != len {
+        words.clear();
+        words.resize(len, 0);
+    }
+    as_atomic(words)
+}
+
 /// Traces `params.sample_count` light paths per pixel (IBPT: and camera paths), exactly as the GPU's
-/// dispatches do, and returns the splat words (`caustic_kernel::splat` layout, then IBPT's camera
-/// cells: `film_splat::camera_cells`) for the host to resolve.
-pub fn light_pass(scene: &SceneView, params: &FrameParams) -> Vec<u32> {
+/// dispatches do, into `words` (`pass_words`) for the host to resolve.
+pub fn light_pass(scene: &SceneView, params: &FrameParams, words: &mut Vec<u32>) {
     let pixels = params.width * params.height;
-    let words: Vec<AtomicU32> = (0..pixels * words_per_pixel(params)).map(|_| AtomicU32::new(0)).collect();
+    let words = pass_words(words, params);
     let camera_half = splats_camera_paths(scene, params);
     let light_half = traces_light_paths(params.integrator);
     (0..pixels).into_par_iter().for_each(|pixel| {
@@ -167,7 +179,6 @@ pub fn light_pass(scene: &SceneView, params: &FrameParams) -> Vec<u32> {
             trace_light_paths(scene, params, pixel, &mut words);
         }
     });
-    words.into_iter().map(AtomicU32::into_inner).collect()
 }
 
 /// BDPT's and VCM's memory kept between passes: the light vertex cache (`MAX_LIGHT_VERTICES` slots a
@@ -188,15 +199,20 @@ impl CacheScratch {
 /// One BDPT or VCM sample a pixel (`params.sample_base`; VCM's radius `params.merge_radius`), exactly
 /// as the GPU's dispatches run it: every pixel's light path into the cache (its camera connections
 /// splatted), for VCM the grid linked over the cache, then every pixel's camera
-/// path; returns the splat words for the host to resolve.
-pub fn cached_pass(scene: &SceneView, params: &FrameParams, scratch: &mut CacheScratch) -> Vec<u32> {
+/// path, into `words` (`pass_words`) for the host to resolve.
+pub fn cached_pass(
+    scene: &SceneView,
+    params: &FrameParams,
+    scratch: &mut CacheScratch,
+    words: &mut Vec<u32>,
+) {
     let pixels = params.width * params.height;
-    let words: Vec<AtomicU32> = (0..pixels * words_per_pixel(params)).map(|_| AtomicU32::new(0)).collect();
+    let words = pass_words(words, params);
     let grid = vcm_grid::Grid::of(params);
     scratch.cache.resize(vcm_grid::slots(params) as usize, LightVertex::EMPTY);
     scratch.cache.par_chunks_mut(MAX_LIGHT_VERTICES as usize).enumerate().for_each(|(pixel, own)| {
         let mut slots = CacheSlots { cache: own, base: 0 };
-        trace_cached_light_path(scene, params, pixel as u32, &mut slots, &mut CpuWords(&words));
+        trace_cached_light_path(scene, params, pixel as u32, &mut slots, &mut CpuWords(words));
     });
     scratch.grid.clear();
     let cache = &scratch.cache;
@@ -209,9 +225,8 @@ pub fn cached_pass(scene: &SceneView, params: &FrameParams, scratch: &mut CacheS
     }
     let grid_words = &scratch.grid;
     (0..pixels).into_par_iter().for_each(|pixel| {
-        splat_cached_camera_path(scene, params, pixel, cache, grid_words, &mut CpuWords(&words));
+        splat_cached_camera_path(scene, params, pixel, cache, grid_words, &mut CpuWords(words));
     });
-    words.into_iter().map(AtomicU32::into_inner).collect()
 }
 
 /// `words` as atomics, for the grid's step that links vertices into it from every thread.

@@ -230,6 +230,28 @@ pub fn axis_pixel_weight(tables: &[f32], params: &FrameParams, pos: f32, c: f32,
     (f, axis_mass(tables, params, base, c, window(start, size)))
 }
 
+/// `axis_pixel_weight`'s filter integrated over the pixel `[at, at + 1)` of the full image along the
+/// axis, for the pixel centred at `c`.
+pub fn axis_pixel_integral(tables: &[f32], params: &FrameParams, at: f32, c: f32) -> f32 {
+    let base = signed_table(params);
+    running_sum_at(tables, params, base, at + 1.0 - c) - running_sum_at(tables, params, base, at - c)
+}
+
+/// One axis of the weight that a camera sample drawn uniformly in the pixel `[at, at + 1)` gives
+/// the pixel centred at `c` on average (`film_splat`'s control variate): `axis_pixel_integral` over
+/// the filter's mass in the rendered window along the axis (x where `x_axis`); zero where that mass
+/// is not positive. The product of two axes' is the mean of `pixel_weight` over the pixel, whether or
+/// not one sample's own place lies within the filter's radius.
+pub fn axis_pixel_mean(tables: &[f32], params: &FrameParams, at: f32, c: f32, x_axis: bool) -> f32 {
+    let (start, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
+    let mass = axis_mass(tables, params, signed_table(params), c, window(start, size));
+    if mass > 0.0 {
+        axis_pixel_integral(tables, params, at, c) / mass
+    } else {
+        0.0
+    }
+}
+
 /// The filter of table `base` centred on pixel (`px`, `py`) at `pos`, over its truncated sum: zero
 /// outside the rendered window, where no camera sample lands (a light path's connection landing
 /// there reaches no pixel, or a crop's edge pixels would gain what its camera samples cannot).

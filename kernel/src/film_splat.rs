@@ -258,13 +258,67 @@ pub fn resolved(a: PixelAccum, g: &Gathered, q: f32) -> PixelAccum {
 /// the light words' atomics instead, the camera splats of a `bdpt` pass of the Cornell box cost 0.72
 /// ms a sample on an H200, a quarter of its camera pass (BENCHMARKS.md, "Where a bidirectional
 /// sample's time goes").
+///
+/// Under the splatting film with independent samples, four more words a pixel persist from pass to
+/// pass: the sum of the pixel's own camera samples' estimates so far and their count, whose mean
+/// `camera_mean` is the control variate's coefficient (`control_variate`).
 #[inline]
 pub fn camera_cells(params: &FrameParams) -> u32 {
     let kind = params.integrator;
     if crate::layout::splats(kind) && kind != crate::layout::INTEGRATOR_PTRACER {
-        3 * cells(params)
+        3 * cells(params) + if control_variate(params) { MEAN_SLOTS } else { 0 }
     } else {
         0
+    }
+}
+
+/// The persisting words of a pixel's camera estimates (`camera_cells`): R, G, B, count.
+const MEAN_SLOTS: u32 = 4;
+
+/// Whether the splatting integrators' camera samples carry a control variate: each sample adds
+/// `w·L − (w − ω)·β` to a neighbour's cell, where `w` is its filter weight there, `ω` that weight's
+/// mean over the sample's pixel (`film::axis_pixel_mean`) and `β` the mean of the estimates of the
+/// pixel's earlier samples (`camera_mean`). Since `β` does not depend on this sample and `w − ω`
+/// averages to zero, the sum stays unbiased, while the noise of Σw (the samples' positions under the
+/// filter) cancels wherever the camera strategy's estimate is even over a pixel: a light seen
+/// directly returns its radiance without noise, as the weight-normalised film of `path` does. `β`
+/// is the mean of the pixel's own samples, the estimate each of them is drawn around, rather than the
+/// pixel's gathered value, which blurs its neighbours' in and so differs beside an edge. Light
+/// tracing's splats divide by no weight sum and have no such term. Only with the splatting film (filter
+/// importance sampling has no weights to vary) and independent samples (a stratified sample is not
+/// uniform over its pixel alone, so `ω` would not be its mean).
+#[inline]
+pub fn control_variate(params: &FrameParams) -> bool {
+    params.film_reach > 0 && params.sampler != crate::layout::SAMPLER_STRATIFIED
+}
+
+/// The mean estimate of `pixel`'s camera samples before this one (zero before the first): the
+/// control variate's `β`.
+#[inline]
+pub fn camera_mean<W: AtomicWords>(words: &W, params: &FrameParams, pixel: u32) -> Rgb {
+    let base = 3 * cells(params);
+    let n = f32::from_bits(words.load(camera_word(params, pixel, base + 3)));
+    if !(n > 0.0) {
+        return Rgb::ZERO;
+    }
+    Rgb::new(
+        f32::from_bits(words.load(camera_word(params, pixel, base))),
+        f32::from_bits(words.load(camera_word(params, pixel, base + 1))),
+        f32::from_bits(words.load(camera_word(params, pixel, base + 2))),
+    ) / n
+}
+
+/// Adds one camera sample's estimate `l` to `pixel`'s persisting words (`camera_mean`); only the
+/// pixel's own invocation writes them.
+#[inline]
+pub fn add_to_camera_mean<W: AtomicWords>(words: &mut W, params: &FrameParams, pixel: u32, l: Rgb) {
+    let base = 3 * cells(params);
+    let v = [l.x, l.y, l.z, 1.0];
+    let mut c = 0;
+    while c < MEAN_SLOTS {
+        let at = camera_word(params, pixel, base + c);
+        words.store(at, (f32::from_bits(words.load(at)) + v[c as usize]).to_bits());
+        c += 1;
     }
 }
 

@@ -353,10 +353,11 @@ fn a_light_path_takes_1664_bytes_of_the_cache() {
 
 /// A path of one segment, the camera seeing an emitter: its two strategies are the camera path
 /// hitting the point and the light path's emitter point connected to the camera. `integrator::bdpt`
-/// weighs the first with `bdpt_mis::hit_weight` at the camera's first vertex (light tracing's
+/// weighs the first with `bdpt_mis::seen_weight` at the camera's first vertex (light tracing's
 /// density of the point, `E·|cos|`, against the camera's `a = x·|cos|`), the second as `ibpt` does
-/// (`mis::emitter_connection_weight`, `x` the splat's importance): they sum to one, at any distance and
-/// angle, and the hit alone would count the path twice.
+/// (`mis::emitter_connection_weight`, `x` the splat's importance), both tempered by the pass's light
+/// paths (`mis::seen_ratio_sq`): they sum to one, at any distance, angle and image size, and the hit
+/// alone would count the path twice.
 #[test]
 fn the_emitter_point_and_the_camera_hit_sum_to_one() {
     use caustic_kernel::integrator::mis;
@@ -368,14 +369,41 @@ fn the_emitter_point_and_the_camera_hit_sum_to_one() {
         let x = 10f32.powf(6.0 * u.x - 3.0);
         let e = 10f32.powf(6.0 * u.y - 3.0);
         let cos = v.x.max(1e-4);
+        let light_paths = 10f32.powf(1.0 + 6.0 * v.y);
         // Neither is a connection: joining one light vertex drawn at random changes neither weight.
         for c in [Connections::EVERY, Connections::new(0.2)] {
-            let hit = bdpt_mis::seen_weight(SubpathMis::camera_first_vertex(x * cos, c), e * cos, c);
-            let splat = mis::emitter_connection_weight(x, 1.0 / (e * e));
-            assert!((hit + splat - 1.0).abs() < 1e-5, "x {x} E {e} cos {cos}: {hit} + {splat}");
-            shared += (hit < 0.99) as u32;
+            let hit =
+                bdpt_mis::seen_weight(SubpathMis::camera_first_vertex(x * cos, c), e * cos, light_paths, c);
+            let splat = mis::emitter_connection_weight(x, 1.0 / (e * e), light_paths);
+            assert!(
+                (hit + splat - 1.0).abs() < 1e-5,
+                "x {x} E {e} cos {cos} N {light_paths}: {hit} + {splat}"
+            );
+            shared += (hit > 0.01 && hit < 0.99) as u32;
         }
     }
-    // Where the point is as likely by light tracing as by the camera ray, the hit's weight is not 1.
-    assert!(shared > 2000, "{shared}");
+    // Where the point is about as likely by light tracing as by the camera ray, both take part.
+    assert!(shared > 1000, "{shared}");
+}
+
+/// The seen emitter's ratio (`mis::seen_ratio_sq`) at the densities measured in two shared scenes:
+/// the sphere light filling much of `shape_sphere_light_analytic`'s 960×720 view (`r` = 0.6) goes to
+/// the camera ray, which the plain power heuristic gave only 0.73; the Cornell box's light of about
+/// 490 pixels at 256² (`r` = 13.5) stays with the splats, as the plain heuristic has it; a lamp whose
+/// `r` is past `N / SEEN_HIT_GAIN` (a pixel or less) is weighed exactly as before; and the ratio
+/// crosses 1 at `r = (N / SEEN_HIT_GAIN)^(1/3)`.
+#[test]
+fn a_seen_emitter_goes_to_the_camera_when_it_spans_many_pixels() {
+    use caustic_kernel::integrator::mis::{self, SEEN_HIT_GAIN};
+    let hit = |r: f32, n: f32| 1.0 / (1.0 + mis::seen_ratio_sq(r * r, n));
+    let plain = |r: f32| 1.0 / (1.0 + r * r);
+    let sphere = 960.0 * 720.0;
+    assert!(plain(0.6) < 0.75 && hit(0.6, sphere) > 0.99, "{} {}", plain(0.6), hit(0.6, sphere));
+    let cbox = 256.0 * 256.0;
+    assert!(hit(13.5, cbox) < 0.02, "{}", hit(13.5, cbox));
+    let lamp = 2.0 * cbox / SEEN_HIT_GAIN;
+    assert_eq!(hit(lamp, cbox), plain(lamp));
+    let crossing = (cbox / SEEN_HIT_GAIN).powf(1.0 / 3.0);
+    assert!((hit(crossing, cbox) - 0.5).abs() < 1e-3, "{}", hit(crossing, cbox));
+    assert!(plain(crossing) < 0.1, "the negative control: {}", plain(crossing));
 }

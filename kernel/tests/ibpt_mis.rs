@@ -100,9 +100,11 @@ impl TestPath {
         }
     }
 
-    /// The three weights, from the camera side (hit, NEE) and the light side (connection at x1).
+    /// The three weights, from the camera side (hit, NEE) and the light side (connection at x1), of a
+    /// path of two segments or more (one segment: `the_seen_emitter_s_two_weights_sum_to_one`).
     fn weights(&self) -> (f32, f32, f32) {
         let k = self.k();
+        assert!(k >= 2);
         // Camera side: the scalar s at each vertex, updated when leaving it.
         let mut s = mis::camera_scale_at_first_vertex(self.importance, 1.0);
         let mut s_at = vec![0.0; k + 1];
@@ -140,9 +142,7 @@ impl TestPath {
             d = mis::light_scalar_after(d, m == k - 1, self.delta[m], inv_hit_sq, inv_nee_sq, rho, fwd);
         }
         let rho1 = self.lambert(1, 2.min(k));
-        let w_lt = if k == 1 {
-            mis::emitter_connection_weight(self.importance, inv_hit_sq)
-        } else if k == 2 {
+        let w_lt = if k == 2 {
             mis::first_vertex_connection_weight(self.importance, rho1, inv_hit_sq, inv_nee_sq)
         } else {
             mis::connection_weight(self.importance, rho1, d)
@@ -206,4 +206,27 @@ fn a_wrong_recursion_breaks_the_sum() {
         "a broken light recursion went unnoticed: {}",
         h + n + l_wrong
     );
+}
+
+/// A path of one segment, the camera seeing the emitter: the camera hit (`mis::hit_weight` with the
+/// first vertex's scalar tempered by `mis::seen_scale`, no light sampling from the camera) and the
+/// emitter point's splat (`mis::emitter_connection_weight`) sum to one at any importance, emitter
+/// density and image size; without the tempering on one side they do not.
+#[test]
+fn the_seen_emitter_s_two_weights_sum_to_one() {
+    let mut s = Sampler::new(11, 0, 0);
+    let mut broken = 0;
+    for _ in 0..10_000 {
+        let u = s.next_2d();
+        let importance = 10f32.powf(6.0 * u.x - 3.0);
+        let e = 10f32.powf(6.0 * u.y - 3.0);
+        let light_paths = 10f32.powf(1.0 + 6.0 * s.next_1d());
+        let scale = mis::camera_scale_at_first_vertex(importance, 1.0);
+        let hit = mis::hit_weight(0.0, mis::seen_scale(scale, e, light_paths), e);
+        let splat = mis::emitter_connection_weight(importance, 1.0 / (e * e), light_paths);
+        assert!((hit + splat - 1.0).abs() < 1e-5, "x {importance} E {e} N {light_paths}: {hit} + {splat}");
+        let untempered = mis::hit_weight(0.0, scale, e);
+        broken += ((untempered + splat - 1.0).abs() > 1e-3) as u32;
+    }
+    assert!(broken > 1000, "{broken}");
 }

@@ -418,3 +418,87 @@ fn a_crop_windows_edge_pixels_are_the_same_under_both_films() {
     println!("the whole image cut to the window, against the crop: pass {pass:.4}, z {z:+.2}");
     assert!(pass < 0.99, "the crop's edge went unnoticed (pass {pass:.4}, z {z:+.2})");
 }
+
+/// The control variate of the splatting integrators' camera samples (`film_splat::control_variate`)
+/// needs each neighbour's mean weight from a sample drawn uniformly in a pixel: along each axis,
+/// `film::axis_pixel_integral` against the mean of the filter over the pixel (midpoints), for every
+/// pixel within the gaussian's reach, at the image's edge as inside; and `film::axis_pixel_mean`,
+/// that over the truncated mass, summed over the pixels a receiving pixel's samples come from, is 1
+/// (as the weights' sum is on average: the control variate's term averages to zero).
+#[test]
+fn the_control_variate_s_mean_weights_are_the_filter_s_means() {
+    let scene = load_xml(
+        "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
+         <integer name=\"width\" value=\"9\"/><integer name=\"height\" value=\"7\"/>\
+         <rfilter type=\"gaussian\"/></film></sensor></scene>",
+        "film-means",
+    );
+    let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
+    let params = buffers.params;
+    let tables = &buffers.tables;
+    let n = 4096;
+    for c in [0.5f32, 1.5, 4.5, 8.5] {
+        let mut total = 0.0;
+        let mut mass = 0.0;
+        for at in 0..9 {
+            let at = at as f32;
+            let mut mean = 0.0;
+            for k in 0..n {
+                let x = at + (k as f32 + 0.5) / n as f32;
+                let (f, m) = caustic_kernel::film::axis_pixel_weight(tables, &params, x, c, true);
+                mean += f / n as f32;
+                if m > 0.0 {
+                    mass = m;
+                }
+            }
+            let exact = caustic_kernel::film::axis_pixel_integral(tables, &params, at, c);
+            assert!((exact - mean).abs() < 2e-4, "centre {c}, pixel {at}: {exact} against {mean}");
+            let normalised = caustic_kernel::film::axis_pixel_mean(tables, &params, at, c, true);
+            assert!((normalised * mass - exact).abs() < 1e-6, "centre {c}, pixel {at}");
+            total += normalised;
+        }
+        assert!(mass > 0.0 && (total - 1.0).abs() < 1e-5, "centre {c}: the means sum to {total}");
+    }
+}
+
+/// The splatting integrators' camera samples carry a control variate (`film_splat::control_variate`):
+/// a light filling the view, which every camera sample sees at one radiance, comes out of each pass
+/// after the first with none of the noise of the samples' filter weights, and without bias. The noise
+/// left at 32 samples is then the first pass's over 32: a thirty-second of one sample's, where
+/// without the variate (each pass as noisy as the first) it is 1/√32. The light is large enough that
+/// the camera hit takes the seen emitter's weight (`mis::seen_ratio_sq`).
+#[test]
+fn a_light_seen_directly_loses_the_filter_weights_noise_after_one_pass() {
+    let scene = load_xml(
+        "<scene version=\"3.0.0\"><sensor type=\"perspective\"><float name=\"fov\" value=\"30\"/>\
+         <transform name=\"to_world\"><lookat target=\"0, 0, 0\" origin=\"0, 0, 5\" up=\"0, 1, 0\"/></transform>\
+         <film type=\"hdrfilm\"><integer name=\"width\" value=\"40\"/><integer name=\"height\" value=\"30\"/>\
+         <rfilter type=\"gaussian\"/></film></sensor>\
+         <shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"10\" y=\"10\"/></transform>\
+         <emitter type=\"area\"><rgb name=\"radiance\" value=\"2\"/></emitter></shape></scene>",
+        "control-variate",
+    );
+    // Pixels away from the border (where the truncated filter's weights vary less).
+    let spread = |film: &Film| {
+        let values: Vec<f64> = (4..26)
+            .flat_map(|y| (4..36).map(move |x| (x, y)))
+            .map(|(x, y)| film.rgb[y * 40 + x][1] as f64)
+            .collect();
+        let mean = values.iter().sum::<f64>() / values.len() as f64;
+        let var = values.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / values.len() as f64;
+        (mean, var.sqrt())
+    };
+    for kind in [IntegratorKind::Ibpt, IntegratorKind::Bdpt, IntegratorKind::Vcm] {
+        let mut scene = scene.clone();
+        scene.integrator.kind = kind;
+        let (_, one) = spread(&render_scene(&scene, BackendChoice::Cpu, 1, 3));
+        let (mean, many) = spread(&render_scene(&scene, BackendChoice::Cpu, 32, 3));
+        println!(
+            "{kind:?}: spread at 1 sample {one:.4}, at 32 {many:.5} (ratio {:.1}), mean {mean:.5}",
+            one / many
+        );
+        assert!(one > 0.02, "{kind:?}: the first pass has the weights' noise ({one})");
+        assert!(one / many > 16.0, "{kind:?}: {one} at 1 sample, {many} at 32");
+        assert!((mean - 2.0).abs() < 2e-3, "{kind:?}: mean {mean}");
+    }
+}

@@ -30,6 +30,8 @@ pub struct CpuBackend {
     cells: Vec<f32>,
     /// BDPT's and VCM's light vertex cache and VCM's hash grid, kept between passes.
     cache: caustic_cpu::CacheScratch,
+    /// The splatting integrators' words, kept between passes (`caustic_cpu::light_pass`).
+    splat_words: Vec<u32>,
 }
 
 impl CpuBackend {
@@ -59,6 +61,7 @@ impl CpuBackend {
             regenerate,
             cells: Vec::new(),
             cache: Default::default(),
+            splat_words: Vec::new(),
         }
     }
 
@@ -91,14 +94,14 @@ impl Backend for CpuBackend {
                     merge_radius: self.buffers.merge_radius(iteration),
                     ..*params
                 };
-                let words = caustic_cpu::cached_pass(&view, &one, &mut self.cache);
-                fold_splats(&mut self.device, words, &one);
+                caustic_cpu::cached_pass(&view, &one, &mut self.cache, &mut self.splat_words);
+                fold_splats(&mut self.device, &mut self.splat_words, &one);
             }
         } else if params.film_reach != 0 && !caustic_kernel::integrator::splats(params.integrator) {
             caustic_cpu::film_pass(&view, params, &mut self.device, self.regenerate, &mut self.cells);
         } else if caustic_kernel::integrator::splats(params.integrator) {
-            let words = caustic_cpu::light_pass(&view, params);
-            fold_splats(&mut self.device, words, params);
+            caustic_cpu::light_pass(&view, params, &mut self.splat_words);
+            fold_splats(&mut self.device, &mut self.splat_words, params);
         } else {
             caustic_cpu::render_pass(&view, params, &mut self.device, self.regenerate);
         }
@@ -123,11 +126,11 @@ impl Backend for CpuBackend {
 /// Folds a splatting pass's words (`caustic_kernel::splat` layout, `SPLAT_STRIDE` a pixel, then the
 /// camera cells: `film_splat::camera_cells`) into the accumulator, as the GPU's `entry::resolve` does:
 /// `params.sample_count` samples a pixel.
-fn fold_splats(device: &mut [PixelAccum], mut words: Vec<u32>, params: &FrameParams) {
+fn fold_splats(device: &mut [PixelAccum], words: &mut [u32], params: &FrameParams) {
     use caustic_kernel::film_splat::resolved_splats;
     use caustic_kernel::splat::OwnWords;
     let q = caustic_kernel::layout::square_scale(params);
-    let mut words = OwnWords(&mut words);
+    let mut words = OwnWords(words);
     for (pixel, a) in device.iter_mut().enumerate() {
         let (x, y) = (pixel as u32 % params.width, pixel as u32 / params.width);
         *a = resolved_splats(*a, &mut words, params, x, y, q);

@@ -40,7 +40,7 @@ use super::nee::{
 use super::pass_wavelength::PassWavelength;
 use super::path::{DIMS_PER_BOUNCE, DIM_FIRST_BOUNCE, DIM_MASK};
 use super::ptracer::{
-    film_scale, inv_nee_ratio_sq, lens_sample, shading_normal_correction, splat_emitter_point,
+    film_scale, inv_nee_ratio_sq, lens_sample, light_paths, shading_normal_correction, splat_emitter_point,
     splat_to_camera, ConnectionMis, DIM_LENS_AT_EMITTER, DIM_LENS_IN_BOUNCE,
 };
 use super::shading_frame;
@@ -389,7 +389,7 @@ fn light_path_vertices<W: AtomicWords>(
         // The emitter point itself to the camera: against the camera path that sees it (`camera_path`).
         let u_round = sampler.next_1d();
         let u_lens = lens_sample(sampler, DIM_LENS_AT_EMITTER);
-        let weighting = ConnectionMis::emitter_point(inv_hit_sq);
+        let weighting = ConnectionMis::emitter_point(inv_hit_sq, light_paths(params));
         splat_emitter_point(scene, params, &accel, words, &es, u_lens, u_round, weighting);
     }
     let mut mis = SubpathMis::ZERO;
@@ -520,15 +520,10 @@ fn light_path_vertices<W: AtomicWords>(
     count
 }
 
-/// `FrameParams::connection_rate` in (0, 1]: 1 where it is 0, 1 or more, or not a number.
+/// `FrameParams::connection_rate` in (0, 1] (`super::share_in_unit`).
 #[inline]
 pub fn connection_rate(params: &FrameParams) -> f32 {
-    let p = params.connection_rate;
-    if p > 0.0 && p < 1.0 {
-        p
-    } else {
-        1.0
-    }
+    super::share_in_unit(params.connection_rate)
 }
 
 /// The stream of the camera vertices' draws of whether they join (`connection_rate`), apart from
@@ -617,7 +612,7 @@ pub fn camera_path(
                 } else {
                     0.0
                 };
-                bdpt_mis::seen_weight(arrived, point, connections)
+                bdpt_mis::seen_weight(arrived, point, light_paths(params), connections)
             } else if prev.delta {
                 // Through Dirac lobes alone: the recursion's terms decide.
                 if !bidirectional(segments, smooth) {

@@ -100,7 +100,7 @@ impl Merging {
         if params.integrator != INTEGRATOR_VCM {
             return Merging::OFF;
         }
-        Merging::new(params.merge_radius, (params.width * params.height) as f32, Connections::of(params))
+        Merging::new(params.merge_radius, super::ptracer::light_paths(params), Connections::of(params))
     }
 }
 
@@ -226,10 +226,11 @@ pub fn hit_weight(camera: SubpathMis, direct_area: f32, emission: f32, c: Connec
 
 /// The camera sees an emitter at its first vertex (state `camera`): the other strategy is the light
 /// path's emitter point connected to the camera, `point` light tracing's density of that point
-/// (`hit_density · |cos|`; 0 where light paths do not connect it).
+/// (`hit_density · |cos|`; 0 where light paths do not connect it), weighed as `ibpt` weighs it
+/// (`mis::seen_ratio_sq`, with the pass's `light_paths`).
 #[inline]
-pub fn seen_weight(camera: SubpathMis, point: f32, c: Connections) -> f32 {
-    weight(0.0, c.sq * point * point * camera.vcm)
+pub fn seen_weight(camera: SubpathMis, point: f32, light_paths: f32, c: Connections) -> f32 {
+    weight(0.0, super::mis::seen_ratio_sq(c.sq * point * point * camera.vcm, light_paths))
 }
 
 /// Next-event estimation from a camera vertex: `r_hit` BSDF sampling's density over the light

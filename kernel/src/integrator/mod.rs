@@ -274,6 +274,14 @@ fn splat_camera_estimate<W: AtomicWords>(
     let (x0, y0) = (px as i32 - r, py as i32 - r);
     let columns = axis_weights(scene, params, pos.x, x0, span, true);
     let rows = axis_weights(scene, params, pos.y, y0, span, false);
+    // The control variate (`film_splat::control_variate`): the mean of the pixel's earlier samples
+    // and each neighbour's mean weight from a sample of this pixel.
+    let cv = film_splat::control_variate(params);
+    let beta = if cv { film_splat::camera_mean(words, params, pixel) } else { Rgb::ZERO };
+    // (Zeros without it; filled in the loops rather than merged from two branches, which naga has
+    // rejected for composites: `film::sample_position`.)
+    let mean_x = axis_means(scene, params, px, x0, if cv { span } else { 0 }, true);
+    let mean_y = axis_means(scene, params, py, y0, if cv { span } else { 0 }, false);
     // Every cell, those of pixels outside the window (weight 0) too, so that none keeps the last
     // pass's sums.
     let mut j = 0;
@@ -283,11 +291,45 @@ fn splat_camera_estimate<W: AtomicWords>(
             let mass = columns.mass[i as usize] * rows.mass[j as usize];
             let w =
                 if mass > 0.0 { columns.filter[i as usize] * rows.filter[j as usize] / mass } else { 0.0 };
-            film_splat::add_camera_cell(words, params, pixel, j * span + i, l * w, first);
+            // (The mean weight, not this sample's: nonzero also where this sample is beyond the
+            // radius but others of its pixel are not.)
+            let value = l * w - beta * (w - mean_x[i as usize] * mean_y[j as usize]);
+            film_splat::add_camera_cell(words, params, pixel, j * span + i, value, first);
             i += 1;
         }
         j += 1;
     }
+    if cv {
+        film_splat::add_to_camera_mean(words, params, pixel, l);
+    }
+}
+
+/// The control variate's mean weights along one axis (`film_splat::control_variate`): for each of
+/// the `count` (at most `SPAN`) pixels from `first` (window coordinates, as `axis_weights` counts
+/// them), the mean of its filter weight over the sample's own pixel `own` (`film::axis_pixel_mean`);
+/// zero for those outside the window.
+#[inline]
+fn axis_means(
+    scene: &SceneView,
+    params: &FrameParams,
+    own: u32,
+    first: i32,
+    count: u32,
+    x_axis: bool,
+) -> [f32; SPAN] {
+    let (crop, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
+    let at = (crop + own) as f32;
+    let mut means = [0.0f32; SPAN];
+    let mut i = 0;
+    while i < count && i < SPAN as u32 {
+        let q = first + i as i32;
+        if q >= 0 && q < size as i32 {
+            let c = (crop + q as u32) as f32 + 0.5;
+            means[i as usize] = film::axis_pixel_mean(scene.tables, params, at, c, x_axis);
+        }
+        i += 1;
+    }
+    means
 }
 
 /// The share of the footprint's largest filter weight below which a pixel's splat is decided by
@@ -471,6 +513,17 @@ pub(crate) fn tile_draw(params: &FrameParams, index: u32, sample: u32, stream: u
     let (x, y) = (index % params.width, index / params.width);
     let tile = (y / TILE) * params.width.div_ceil(TILE) + x / TILE;
     u32_to_unit_f32(hash2(hash2(params.seed ^ stream, sample), tile))
+}
+
+/// A share of `FrameParams` (`light_tracing_share`, `connection_rate`) in (0, 1]: 1 where it is 0,
+/// 1 or more, or not a number.
+#[inline]
+pub(crate) fn share_in_unit(x: f32) -> f32 {
+    if x > 0.0 && x < 1.0 {
+        x
+    } else {
+        1.0
+    }
 }
 
 /// The sampler of light path `index`'s sample `sample`.

@@ -6,7 +6,7 @@ use super::nee::{
     area_emission, environment, first_hit_past_emitters, next_event, LightTracingMis, PreviousVertex,
     StrategyCounts,
 };
-use super::ptracer::film_scale;
+use super::ptracer::{film_scale, light_paths};
 use super::{disperse, shading_frame, NO_WAVELENGTH};
 use crate::bsdf::{Bsdf, TransportMode};
 use crate::bvh::Accel;
@@ -131,7 +131,13 @@ impl CameraPath {
         }
 
         if prim.light != NONE {
-            self.result += self.throughput * area_emission(scene, &prim, &sp, ray.dir, &self.prev, ONE_EACH);
+            let mut prev = self.prev;
+            if ibpt && depth == 0 {
+                // Seen by the camera: against the emitter point's splat (`mis::seen_ratio_sq`).
+                let e = crate::light::emission::hit_density(scene, prim.light);
+                prev.lt = mis::seen_scale(prev.lt, e, light_paths(params));
+            }
+            self.result += self.throughput * area_emission(scene, &prim, &sp, ray.dir, &prev, ONE_EACH);
         }
 
         // A null interface (a mask, a thin dielectric's transmission) lets the path through: straight

@@ -62,15 +62,16 @@ pub fn film_scale(params: &FrameParams) -> f32 {
         / light_tracing_share(params)
 }
 
-/// `FrameParams::light_tracing_share` in (0, 1]: 1 where it is 0, 1 or more, or not a number.
+/// The light paths a pass traces: one per pixel of the window.
+#[inline]
+pub fn light_paths(params: &FrameParams) -> f32 {
+    (params.width * params.height) as f32
+}
+
+/// `FrameParams::light_tracing_share` in (0, 1] (`super::share_in_unit`).
 #[inline]
 pub fn light_tracing_share(params: &FrameParams) -> f32 {
-    let q = params.light_tracing_share;
-    if q > 0.0 && q < 1.0 {
-        q
-    } else {
-        1.0
-    }
+    super::share_in_unit(params.light_tracing_share)
 }
 
 /// Whether light path `index` (laid out like the pixels) of sample `sample` connects to the camera:
@@ -88,7 +89,8 @@ const SHARE_STREAM: u32 = 0x5a3c_96e1;
 /// (plain light tracing), or as the emitter point, the first vertex or a later vertex of a light path.
 /// Under BDPT and VCM (`MIS_BDPT`): `d` and `vc` hold the light path's `bdpt_mis::SubpathMis` at the
 /// vertex, `rho` the camera path's density of leaving it back along the light path, `cos` the cosine
-/// there towards the camera, `eta_sq` vertex merging's factor (`bdpt_mis::Merging`).
+/// there towards the camera, `eta_sq` vertex merging's factor (`bdpt_mis::Merging`). Under
+/// `MIS_EMITTER`, `d` holds the pass's light paths (`mis::seen_ratio_sq`).
 #[derive(Clone, Copy)]
 pub(super) struct ConnectionMis {
     kind: u32,
@@ -145,10 +147,10 @@ impl ConnectionMis {
 
     /// The emitter point itself, against the camera path that sees it there (`inv_hit_sq`: `1/E²` of
     /// `emission::hit_density`): the only two strategies of a one-segment path, under IBPT and BDPT
-    /// alike.
+    /// alike, weighed as `mis::seen_ratio_sq` says with the pass's `light_paths`.
     #[inline]
-    pub(super) fn emitter_point(inv_hit_sq: f32) -> Self {
-        ConnectionMis { kind: MIS_EMITTER, inv_hit_sq, ..NO_MIS }
+    pub(super) fn emitter_point(inv_hit_sq: f32, light_paths: f32) -> Self {
+        ConnectionMis { kind: MIS_EMITTER, inv_hit_sq, d: light_paths, ..NO_MIS }
     }
 
     /// The weight of a splat whose camera strategies carry `importance` (`We·cos/d²`, the film scale and
@@ -156,7 +158,7 @@ impl ConnectionMis {
     #[inline]
     fn weight(&self, importance: f32) -> f32 {
         match self.kind {
-            MIS_EMITTER => mis::emitter_connection_weight(importance, self.inv_hit_sq),
+            MIS_EMITTER => mis::emitter_connection_weight(importance, self.inv_hit_sq, self.d),
             MIS_FIRST_VERTEX => {
                 mis::first_vertex_connection_weight(importance, self.rho, self.inv_hit_sq, self.inv_nee_sq)
             }
@@ -357,7 +359,8 @@ pub fn trace<W: AtomicWords>(scene: &SceneView, params: &FrameParams, sampler: &
         }
     }
     if !es.delta_position && params.hide_emitters == 0 && max_depth != 0 {
-        let weighting = if ibpt { ConnectionMis::emitter_point(inv_hit_sq) } else { NO_MIS };
+        let weighting =
+            if ibpt { ConnectionMis::emitter_point(inv_hit_sq, light_paths(params)) } else { NO_MIS };
         splat_emitter_point(scene, params, &accel, words, &es, u_lens_at_emitter, u_round, weighting);
     }
     // IBPT's scalar `d` (after the first vertex): Σ over the camera strategies of their squared density
