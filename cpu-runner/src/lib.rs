@@ -171,7 +171,7 @@ pub fn light_pass(scene: &SceneView, params: &FrameParams, words: &mut Vec<u32>)
     let camera_half = splats_camera_paths(scene, params);
     let light_half = traces_light_paths(params.integrator);
     (0..pixels).into_par_iter().for_each(|pixel| {
-        let mut words = CpuWords(&words);
+        let mut words = CpuWords(words);
         if camera_half {
             splat_camera_paths(scene, params, pixel, &mut words);
         }
