@@ -252,6 +252,27 @@ pub fn axis_pixel_mean(tables: &[f32], params: &FrameParams, at: f32, c: f32, x_
     }
 }
 
+/// The signed filter's running sum along an axis at `x` pixels from a pixel centre: the difference
+/// of two is its integral between them (`axis_pixel_integral`'s, where adjacent pixels share an end).
+pub fn axis_running_sum(tables: &[f32], params: &FrameParams, x: f32) -> f32 {
+    running_sum_at(tables, params, signed_table(params), x)
+}
+
+/// The signed filter's mass in the rendered window along one axis (x where `x_axis`) for the pixel
+/// centred at `c`, as `axis_pixel_mean` takes it; `whole` is its untruncated mass (`axis_running_sum`
+/// at ± the radius), which it is wherever the radius stays within the window: all but the pixels
+/// within the radius of the window's edge need no table lookup for it.
+pub fn axis_window_mass(tables: &[f32], params: &FrameParams, c: f32, x_axis: bool, whole: f32) -> f32 {
+    let (start, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
+    let (lo, hi) = window(start, size);
+    let r = params.filter_radius;
+    if hi - c >= r && lo - c <= -r {
+        whole
+    } else {
+        axis_mass(tables, params, signed_table(params), c, (lo, hi))
+    }
+}
+
 /// The filter of table `base` centred on pixel (`px`, `py`) at `pos`, over its truncated sum: zero
 /// outside the rendered window, where no camera sample lands (a light path's connection landing
 /// there reaches no pixel, or a crop's edge pixels would gain what its camera samples cannot).

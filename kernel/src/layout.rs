@@ -473,7 +473,8 @@ pub struct FrameParams {
     /// counting `c` against the other strategies' 1 in the weights.
     pub connection_share: f32,
     /// The share of light paths connected to the camera (`ibpt`, `bdpt`, `vcm`; the host passes 1
-    /// for `ptracer`, whose light tracing is its only strategy), decided for each 8×8 tile of path indices and sample (`ptracer::connects_to_camera`);
+    /// for `ptracer`, whose light tracing is its only strategy), decided for each 8×8 tile of path
+    /// indices and sample (`ptracer::connects_to_camera`);
     /// their splats count `1 / share` (`ptracer::film_scale`) and the weights count light tracing
     /// `share` times. 0 (or 1 and above): every light path.
     pub light_tracing_share: f32,

@@ -40,18 +40,25 @@ impl FilmCells for Cells {
     }
 }
 
+/// The buffers of an empty scene whose `width`×`height` film has Mitsuba's default gaussian filter.
+fn gaussian_film_buffers(width: u32, height: u32, tag: &str) -> caustic::prepare::buffers::SceneBuffers {
+    let scene = load_xml(
+        &format!(
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
+             <integer name=\"width\" value=\"{width}\"/><integer name=\"height\" value=\"{height}\"/>\
+             <rfilter type=\"gaussian\"/></film></sensor></scene>"
+        ),
+        tag,
+    );
+    caustic::prepare::buffers::build(&scene).expect("builds")
+}
+
 /// One sample of a 7×6 image, splatted from pixel (`px`, `py`) at offset `o` within it: each pixel
 /// gathers L·w and w for w the product of the filter's weights at its centre's offsets, and only
 /// pixels of the image within the radius get anything.
 #[test]
 fn one_sample_reaches_each_pixel_with_the_filters_weight() {
-    let scene = load_xml(
-        "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
-         <integer name=\"width\" value=\"7\"/><integer name=\"height\" value=\"6\"/>\
-         <rfilter type=\"gaussian\"/></film></sensor></scene>",
-        "film-weights",
-    );
-    let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
+    let buffers = gaussian_film_buffers(7, 6, "film-weights");
     let params = buffers.params;
     assert_eq!(params.film_reach, 2, "the gaussian's radius 2 reaches two pixels");
     let stride = caustic_kernel::film_splat::words_per_pixel(&params) as usize;
@@ -427,13 +434,7 @@ fn a_crop_windows_edge_pixels_are_the_same_under_both_films() {
 /// (as the weights' sum is on average: the control variate's term averages to zero).
 #[test]
 fn the_control_variate_s_mean_weights_are_the_filter_s_means() {
-    let scene = load_xml(
-        "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
-         <integer name=\"width\" value=\"9\"/><integer name=\"height\" value=\"7\"/>\
-         <rfilter type=\"gaussian\"/></film></sensor></scene>",
-        "film-means",
-    );
-    let buffers = caustic::prepare::buffers::build(&scene).expect("builds");
+    let buffers = gaussian_film_buffers(9, 7, "film-means");
     let params = buffers.params;
     let tables = &buffers.tables;
     let n = 4096;
@@ -458,6 +459,59 @@ fn the_control_variate_s_mean_weights_are_the_filter_s_means() {
             total += normalised;
         }
         assert!(mass > 0.0 && (total - 1.0).abs() < 1e-5, "centre {c}: the means sum to {total}");
+    }
+}
+
+/// The kernel takes the control variate's mean weights a row at a time (`integrator::axis_means`:
+/// adjacent pixels' integrals share a running sum, interior pixels' mass is the filter's whole mass);
+/// they are `film::axis_pixel_mean`'s to the bit for every pixel of a window and every neighbour,
+/// at the window's edges (a crop's too) as inside. Negative control: another whole mass changes the
+/// interior pixels' means, so the shortcut is the one taken there.
+#[test]
+fn the_kernel_s_mean_weights_are_axis_pixel_mean_s_to_the_bit() {
+    use caustic_kernel::film::{axis_pixel_mean, axis_running_sum};
+    use caustic_kernel::integrator::{axis_means, SPAN};
+    let cases = [
+        ("whole image", gaussian_film_buffers(9, 7, "film-means-rows")),
+        ("crop, gaussian", crop_window_buffers("gaussian")),
+        ("crop, tent", crop_window_buffers("tent")),
+    ];
+    for (name, buffers) in &cases {
+        let (params, tables) = (&buffers.params, &buffers.tables[..]);
+        let reach = params.film_reach as i32;
+        let span = (2 * reach + 1) as u32;
+        let r = params.filter_radius;
+        let whole = axis_running_sum(tables, params, r) - axis_running_sum(tables, params, -r);
+        let mut interior = 0;
+        for x_axis in [true, false] {
+            let (crop, size) =
+                if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
+            for own in 0..size {
+                let first = own as i32 - reach;
+                let means = axis_means(tables, params, own, (first, span), x_axis, whole);
+                let other = axis_means(tables, params, own, (first, span), x_axis, whole * 1.01);
+                assert!(means[span as usize..SPAN].iter().all(|&m| m == 0.0), "{name}: beyond the span");
+                for i in 0..span as i32 {
+                    let q = first + i;
+                    let expected = if q >= 0 && q < size as i32 {
+                        let c = (crop as i32 + q) as f32 + 0.5;
+                        axis_pixel_mean(tables, params, (crop + own) as f32, c, x_axis)
+                    } else {
+                        0.0
+                    };
+                    let got = means[i as usize];
+                    assert_eq!(
+                        got.to_bits(),
+                        expected.to_bits(),
+                        "{name}, x {x_axis}, pixel {own}, {i}: {got} {expected}"
+                    );
+                    if got != 0.0 && other[i as usize] != got {
+                        interior += 1;
+                    }
+                }
+            }
+        }
+        assert!(interior > 0, "{name}: no pixel's mass was the whole mass");
     }
 }
 
