@@ -40,13 +40,20 @@ impl FilmCells for Cells {
     }
 }
 
-/// The buffers of an empty scene whose `width`×`height` film has Mitsuba's default gaussian filter.
-fn gaussian_film_buffers(width: u32, height: u32, tag: &str) -> caustic::prepare::buffers::SceneBuffers {
+/// The buffers of an empty scene whose `width`×`height` film has the reconstruction filter `filter`
+/// and the film's further properties `more` (XML, a crop window's say).
+fn film_buffers(
+    width: u32,
+    height: u32,
+    more: &str,
+    filter: &str,
+    tag: &str,
+) -> caustic::prepare::buffers::SceneBuffers {
     let scene = load_xml(
         &format!(
             "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
-             <integer name=\"width\" value=\"{width}\"/><integer name=\"height\" value=\"{height}\"/>\
-             <rfilter type=\"gaussian\"/></film></sensor></scene>"
+             <integer name=\"width\" value=\"{width}\"/><integer name=\"height\" value=\"{height}\"/>{more}\
+             <rfilter type=\"{filter}\"/></film></sensor></scene>"
         ),
         tag,
     );
@@ -58,7 +65,7 @@ fn gaussian_film_buffers(width: u32, height: u32, tag: &str) -> caustic::prepare
 /// pixels of the image within the radius get anything.
 #[test]
 fn one_sample_reaches_each_pixel_with_the_filters_weight() {
-    let buffers = gaussian_film_buffers(7, 6, "film-weights");
+    let buffers = film_buffers(7, 6, "", "gaussian", "film-weights");
     let params = buffers.params;
     assert_eq!(params.film_reach, 2, "the gaussian's radius 2 reaches two pixels");
     let stride = caustic_kernel::film_splat::words_per_pixel(&params) as usize;
@@ -99,17 +106,9 @@ fn one_sample_reaches_each_pixel_with_the_filters_weight() {
 
 /// An empty scene's buffers, a 16×12 image with a 9×7 crop window at (3, 2), under `filter`.
 fn crop_window_buffers(filter: &str) -> caustic::prepare::buffers::SceneBuffers {
-    let scene = load_xml(
-        &format!(
-            "<scene version=\"3.0.0\"><sensor type=\"perspective\"><film type=\"hdrfilm\">\
-             <integer name=\"width\" value=\"16\"/><integer name=\"height\" value=\"12\"/>\
-             <integer name=\"crop_offset_x\" value=\"3\"/><integer name=\"crop_offset_y\" value=\"2\"/>\
-             <integer name=\"crop_width\" value=\"9\"/><integer name=\"crop_height\" value=\"7\"/>\
-             <rfilter type=\"{filter}\"/></film></sensor></scene>"
-        ),
-        &format!("crop-window-{filter}"),
-    );
-    caustic::prepare::buffers::build(&scene).expect("builds")
+    let crop = "<integer name=\"crop_offset_x\" value=\"3\"/><integer name=\"crop_offset_y\" value=\"2\"/>\
+                <integer name=\"crop_width\" value=\"9\"/><integer name=\"crop_height\" value=\"7\"/>";
+    film_buffers(16, 12, crop, filter, &format!("crop-window-{filter}"))
 }
 
 /// `film::pixel_weight` (light tracing's weight for a pixel, which the bidirectional camera halves
@@ -434,7 +433,7 @@ fn a_crop_windows_edge_pixels_are_the_same_under_both_films() {
 /// (as the weights' sum is on average: the control variate's term averages to zero).
 #[test]
 fn the_control_variate_s_mean_weights_are_the_filter_s_means() {
-    let buffers = gaussian_film_buffers(9, 7, "film-means");
+    let buffers = film_buffers(9, 7, "", "gaussian", "film-means");
     let params = buffers.params;
     let tables = &buffers.tables;
     let n = 4096;
@@ -472,7 +471,7 @@ fn the_kernel_s_mean_weights_are_axis_pixel_mean_s_to_the_bit() {
     use caustic_kernel::film::{axis_pixel_mean, axis_running_sum};
     use caustic_kernel::integrator::{axis_means, SPAN};
     let cases = [
-        ("whole image", gaussian_film_buffers(9, 7, "film-means-rows")),
+        ("whole image", film_buffers(9, 7, "", "gaussian", "film-means-rows")),
         ("crop, gaussian", crop_window_buffers("gaussian")),
         ("crop, tent", crop_window_buffers("tent")),
     ];
