@@ -20,13 +20,16 @@ out="${1:-$committed}"
 # The inputs, relative to the repository root, in a fixed order (also what the test hashes).
 inputs() {
   (cd "$root" && { printf '%s\n' Cargo.toml Cargo.lock kernel/Cargo.toml shaders-build/Cargo.toml \
-    shaders-build/Cargo.lock shaders-build/rust-toolchain.toml shaders-build/src/main.rs shaders-build/build.sh;
+    shaders-build/Cargo.lock shaders-build/rust-toolchain.toml shaders-build/src/main.rs shaders-build/build.sh \
+    shaders-build/tools/spirv-opt;
     find kernel/src -type f -name '*.rs' | LC_ALL=C sort; })
 }
 # Hashed before the build, so that an edit made while it runs makes the stamp stale, not wrong.
 stamp=$(cd "$root" && inputs | xargs sha256sum)
 cd "$here"
 export CAUSTIC_ROOT=$root
+# spirv-opt without validating its input (tools/spirv-opt says why).
+export PATH="$here/tools:$PATH"
 CARGO_TARGET_DIR="$CAUSTIC_CACHE/shaders-build-target" cargo run --release --quiet -- "$out"
 if [ "$(realpath "$out")" = "$(realpath "$committed")" ]; then
   { echo "$stamp"; (cd "$root" && sha256sum host/shaders/caustic-kernel.spv); } >"$root/host/shaders/caustic-kernel.inputs"

@@ -37,6 +37,28 @@ fn signed_table(params: &FrameParams) -> u32 {
     }
 }
 
+/// The untruncated mass along an axis of the table at `base` (the CDF of |w|, or the signed one):
+/// `FrameParams::filter_abs_mass` or `filter_mass`, which the host takes from `whole_masses`.
+fn whole_mass(params: &FrameParams, base: u32) -> f32 {
+    if base == params.filter_cdf_offset {
+        params.filter_abs_mass
+    } else {
+        params.filter_mass
+    }
+}
+
+/// The filter's untruncated masses along an axis, of |w| and of the signed w, summed from the tables
+/// as `axis_mass` would sum them for a pixel whose filter lies inside the rendered window: the host
+/// writes them into `FrameParams::filter_abs_mass` and `filter_mass` once a frame.
+pub fn whole_masses(tables: &[f32], params: &FrameParams) -> (f32, f32) {
+    let r = params.filter_radius;
+    let (abs, signed) = (params.filter_cdf_offset, signed_table(params));
+    (
+        running_sum_at(tables, params, abs, r) - running_sum_at(tables, params, abs, -r),
+        running_sum_at(tables, params, signed, r) - running_sum_at(tables, params, signed, -r),
+    )
+}
+
 /// The filter's CDF at `x` (piecewise linear between the tabulated bin edges).
 fn filter_cdf_at(tables: &[f32], params: &FrameParams, x: f32) -> f32 {
     running_sum_at(tables, params, params.filter_cdf_offset, x)
@@ -171,11 +193,27 @@ fn window(start: u32, size: u32) -> (f32, f32) {
     (start as f32, (start + size) as f32)
 }
 
+/// The rendered pixels along one axis (x where `x_axis`, else y): the first one's place in the full
+/// image and their count.
+#[inline]
+pub fn rendered_axis(params: &FrameParams, x_axis: bool) -> (u32, u32) {
+    if x_axis {
+        (params.crop_x, params.width)
+    } else {
+        (params.crop_y, params.height)
+    }
+}
+
 /// The filter's mass inside the rendered window `[lo, hi)` along one axis for a pixel centred at
 /// `c`: what `sample_position` renormalises the truncated filter by (`base`: the CDF of |w|), or the
-/// signed filter's (`base`: `signed_table`).
+/// signed filter's (`base`: `signed_table`). Where the filter's radius lies inside the window (all
+/// but the pixels within the radius of its edge) that is the table's whole mass, which the frame
+/// carries (`whole_mass`), the same to the bit as the two running sums it saves.
 fn axis_mass(tables: &[f32], params: &FrameParams, base: u32, c: f32, (lo, hi): (f32, f32)) -> f32 {
     let r = params.filter_radius;
+    if hi - c >= r && lo - c <= -r {
+        return whole_mass(params, base);
+    }
     running_sum_at(tables, params, base, (hi - c).min(r))
         - running_sum_at(tables, params, base, (lo - c).max(-r))
 }
@@ -221,13 +259,11 @@ pub fn pixel_weight(tables: &[f32], params: &FrameParams, pos: Vec2, px: u32, py
 /// over the product of their masses, where that is positive: a neighbourhood needs each column's and
 /// each row's once (`integrator::splat_camera_estimate`).
 pub fn axis_pixel_weight(tables: &[f32], params: &FrameParams, pos: f32, c: f32, x_axis: bool) -> (f32, f32) {
-    let (start, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
-    let base = signed_table(params);
-    let f = filter_density(tables, params, base, pos - c);
+    let f = filter_density(tables, params, signed_table(params), pos - c);
     if f == 0.0 {
         return (0.0, 0.0);
     }
-    (f, axis_mass(tables, params, base, c, window(start, size)))
+    (f, axis_window_mass(tables, params, c, x_axis))
 }
 
 /// `axis_pixel_weight`'s filter integrated over the pixel `[at, at + 1)` of the full image along the
@@ -243,8 +279,7 @@ pub fn axis_pixel_integral(tables: &[f32], params: &FrameParams, at: f32, c: f32
 /// is not positive. The product of two axes' is the mean of `pixel_weight` over the pixel, whether or
 /// not one sample's own place lies within the filter's radius.
 pub fn axis_pixel_mean(tables: &[f32], params: &FrameParams, at: f32, c: f32, x_axis: bool) -> f32 {
-    let (start, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
-    let mass = axis_mass(tables, params, signed_table(params), c, window(start, size));
+    let mass = axis_window_mass(tables, params, c, x_axis);
     if mass > 0.0 {
         axis_pixel_integral(tables, params, at, c) / mass
     } else {
@@ -259,18 +294,10 @@ pub fn axis_running_sum(tables: &[f32], params: &FrameParams, x: f32) -> f32 {
 }
 
 /// The signed filter's mass in the rendered window along one axis (x where `x_axis`) for the pixel
-/// centred at `c`, as `axis_pixel_mean` takes it; `whole` is its untruncated mass (`axis_running_sum`
-/// at ± the radius), which it is wherever the radius stays within the window: all but the pixels
-/// within the radius of the window's edge need no table lookup for it.
-pub fn axis_window_mass(tables: &[f32], params: &FrameParams, c: f32, x_axis: bool, whole: f32) -> f32 {
-    let (start, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
-    let (lo, hi) = window(start, size);
-    let r = params.filter_radius;
-    if hi - c >= r && lo - c <= -r {
-        whole
-    } else {
-        axis_mass(tables, params, signed_table(params), c, (lo, hi))
-    }
+/// centred at `c`: what `axis_pixel_weight` and `axis_pixel_mean` divide by.
+pub fn axis_window_mass(tables: &[f32], params: &FrameParams, c: f32, x_axis: bool) -> f32 {
+    let (start, size) = rendered_axis(params, x_axis);
+    axis_mass(tables, params, signed_table(params), c, window(start, size))
 }
 
 /// The filter of table `base` centred on pixel (`px`, `py`) at `pos`, over its truncated sum: zero

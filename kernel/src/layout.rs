@@ -483,7 +483,13 @@ pub struct FrameParams {
     /// vertex counts `1 / rate` and the weights count connections `rate` times as often. 0 (or 1 and
     /// above): every camera vertex with a non-Dirac lobe.
     pub connection_rate: f32,
-    pub _pad: [u32; 1],
+    /// The filter's untruncated masses along an axis, of its |w| table and of its signed one
+    /// (`film::whole_masses`; equal where it has no negative lobes): the mass `film` divides by for a
+    /// pixel whose filter lies inside the rendered window, written once a frame by the host instead
+    /// of summed from the tables for every column of every splat.
+    pub filter_abs_mass: f32,
+    pub filter_mass: f32,
+    pub _pad: [u32; 3],
 
     pub camera: crate::camera::Camera,
 }

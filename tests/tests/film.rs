@@ -462,33 +462,21 @@ fn the_control_variate_s_mean_weights_are_the_filter_s_means() {
 }
 
 /// The kernel takes the control variate's mean weights a row at a time (`integrator::axis_means`:
-/// adjacent pixels' integrals share a running sum, interior pixels' mass is the filter's whole mass);
-/// they are `film::axis_pixel_mean`'s to the bit for every pixel of a window and every neighbour,
-/// at the window's edges (a crop's too) as inside. Negative control: another whole mass changes the
-/// interior pixels' means, so the shortcut is the one taken there.
+/// adjacent pixels' integrals share a running sum); they are `film::axis_pixel_mean`'s to the bit for
+/// every pixel of a window and every neighbour, at the window's edges (a crop's too) as inside.
 #[test]
 fn the_kernel_s_mean_weights_are_axis_pixel_mean_s_to_the_bit() {
-    use caustic_kernel::film::{axis_pixel_mean, axis_running_sum};
+    use caustic_kernel::film::{axis_pixel_mean, rendered_axis};
     use caustic_kernel::integrator::{axis_means, SPAN};
-    let cases = [
-        ("whole image", film_buffers(9, 7, "", "gaussian", "film-means-rows")),
-        ("crop, gaussian", crop_window_buffers("gaussian")),
-        ("crop, tent", crop_window_buffers("tent")),
-    ];
-    for (name, buffers) in &cases {
+    for (name, buffers) in &mean_weight_films() {
         let (params, tables) = (&buffers.params, &buffers.tables[..]);
         let reach = params.film_reach as i32;
         let span = (2 * reach + 1) as u32;
-        let r = params.filter_radius;
-        let whole = axis_running_sum(tables, params, r) - axis_running_sum(tables, params, -r);
-        let mut interior = 0;
         for x_axis in [true, false] {
-            let (crop, size) =
-                if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
+            let (crop, size) = rendered_axis(params, x_axis);
             for own in 0..size {
                 let first = own as i32 - reach;
-                let means = axis_means(tables, params, own, (first, span), x_axis, whole);
-                let other = axis_means(tables, params, own, (first, span), x_axis, whole * 1.01);
+                let means = axis_means(tables, params, own, (first, span), x_axis);
                 assert!(means[span as usize..SPAN].iter().all(|&m| m == 0.0), "{name}: beyond the span");
                 for i in 0..span as i32 {
                     let q = first + i;
@@ -504,13 +492,68 @@ fn the_kernel_s_mean_weights_are_axis_pixel_mean_s_to_the_bit() {
                         expected.to_bits(),
                         "{name}, x {x_axis}, pixel {own}, {i}: {got} {expected}"
                     );
-                    if got != 0.0 && other[i as usize] != got {
-                        interior += 1;
-                    }
                 }
             }
         }
-        assert!(interior > 0, "{name}: no pixel's mass was the whole mass");
+    }
+}
+
+/// A whole image, and a crop window under the gaussian and the tent.
+fn mean_weight_films() -> [(&'static str, caustic::prepare::buffers::SceneBuffers); 3] {
+    [
+        ("whole image", film_buffers(9, 7, "", "gaussian", "film-means-rows")),
+        ("crop, gaussian", crop_window_buffers("gaussian")),
+        ("crop, tent", crop_window_buffers("tent")),
+    ]
+}
+
+/// A pixel's filter mass in the rendered window (`film::axis_window_mass`, which every splat's
+/// weights divide by) is the frame's whole mass where the filter's radius lies inside the window
+/// (`FrameParams::filter_mass`, written by the host from `film::whole_masses`), and the two running
+/// sums of the truncated filter elsewhere: either way the same to the bit as those running sums, for
+/// every pixel of a window and of a crop, under filters with and without negative lobes, along both
+/// axes. Negative control: other whole masses in the frame change the interior pixels' masses and no
+/// edge pixel's, so the frame's are the ones taken.
+#[test]
+fn a_pixel_s_mass_is_the_frame_s_whole_mass_inside_the_window_to_the_bit() {
+    use caustic_kernel::film::{axis_running_sum, axis_window_mass, rendered_axis};
+    let mut films = vec![("whole image".to_string(), film_buffers(9, 7, "", "gaussian", "film-mass"))];
+    for filter in ["gaussian", "tent", "mitchell", "lanczos"] {
+        films.push((format!("crop, {filter}"), crop_window_buffers(filter)));
+    }
+    for (name, buffers) in &films {
+        let (params, tables) = (&buffers.params, &buffers.tables[..]);
+        let other = FrameParams {
+            filter_abs_mass: params.filter_abs_mass * 1.01,
+            filter_mass: params.filter_mass * 1.01,
+            ..*params
+        };
+        let r = params.filter_radius;
+        let (mut interior, mut edge) = (0, 0);
+        for x_axis in [true, false] {
+            let (crop, size) = rendered_axis(params, x_axis);
+            let (lo, hi) = (crop as f32, (crop + size) as f32);
+            for q in 0..size {
+                let c = (crop + q) as f32 + 0.5;
+                let mass = axis_window_mass(tables, params, c, x_axis);
+                let summed = axis_running_sum(tables, params, (hi - c).min(r))
+                    - axis_running_sum(tables, params, (lo - c).max(-r));
+                assert_eq!(
+                    mass.to_bits(),
+                    summed.to_bits(),
+                    "{name}, x {x_axis}, pixel {q}: {mass} {summed}"
+                );
+                let changed = axis_window_mass(tables, &other, c, x_axis) != mass;
+                let inside = hi - c >= r && lo - c <= -r;
+                assert_eq!(
+                    changed, inside,
+                    "{name}, x {x_axis}, pixel {q}: the frame's mass taken {changed}"
+                );
+                interior += inside as u32;
+                edge += !inside as u32;
+            }
+        }
+        assert!(interior > 0 && edge > 0, "{name}: {interior} interior pixels, {edge} at the edge");
     }
 }
 

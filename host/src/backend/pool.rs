@@ -20,7 +20,8 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 enum Command {
-    Pass(FrameParams),
+    /// Boxed: the frame's parameters are most of the enum's size (240 bytes against 32).
+    Pass(Box<FrameParams>),
     Read,
     Write(Accumulation),
 }
@@ -289,7 +290,7 @@ impl Lanes for Pool {
     fn start(&mut self, index: usize, params: &FrameParams) {
         let lane = &mut self.lanes[index];
         lane.running = Some((params.sample_base, params.sample_count));
-        let sent = lane.commands.as_ref().map(|tx| tx.send(Command::Pass(*params)).is_ok());
+        let sent = lane.commands.as_ref().map(|tx| tx.send(Command::Pass(Box::new(*params))).is_ok());
         if sent != Some(true) {
             self.unsent.push((index, anyhow!("the device's thread has ended")));
         }

@@ -226,7 +226,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
     } else {
         1.0
     };
-    let params = FrameParams {
+    let mut params = FrameParams {
         width: crop.width,
         height: crop.height,
         max_depth: if scene.integrator.max_depth < 0 { NONE } else { scene.integrator.max_depth as u32 },
@@ -258,6 +258,7 @@ pub fn build(scene: &Scene) -> Result<SceneBuffers> {
         camera,
         ..Default::default()
     };
+    (params.filter_abs_mass, params.filter_mass) = caustic_kernel::film::whole_masses(&tables, &params);
     let features = features_of(scene, &materials, &lights, !textures.is_empty(), &params, instanced);
     if materials.is_empty() {
         materials.push(Material::default());

@@ -53,7 +53,7 @@ mod tests {
 
     fn params(filter: &Filter, strata: u32) -> (FrameParams, Vec<f32>) {
         let (tables, signed) = filter_tables(filter, BINS).expect("tabulates");
-        let params = FrameParams {
+        let mut params = FrameParams {
             width: SIZE.0,
             height: SIZE.1,
             full_width: SIZE.0,
@@ -65,6 +65,7 @@ mod tests {
             filter_signed: signed as u32,
             ..Default::default()
         };
+        (params.filter_abs_mass, params.filter_mass) = caustic_kernel::film::whole_masses(&tables, &params);
         (params, tables)
     }
 

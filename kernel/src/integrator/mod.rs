@@ -281,14 +281,8 @@ fn splat_camera_estimate<W: AtomicWords>(
     // (Zeros without it; filled in the loops rather than merged from two branches, which naga has
     // rejected for composites: `film::sample_position`.)
     let count = if cv { span } else { 0 };
-    let r = params.filter_radius;
-    let whole = if cv {
-        film::axis_running_sum(scene.tables, params, r) - film::axis_running_sum(scene.tables, params, -r)
-    } else {
-        0.0
-    };
-    let mean_x = axis_means(scene.tables, params, px, (x0, count), true, whole);
-    let mean_y = axis_means(scene.tables, params, py, (y0, count), false, whole);
+    let mean_x = axis_means(scene.tables, params, px, (x0, count), true);
+    let mean_y = axis_means(scene.tables, params, py, (y0, count), false);
     // Every cell, those of pixels outside the window (weight 0) too, so that none keeps the last
     // pass's sums.
     let mut j = 0;
@@ -314,10 +308,10 @@ fn splat_camera_estimate<W: AtomicWords>(
 /// The control variate's mean weights along one axis (`film_splat::control_variate`): for each of
 /// the `count` (at most `SPAN`) pixels from `first` (window coordinates, as `axis_weights` counts
 /// them), the mean of its filter weight over the sample's own pixel `own`, `film::axis_pixel_mean`
-/// to the bit; zero for those outside the window. `whole` is the filter's untruncated mass along an
-/// axis. Adjacent pixels' integrals over `own` share an end and inside the window their mass is
-/// `whole`, so a row of 5 (the gaussian's) takes 6 running sums instead of `axis_pixel_mean`'s 20:
-/// the variate's cost on the Cornell box's `bdpt` pass was 8% with 20.
+/// to the bit; zero for those outside the window. Adjacent pixels' integrals over `own` share an
+/// end, and inside the window a pixel's mass is the frame's whole mass (`film::axis_window_mass`),
+/// so a row of 5 (the gaussian's) takes 6 running sums instead of `axis_pixel_mean`'s 20: the
+/// variate's cost on the Cornell box's `bdpt` pass was 8% with 20.
 #[inline]
 pub fn axis_means(
     tables: &[f32],
@@ -325,9 +319,8 @@ pub fn axis_means(
     own: u32,
     (first, count): (i32, u32),
     x_axis: bool,
-    whole: f32,
 ) -> [f32; SPAN] {
-    let (crop, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
+    let (crop, size) = film::rendered_axis(params, x_axis);
     let at = (crop + own) as f32;
     let mut means = [0.0f32; SPAN];
     if count == 0 {
@@ -342,7 +335,7 @@ pub fn axis_means(
         let c = (crop as i32 + q) as f32 + 0.5;
         let lower = film::axis_running_sum(tables, params, at - c);
         if q >= 0 && q < size as i32 {
-            let mass = film::axis_window_mass(tables, params, c, x_axis, whole);
+            let mass = film::axis_window_mass(tables, params, c, x_axis);
             if mass > 0.0 {
                 means[i as usize] = (upper - lower) / mass;
             }
@@ -434,7 +427,7 @@ pub fn axis_weights(
     count: u32,
     x_axis: bool,
 ) -> AxisWeights {
-    let (crop, size) = if x_axis { (params.crop_x, params.width) } else { (params.crop_y, params.height) };
+    let (crop, size) = film::rendered_axis(params, x_axis);
     let mut weights = AxisWeights { filter: [0.0f32; SPAN], mass: [0.0f32; SPAN], peak: 0.0 };
     let mut i = 0;
     while i < count && i < SPAN as u32 {

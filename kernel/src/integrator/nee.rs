@@ -155,12 +155,29 @@ pub fn area_emission(
     prev: &PreviousVertex,
     counts: StrategyCounts,
 ) -> Rgb {
+    seen_area_emission(scene, prim, sp, dir, prev, counts, 0.0)
+}
+
+/// `area_emission`, where under IBPT the camera sees the emitter at its first vertex: weighted
+/// against the emitter point's splats of `light_paths` light paths a camera sample
+/// (`mis::seen_scale`); 0 at every other vertex.
+pub fn seen_area_emission(
+    scene: &SceneView,
+    prim: &Primitive,
+    sp: &SurfacePoint,
+    dir: Vec3,
+    prev: &PreviousVertex,
+    counts: StrategyCounts,
+    light_paths: f32,
+) -> Rgb {
     let emitter = scene.lights[prim.light as usize];
     let le = light::emitted_at(scene, &emitter, sp.ns, -dir, sp.uv);
     let weight = if prev.lt > 0.0 {
         // IBPT: against light sampling and against the light path that starts at this point.
         let r_nee = if prev.delta { 0.0 } else { light::pdf(&emitter, prim, prev.p, sp.p, sp.ng) / prev.pdf };
-        mis::hit_weight(r_nee, prev.lt, emission::hit_density(scene, prim.light))
+        let e = emission::hit_density(scene, prim.light);
+        let lt = if light_paths > 0.0 { mis::seen_scale(prev.lt, e, light_paths) } else { prev.lt };
+        mis::hit_weight(r_nee, lt, e)
     } else if prev.delta {
         1.0
     } else {

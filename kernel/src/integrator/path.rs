@@ -3,7 +3,7 @@
 //! camera half it also weighs against light tracing (`LightTracingMis`, `docs/ibpt.md`).
 use super::mis;
 use super::nee::{
-    area_emission, environment, first_hit_past_emitters, next_event, LightTracingMis, PreviousVertex,
+    environment, first_hit_past_emitters, next_event, seen_area_emission, LightTracingMis, PreviousVertex,
     StrategyCounts,
 };
 use super::ptracer::{film_scale, light_paths};
@@ -131,13 +131,10 @@ impl CameraPath {
         }
 
         if prim.light != NONE {
-            let mut prev = self.prev;
-            if ibpt && depth == 0 {
-                // Seen by the camera: against the emitter point's splat (`mis::seen_ratio_sq`).
-                let e = crate::light::emission::hit_density(scene, prim.light);
-                prev.lt = mis::seen_scale(prev.lt, e, light_paths(params));
-            }
-            self.result += self.throughput * area_emission(scene, &prim, &sp, ray.dir, &prev, ONE_EACH);
+            // Seen by the camera under IBPT: against the emitter point's splat (`mis::seen_ratio_sq`).
+            let seen = if ibpt && depth == 0 { light_paths(params) } else { 0.0 };
+            self.result +=
+                self.throughput * seen_area_emission(scene, &prim, &sp, ray.dir, &self.prev, ONE_EACH, seen);
         }
 
         // A null interface (a mask, a thin dielectric's transmission) lets the path through: straight
